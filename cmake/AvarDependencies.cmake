@@ -1,0 +1,13 @@
+# Third-party libraries, all from Debian packages (scripts/install-deps.sh installs them).
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+pkg_check_modules(LIBSERIAL REQUIRED IMPORTED_TARGET libserial)
+if(AVAR_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(AVAR_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,35 @@
+#pragma once
+// The transport layer of firmware_iface: moves bytes with deadlines and knows nothing of
+// servos. Implementations: SerialTransport (libserial), and in tests/sim in-memory ones.
+
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "avar/core/status.hpp"
+
+namespace avar::firmware_iface {
+
+class ByteTransport {
+ public:
+  virtual ~ByteTransport() = default;
+
+  /// Sends all of `bytes`. Real-time safe in implementations: no allocation, no exception.
+  virtual Status write(std::span<const std::uint8_t> bytes) noexcept = 0;
+
+  /// Fills `out` completely, waiting at most `timeout` in total. Returns timeout when fewer
+  /// bytes arrived (what did arrive is discarded). Real-time safe: no allocation, no exception.
+  virtual Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept = 0;
+
+  /// Drops whatever has been received and not yet read (stale replies).
+  virtual void discard_input() noexcept = 0;
+
+  /// Total bytes written since the transport was opened.
+  virtual std::uint64_t bytes_written() const noexcept = 0;
+
+  /// A human-readable name for messages, such as the port path.
+  virtual const std::string& name() const noexcept = 0;
+};
+
+}  // namespace avar::firmware_iface
