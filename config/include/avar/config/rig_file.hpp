@@ -1,0 +1,14 @@
+#pragma once
+// Reading a rig file (YAML). The whole file is validated before anything can move: every error
+// is an InputError naming file, line and column, what was found and what was expected.
+
+#include <string>
+
+#include "avar/control/rig.hpp"
+
+namespace avar::config {
+
+/// Loads and validates a rig file. Throws InputError on the first problem found.
+control::Rig load_rig_file(const std::string& path);
+
+}  // namespace avar::config

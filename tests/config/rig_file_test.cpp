@@ -1,0 +1,115 @@
+#include "avar/config/rig_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+namespace avar::config {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kGoodRig = R"(name: two
+links:
+  head: {port: sim, baud: 115200, maestro: {model: mini12}}
+channels:
+  jaw: {unit: deg, min: 0, max: 30, rest: 0}
+  pan: {unit: deg, min: -60, max: 60, rest: 0, max_velocity: 90, ramp_velocity: 30}
+actuators:
+  - {channel: jaw, protocol: maestro, link: head, device_channel: 0, calibration: {min_us: 1200, max_us: 1650}}
+  - {channel: pan, protocol: maestro, link: head, device_channel: 3, calibration: {min_us: 1000, max_us: 2000, reverse: true, trim_us: 12}, speed: 120}
+)";
+
+/// Loads `text` as a rig and returns the error message ("" if it loaded).
+std::string error_of(const std::string& text) {
+  const std::string path = write_temp("rig_under_test.yaml", text);
+  try {
+    load_rig_file(path);
+    return "";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(path, 0), 0u) << "message must start with the file name: " << msg;
+    return msg.substr(path.size());
+  }
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
+  const control::Rig rig = load_rig_file(write_temp("good_rig.yaml", kGoodRig));
+  EXPECT_EQ(rig.name, "two");
+  ASSERT_EQ(rig.channels.size(), 2u);
+  EXPECT_EQ(rig.channels[1].name, "pan");
+  EXPECT_DOUBLE_EQ(rig.channels[1].max_velocity, 90);
+  EXPECT_DOUBLE_EQ(rig.channels[1].ramp_velocity, 30);
+  EXPECT_DOUBLE_EQ(rig.channels[0].max_velocity, 120);  // default: 4 ranges per second
+  EXPECT_DOUBLE_EQ(rig.channels[0].ramp_velocity, 15);  // default: half a range per second
+  ASSERT_EQ(rig.links.size(), 1u);
+  EXPECT_TRUE(rig.links[0].simulated());
+  EXPECT_EQ(rig.links[0].maestro.channel_count, 12);
+  ASSERT_EQ(rig.actuators.size(), 2u);
+  EXPECT_EQ(rig.actuators[1].channel, 1u);
+  EXPECT_EQ(rig.actuators[1].device_channel, 3);
+  EXPECT_TRUE(rig.actuators[1].calibration.reverse);
+  EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.trim_us, 12);
+  EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.channel_min, -60);
+  EXPECT_DOUBLE_EQ(*rig.actuators[1].speed_limit, 120);
+  EXPECT_EQ(rig.channels[1].where.line, 6);
+}
+
+TEST(RigFile, BundledExampleLoads) {
+  const control::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  EXPECT_EQ(rig.channels.size(), 8u);
+  EXPECT_EQ(rig.actuators.size(), 8u);
+}
+
+TEST(RigFile, MissingFileIsNamed) {
+  try {
+    load_rig_file("/nonexistent/rig.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/rig.yaml: cannot read file: No such file or directory");
+  }
+}
+
+TEST(RigFile, MalformedYamlGivesLineAndColumn) {
+  EXPECT_EQ(error_of("name: x\nchannels: {jaw: [1, 2}\n"), ":2:22: malformed YAML: illegal flow end");
+}
+
+TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
+  EXPECT_EQ(error_of(replace(kGoodRig, "name: two", "name: two\nspeed: 3")), ":2:1: unknown field 'speed' in the rig file; expected one of: name, rate_hz, links, channels, actuators");
+  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw,", "{channel: chin,")),
+            ":8:15: unknown channel 'chin'; expected one of the rig's channels: jaw, pan");
+  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),
+            ":8:30: unknown protocol 'dynamixl'; expected one of: maestro");
+  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 12")),
+            ":9:67: expected a device channel from 0 to 11 (the Maestro on link 'head' has 12 channels), found '12'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 0")),
+            ":9:67: device channel 0 of link 'head' is used by two actuators");
+  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: -3, rest: 0")),
+            ":5:33: expected max of channel 'jaw' to be greater than its min 0, found -3");
+  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 40")),
+            ":5:43: expected rest of channel 'jaw' inside its limits [0, 30], found 40");
+  EXPECT_EQ(error_of(replace(kGoodRig, "baud: 115200", "baud: 12345")),
+            ":3:27: expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found '12345'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "model: mini12", "model: mega")),
+            ":3:52: unknown Maestro model 'mega'; expected one of: micro6, mini12, mini18, mini24");
+  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: thirty, rest: 0")),
+            ":5:33: expected max of channel 'jaw' to be a finite number, found 'thirty'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "min_us: 1200, max_us: 1650", "min_us: 1200")),
+            ":8:83: missing field 'max_us' in the calibration of actuator 1");
+  EXPECT_EQ(error_of(replace(kGoodRig, "link: head, device_channel: 0", "link: body, device_channel: 0")),
+            ":8:45: unknown link 'body'; expected one of the rig's links: head");
+}
+
+}  // namespace
+}  // namespace avar::config
