@@ -1,0 +1,47 @@
+#pragma once
+// ByteTransport over a serial port (USB CDC such as /dev/ttyACM0, a UART, or the slave side of a
+// pseudo-terminal), using libserial. 8N1, no flow control, raw bytes.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "avar/firmware_iface/byte_transport.hpp"
+
+namespace LibSerial {
+class SerialPort;
+}
+
+namespace avar::firmware_iface {
+
+class SerialTransport final : public ByteTransport {
+ public:
+  /// Opens and configures the port, and takes an exclusive lock on it so that two programs
+  /// never drive one device. Throws InputError naming the port when it is missing, not a
+  /// serial device, busy, or the baud rate is not one the port supports. Not real-time.
+  SerialTransport(const std::string& path, int baud);
+  ~SerialTransport() override;
+  SerialTransport(const SerialTransport&) = delete;
+  SerialTransport& operator=(const SerialTransport&) = delete;
+
+  Status write(std::span<const std::uint8_t> bytes) noexcept override;
+  Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
+  void discard_input() noexcept override;
+  std::uint64_t bytes_written() const noexcept override { return bytes_written_; }
+  const std::string& name() const noexcept override { return path_; }
+
+  /// Baud rates a serial port can be opened at (the termios standard set).
+  static bool is_supported_baud(int baud) noexcept;
+
+  /// Largest single write or read; longer requests fail with out_of_range.
+  static constexpr std::size_t max_chunk = 4096;
+
+ private:
+  std::string path_;
+  std::unique_ptr<LibSerial::SerialPort> port_;
+  std::vector<std::uint8_t> write_buffer_;  // capacity max_chunk, reused: no allocation per write
+  std::vector<std::uint8_t> read_buffer_;   // capacity max_chunk, reused
+  std::uint64_t bytes_written_ = 0;
+};
+
+}  // namespace avar::firmware_iface
