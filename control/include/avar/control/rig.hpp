@@ -1,0 +1,79 @@
+#pragma once
+// The rig: what a figure is made of, as loaded from a rig file. Names are resolved to dense
+// indices once at load; everything downstream uses indices.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "avar/core/input_error.hpp"
+#include "avar/firmware_iface/pulse_calibration.hpp"
+
+namespace avar::control {
+
+/// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
+struct ChannelSpec {
+  std::string name;
+  std::string unit;         ///< free text: deg, mm, % ...
+  double min = 0;           ///< hard lower limit (channel units); no command goes below
+  double max = 1;           ///< hard upper limit (channel units), > min
+  double rest = 0;          ///< rest pose, inside [min, max]: soft stop and faults go here
+  double max_velocity = 0;  ///< limiter: largest speed commanded (units/s), > 0
+  double ramp_velocity = 0; ///< peak speed of soft start and soft stop (units/s), > 0
+  SourceLocation where;
+};
+
+enum class Protocol { maestro };
+
+/// Settings of a Pololu Maestro link.
+struct MaestroOptions {
+  int channel_count = 24;        ///< 6 (Micro), 12, 18 or 24 (Mini)
+  bool pololu_form = false;      ///< address by device number (daisy chains) instead of compact
+  std::uint8_t device_number = 12;
+  bool crc = false;              ///< append CRC-7 (the device's "Enable CRC" setting)
+  bool baud_detect = false;      ///< send 0xAA first (device in "UART, detect baud rate" mode)
+};
+
+/// One physical connection. port "sim" means: a simulated device on a pseudo-terminal.
+struct LinkSpec {
+  std::string name;
+  Protocol protocol = Protocol::maestro;
+  std::string port;
+  int baud = 115200;
+  MaestroOptions maestro;
+  SourceLocation where;
+
+  bool simulated() const { return port == "sim"; }
+};
+
+/// One motor or servo, driving one channel, on one link.
+struct ActuatorSpec {
+  std::size_t channel = 0;  ///< index into Rig::channels
+  std::size_t link = 0;     ///< index into Rig::links
+  int device_channel = 0;   ///< the device's own channel number
+  firmware_iface::PulseCalibration calibration;
+  std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
+  std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
+  SourceLocation where;
+};
+
+struct Rig {
+  std::string name;
+  std::string file;
+  double rate_hz = 50;  ///< default tick rate
+  std::vector<ChannelSpec> channels;
+  std::vector<LinkSpec> links;
+  std::vector<ActuatorSpec> actuators;
+
+  std::optional<std::size_t> find_channel(std::string_view wanted) const;
+  std::optional<std::size_t> find_link(std::string_view wanted) const;
+  /// The channels' rest poses, as a frame.
+  std::vector<double> rest_frame() const;
+  /// Comma-separated channel names, for error messages.
+  std::string channel_names() const;
+};
+
+}  // namespace avar::control
