@@ -1,0 +1,31 @@
+#pragma once
+// Validation of a show against the rig it will play on, before anything moves. Load-time only.
+
+#include <string>
+#include <vector>
+
+#include "avar/control/rig.hpp"
+#include "avar/core/input_error.hpp"
+#include "avar/playback/show.hpp"
+
+namespace avar::config {
+
+struct Finding {
+  SourceLocation where;
+  std::string message;  ///< what was found and what was expected
+
+  std::string to_string() const;  ///< "file:line:col: message"
+};
+
+struct ShowCheck {
+  std::vector<Finding> errors;    ///< the show must not play
+  std::vector<Finding> warnings;  ///< it may play; the limiter will act
+  bool ok() const { return errors.empty(); }
+};
+
+/// Errors: a track for a channel the rig does not have; a key value outside its channel's
+/// limits. Warnings: a curve that overshoots the limits between keys (it will be clamped), and
+/// rig channels that no track drives (they hold their rest pose).
+ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig& rig);
+
+}  // namespace avar::config

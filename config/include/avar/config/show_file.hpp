@@ -1,0 +1,15 @@
+#pragma once
+// Reading a show file (YAML). The whole file is validated before anything can move: every error
+// is an InputError naming file, line and column, what was found and what was expected.
+
+#include <string>
+
+#include "avar/playback/show.hpp"
+
+namespace avar::config {
+
+/// Loads, validates and builds every curve of a show file. Throws InputError on the first
+/// problem found.
+playback::Show load_show_file(const std::string& path);
+
+}  // namespace avar::config

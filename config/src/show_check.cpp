@@ -1,0 +1,76 @@
+#include "avar/config/show_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace avar::config {
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string limits_text(const control::ChannelSpec& c) {
+  return "[" + number(c.min) + ", " + number(c.max) + "]" + (c.unit.empty() ? "" : " " + c.unit);
+}
+
+/// Scans the curve between two keys on a fine grid for its extreme values.
+void check_segment_overshoot(const playback::Track& track, std::size_t k, const control::ChannelSpec& c,
+                             std::vector<Finding>& warnings) {
+  const auto& keys = track.raw.keys;
+  const double t0 = keys[k].time;
+  const double t1 = keys[k + 1].time;
+  constexpr int kSamples = 256;
+  double lo = std::min(keys[k].value, keys[k + 1].value);
+  double hi = std::max(keys[k].value, keys[k + 1].value);
+  for (int i = 1; i < kSamples; ++i) {
+    const double v = track.curve.evaluate(t0 + (t1 - t0) * i / kSamples);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (lo < c.min || hi > c.max)
+    warnings.push_back({keys[k].where, "the curve of '" + c.name + "' between " + number(t0) + " s and " + number(t1) +
+                                           " s reaches " + number(lo < c.min ? lo : hi) + ", outside its limits " +
+                                           limits_text(c) + "; it will be clamped"});
+}
+
+}  // namespace
+
+std::string Finding::to_string() const { return avar::to_string(where) + ": " + message; }
+
+ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig& rig) {
+  ShowCheck result;
+  std::vector<bool> driven(rig.channels.size(), false);
+  for (const playback::Track& track : show.tracks) {
+    const auto ci = rig.find_channel(track.channel);
+    if (!ci) {
+      result.errors.push_back({track.where, "unknown channel '" + track.channel + "'; expected one of the rig '" + rig.name +
+                                                "' channels: " + rig.channel_names()});
+      continue;
+    }
+    driven[*ci] = true;
+    const control::ChannelSpec& c = rig.channels[*ci];
+    const auto& keys = track.raw.keys;
+    bool keys_in_range = true;
+    for (const playback::RawKey& key : keys) {
+      if (key.value < c.min || key.value > c.max) {
+        keys_in_range = false;
+        result.errors.push_back({key.where, "value " + number(key.value) + " at " + number(key.time) + " s is outside channel '" +
+                                                c.name + "' limits " + limits_text(c)});
+      }
+    }
+    if (!keys_in_range) continue;
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k)
+      if (keys[k].interpolation == playback::Interpolation::bezier) check_segment_overshoot(track, k, c, result.warnings);
+  }
+  for (std::size_t i = 0; i < rig.channels.size(); ++i)
+    if (!driven[i])
+      result.warnings.push_back({show.where, "no track drives channel '" + rig.channels[i].name + "'; it holds its rest pose " +
+                                                 number(rig.channels[i].rest)});
+  return result;
+}
+
+}  // namespace avar::config
