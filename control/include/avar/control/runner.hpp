@@ -1,0 +1,41 @@
+#pragma once
+// Runs a Controller tick after tick, on real time (absolute-deadline sleeps on CLOCK_MONOTONIC)
+// or on a stepped simulated clock (as fast as the machine goes, deterministic). The runner is
+// the only place that reads a clock; everything below it gets the tick time as an argument.
+
+#include <atomic>
+#include <cstdint>
+
+#include "avar/control/controller.hpp"
+
+namespace avar::control {
+
+enum class ClockMode { realtime, stepped };
+
+struct RunOptions {
+  double rate_hz = 50;  ///< ticks per second
+  ClockMode clock = ClockMode::realtime;
+};
+
+/// Called after every tick, on the loop thread (for the simulated plant, statistics, traces,
+/// progress). Implementations on a real-time loop must be quick.
+class TickObserver {
+ public:
+  virtual ~TickObserver() = default;
+  virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, const Controller& controller) = 0;
+};
+
+struct RunResult {
+  std::uint64_t ticks = 0;
+  std::uint64_t deadline_misses = 0;  ///< ticks whose work ended after the next deadline
+  double worst_lateness_s = 0;        ///< worst wake-up after a deadline (realtime only)
+  bool interrupted = false;           ///< a stop was requested through `interrupts`
+  bool released = false;              ///< a second interrupt released the actuators at once
+};
+
+/// Ticks `controller` (which must have been begun at time 0) until it finishes. `interrupts`
+/// counts Ctrl-C / SIGTERM: the first asks for a soft stop to rest, the second releases at once.
+RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
+                   const std::atomic<int>& interrupts);
+
+}  // namespace avar::control

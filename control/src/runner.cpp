@@ -1,0 +1,82 @@
+#include "avar/control/runner.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <cerrno>
+
+namespace avar::control {
+namespace {
+
+constexpr long kNanosPerSecond = 1'000'000'000L;
+
+timespec add_ns(timespec t, long ns) {
+  t.tv_nsec += ns;
+  while (t.tv_nsec >= kNanosPerSecond) {
+    t.tv_nsec -= kNanosPerSecond;
+    ++t.tv_sec;
+  }
+  return t;
+}
+
+double seconds_between(const timespec& a, const timespec& b) {
+  return static_cast<double>(b.tv_sec - a.tv_sec) + static_cast<double>(b.tv_nsec - a.tv_nsec) * 1e-9;
+}
+
+/// Sleeps until the absolute monotonic deadline, resuming after signals.
+void sleep_until(const timespec& deadline) {
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+  }
+}
+
+}  // namespace
+
+RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
+                   const std::atomic<int>& interrupts) {
+  RunResult result;
+  const double dt = 1.0 / options.rate_hz;
+  const long period_ns = static_cast<long>(static_cast<double>(kNanosPerSecond) / options.rate_hz + 0.5);
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  int seen_interrupts = 0;
+
+  for (std::uint64_t k = 0; controller.phase() != Phase::finished; ++k) {
+    // Tick times are nominal (k * dt) in both modes, so a run's curve samples do not depend on
+    // scheduling jitter; lateness is measured and reported instead.
+    const double now = static_cast<double>(k) * dt;
+    const int pending = interrupts.load(std::memory_order_relaxed);
+    if (pending != seen_interrupts) {
+      seen_interrupts = pending;
+      result.interrupted = true;
+      if (pending >= 2) {
+        controller.release_now();
+        result.released = true;
+        break;
+      }
+      controller.request_stop(now);
+    }
+
+    controller.tick(now, dt);
+    ++result.ticks;
+    observer.after_tick(k, now, dt, controller);
+
+    if (options.clock == ClockMode::realtime) {
+      deadline = add_ns(deadline, period_ns);
+      timespec woke{};
+      clock_gettime(CLOCK_MONOTONIC, &woke);
+      if (seconds_between(deadline, woke) > 0) {
+        // The work overran the next deadline: count it and re-anchor rather than bursting to
+        // catch up (a burst would replay stale ticks back to back).
+        ++result.deadline_misses;
+        deadline = woke;
+        continue;
+      }
+      sleep_until(deadline);
+      clock_gettime(CLOCK_MONOTONIC, &woke);
+      result.worst_lateness_s = std::max(result.worst_lateness_s, seconds_between(deadline, woke));
+    }
+  }
+  return result;
+}
+
+}  // namespace avar::control

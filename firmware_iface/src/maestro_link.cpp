@@ -1,0 +1,126 @@
+#include "avar/firmware_iface/maestro_link.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace avar::firmware_iface {
+
+MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
+    : transport_(transport), config_(std::move(config)) {
+  const std::size_t n = config_.actuators.size();
+  std::vector<bool> used(static_cast<std::size_t>(config_.channel_count), false);
+  for (const MaestroActuator& a : config_.actuators) {
+    if (a.device_channel < 0 || a.device_channel >= config_.channel_count)
+      throw std::invalid_argument("Maestro channel " + std::to_string(a.device_channel) + " is outside 0.." +
+                                  std::to_string(config_.channel_count - 1));
+    if (used[static_cast<std::size_t>(a.device_channel)])
+      throw std::invalid_argument("Maestro channel " + std::to_string(a.device_channel) + " is used twice");
+    used[static_cast<std::size_t>(a.device_channel)] = true;
+  }
+  slots_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) slots_[i] = i;
+  std::sort(slots_.begin(), slots_.end(), [&](std::size_t a, std::size_t b) {
+    return config_.actuators[a].device_channel < config_.actuators[b].device_channel;
+  });
+  // Runs of consecutive device channels share one Set Multiple Targets packet; the Micro
+  // Maestro (6 channels) has no such command, so there every channel is its own run.
+  const bool multiple = config_.channel_count > 6;
+  for (std::size_t s = 0; s < n; ++s) {
+    const int ch = config_.actuators[slots_[s]].device_channel;
+    if (multiple && !runs_.empty() && runs_.back().first_channel + runs_.back().count == static_cast<std::size_t>(ch))
+      ++runs_.back().count;
+    else
+      runs_.push_back({static_cast<std::uint8_t>(ch), s, 1});
+  }
+  targets_.resize(n);
+  packet_.resize(runs_.size() * maestro::kMaxPacketSize);
+  description_ = "Maestro (" + std::to_string(config_.channel_count) + " channels) on " + transport_.name();
+}
+
+Status MaestroLink::query(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply) {
+  transport_.discard_input();
+  if (const Status s = transport_.write(request); s != Status::ok) return s;
+  return transport_.read_exact(reply, config_.reply_timeout);
+}
+
+Status MaestroLink::read_errors(std::uint16_t& errors) {
+  std::array<std::uint8_t, maestro::kMaxPacketSize> request{};
+  const std::size_t len = maestro::encode_get_errors(request, config_.framing);
+  std::array<std::uint8_t, 2> reply{};
+  if (const Status s = query(std::span(request.data(), len), reply); s != Status::ok) return s;
+  errors = maestro::decode_errors_reply(reply);
+  return Status::ok;
+}
+
+Status MaestroLink::start() {
+  if (config_.baud_detect) {
+    const std::array<std::uint8_t, 1> detect{0xAA};
+    if (const Status s = transport_.write(detect); s != Status::ok) return s;
+  }
+  std::uint16_t errors = 0;
+  if (const Status s = read_errors(errors); s != Status::ok) return s;
+  std::array<std::uint8_t, maestro::kMaxPacketSize> packet{};
+  for (const MaestroActuator& a : config_.actuators) {
+    const auto ch = static_cast<std::uint8_t>(a.device_channel);
+    // 0 means "no limit" to the Maestro, which is also what an absent limit means here.
+    const std::uint16_t speed = a.speed_us_per_s ? maestro::speed_units_from_us_per_s(*a.speed_us_per_s) : 0;
+    const std::uint16_t accel =
+        a.acceleration_us_per_s2 ? maestro::acceleration_units_from_us_per_s2(*a.acceleration_us_per_s2) : 0;
+    std::size_t len = maestro::encode_set_speed(packet, config_.framing, ch, speed);
+    if (const Status s = transport_.write(std::span(packet.data(), len)); s != Status::ok) return s;
+    len = maestro::encode_set_acceleration(packet, config_.framing, ch, accel);
+    if (const Status s = transport_.write(std::span(packet.data(), len)); s != Status::ok) return s;
+  }
+  return Status::ok;
+}
+
+Status MaestroLink::read_positions(std::span<double> frame, std::span<bool> known) {
+  std::array<std::uint8_t, maestro::kMaxPacketSize> request{};
+  for (const MaestroActuator& a : config_.actuators) {
+    const std::size_t len = maestro::encode_get_position(request, config_.framing, static_cast<std::uint8_t>(a.device_channel));
+    std::array<std::uint8_t, 2> reply{};
+    if (const Status s = query(std::span(request.data(), len), reply); s != Status::ok) return s;
+    const std::uint16_t quarter_us = maestro::decode_position_reply(reply);
+    if (quarter_us == 0) continue;  // no pulses yet: the device does not know where the servo is
+    frame[a.channel] = a.calibration.to_channel(quarter_us / 4.0);
+    known[a.channel] = true;
+  }
+  return Status::ok;
+}
+
+Status MaestroLink::send(std::span<const double> frame) noexcept {
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const MaestroActuator& a = config_.actuators[slots_[s]];
+    bool clamped = false;
+    const double us = a.calibration.to_pulse_us(frame[a.channel], &clamped);
+    if (clamped) ++saturated_;
+    targets_[s] = maestro::quarter_us_from_us(us);
+  }
+  return write_targets();
+}
+
+Status MaestroLink::write_targets() noexcept {
+  std::size_t size = 0;
+  const std::span<std::uint8_t> out(packet_);
+  for (const Run& run : runs_) {
+    const std::span<std::uint8_t> room = out.subspan(size);
+    const std::size_t len =
+        run.count == 1 ? maestro::encode_set_target(room, config_.framing, run.first_channel, targets_[run.first_slot])
+                       : maestro::encode_set_multiple_targets(room, config_.framing, run.first_channel,
+                                                              std::span(targets_).subspan(run.first_slot, run.count));
+    if (len == 0) return Status::out_of_range;
+    size += len;
+  }
+  last_send_size_ = size;
+  return transport_.write(out.first(size));
+}
+
+Status MaestroLink::release() noexcept {
+  // Target 0 stops the pulses: a hobby servo without pulses holds no position.
+  std::fill(targets_.begin(), targets_.end(), std::uint16_t{0});
+  return write_targets();
+}
+
+}  // namespace avar::firmware_iface

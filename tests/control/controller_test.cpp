@@ -1,0 +1,211 @@
+// The controller's tick against an in-memory link: soft start from the present pose, the show,
+// soft stop to rest, stop requests, faults, and limits that no show can break.
+#include "avar/control/controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace avar::control {
+namespace {
+
+/// Records every frame it is sent; can be told to fail.
+class RecordingLink final : public firmware_iface::ActuatorLink {
+ public:
+  Status start() override { return Status::ok; }
+  Status read_positions(std::span<double>, std::span<bool>) override { return Status::ok; }
+  Status send(std::span<const double> frame) noexcept override {
+    if (fail_from_send >= 0 && static_cast<int>(frames.size()) >= fail_from_send) return Status::io_error;
+    frames.emplace_back(frame.begin(), frame.end());
+    return Status::ok;
+  }
+  Status release() noexcept override {
+    ++releases;
+    return Status::ok;
+  }
+  std::uint64_t saturated_pulses() const noexcept override { return 0; }
+  const std::string& describe() const noexcept override { return name; }
+
+  std::vector<std::vector<double>> frames;
+  int fail_from_send = -1;
+  int releases = 0;
+  std::string name = "recording link";
+};
+
+Rig two_channel_rig() {
+  Rig rig;
+  rig.name = "test";
+  rig.channels.push_back({"jaw", "deg", 0, 30, 0, 200, 20, {}});
+  rig.channels.push_back({"pan", "deg", -60, 60, 10, 300, 40, {}});
+  rig.links.push_back({"head", Protocol::maestro, "sim", 115200, {}, {}});
+  return rig;
+}
+
+playback::Track track(const std::string& channel, std::vector<std::pair<double, double>> keys) {
+  playback::RawCurve raw;
+  for (auto [t, v] : keys) {
+    playback::RawKey k;
+    k.time = t;
+    k.value = v;
+    raw.keys.push_back(k);
+  }
+  playback::Curve curve = playback::Curve::build(raw);
+  return playback::Track{channel, raw, std::move(curve), {}};
+}
+
+playback::Show jaw_show() {
+  playback::Show show;
+  show.name = "jaw";
+  show.duration = 2.0;
+  show.tracks.push_back(track("jaw", {{0.0, 5.0}, {1.0, 25.0}, {2.0, 5.0}}));
+  return show;
+}
+
+/// Runs the controller on a stepped clock until it finishes; returns the tick count.
+int run(Controller& c, double dt, int max_ticks = 100000) {
+  int k = 0;
+  for (; c.phase() != Phase::finished && k < max_ticks; ++k) c.tick(k * dt, dt);
+  return k;
+}
+
+TEST(Controller, EasesInFromThePresentPosePlaysAndEasesOutToRest) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = jaw_show();
+  RecordingLink link;
+  Controller c(rig, show, {&link});
+  const std::vector<double> present{12.0, -30.0};
+  c.begin(0.0, present);
+  EXPECT_EQ(c.phase(), Phase::homing);
+  run(c, 0.01);
+  ASSERT_GT(link.frames.size(), 10u);
+  // The first frame sent is (almost) where the figure was: no snap.
+  EXPECT_NEAR(link.frames.front()[0], 12.0, 0.05);
+  EXPECT_NEAR(link.frames.front()[1], -30.0, 0.05);
+  // The last frame is the rest pose, reached with zero speed.
+  EXPECT_DOUBLE_EQ(link.frames.back()[0], 0.0);
+  EXPECT_DOUBLE_EQ(link.frames.back()[1], 10.0);
+  const auto& a = link.frames[link.frames.size() - 2];
+  EXPECT_NEAR(a[0], 0.0, 0.01);
+  // The show's peak (25 at show time 1 s) was played.
+  double peak = 0;
+  for (const auto& f : link.frames) peak = std::max(peak, f[0]);
+  EXPECT_NEAR(peak, 25.0, 1e-9);
+  EXPECT_GE(c.show_start_time(), 0.25);
+}
+
+TEST(Controller, StopRequestEasesToRestFromWhereverTheFigureIs) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = jaw_show();
+  RecordingLink link;
+  Controller c(rig, show, {&link});
+  c.begin(0.0, rig.rest_frame());
+  int k = 0;
+  for (; c.show_time() < 1.0 || c.phase() != Phase::running; ++k) c.tick(k * 0.01, 0.01);
+  const double at_stop = link.frames.back()[0];
+  EXPECT_GT(at_stop, 20.0);
+  c.request_stop(k * 0.01);
+  EXPECT_EQ(c.phase(), Phase::stopping);
+  for (; c.phase() != Phase::finished; ++k) c.tick(k * 0.01, 0.01);
+  EXPECT_DOUBLE_EQ(link.frames.back()[0], 0.0);
+  // No jump at the moment of the stop.
+  for (std::size_t i = 1; i < link.frames.size(); ++i) EXPECT_LE(std::abs(link.frames[i][0] - link.frames[i - 1][0]), 2.0 + 1e-9);
+}
+
+TEST(Controller, LinkFailureLatchesAFaultAndStopsSending) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = jaw_show();
+  RecordingLink link;
+  link.fail_from_send = 30;
+  Controller c(rig, show, {&link});
+  c.begin(0.0, rig.rest_frame());
+  run(c, 0.01);
+  EXPECT_EQ(c.phase(), Phase::finished);
+  EXPECT_EQ(c.fault().cause, FaultCause::link_failure);
+  EXPECT_EQ(c.fault().status, Status::io_error);
+  EXPECT_EQ(link.frames.size(), 30u);
+}
+
+TEST(Controller, OtherLinksEaseToRestWhenOneFails) {
+  Rig rig = two_channel_rig();
+  rig.links.push_back({"body", Protocol::maestro, "sim", 115200, {}, {}});
+  const playback::Show show = jaw_show();
+  RecordingLink good, bad;
+  bad.fail_from_send = 80;
+  Controller c(rig, show, {&good, &bad});
+  c.begin(0.0, rig.rest_frame());
+  run(c, 0.01);
+  EXPECT_EQ(c.fault().cause, FaultCause::link_failure);
+  EXPECT_EQ(c.fault().index, 1u);
+  EXPECT_DOUBLE_EQ(good.frames.back()[0], 0.0);
+  EXPECT_GT(good.frames.size(), bad.frames.size());
+}
+
+TEST(Controller, ReleaseNowLetsGoOfEveryLink) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = jaw_show();
+  RecordingLink link;
+  Controller c(rig, show, {&link});
+  c.begin(0.0, rig.rest_frame());
+  c.tick(0, 0.01);
+  c.release_now();
+  EXPECT_EQ(link.releases, 1);
+  EXPECT_EQ(c.phase(), Phase::finished);
+}
+
+// A show whose keys lie far outside the limits (as a show built in code, or a bad exporter,
+// could produce) never makes the controller command outside [min, max] or faster than
+// max_velocity: seeded random family.
+TEST(Controller, ShowsBeyondTheLimitsNeverProduceOutOfRangeCommands) {
+  const unsigned seed = 4242;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Rig rig = two_channel_rig();
+  for (int family = 0; family < 50; ++family) {
+    playback::Show show;
+    show.name = "wild";
+    show.duration = 3.0;
+    for (const char* ch : {"jaw", "pan"}) {
+      std::vector<std::pair<double, double>> keys;
+      double t = 0;
+      while (t < 3.0) {
+        keys.emplace_back(t, -500 + 1000 * u(rng));
+        t += 0.01 + 0.3 * u(rng);
+      }
+      show.tracks.push_back(track(ch, keys));
+    }
+    RecordingLink link;
+    Controller c(rig, show, {&link});
+    c.begin(0.0, rig.rest_frame());
+    const double dt = 0.02;
+    run(c, dt);
+    std::vector<double> prev = rig.rest_frame();
+    for (const auto& f : link.frames) {
+      for (std::size_t i = 0; i < 2; ++i) {
+        ASSERT_GE(f[i], rig.channels[i].min);
+        ASSERT_LE(f[i], rig.channels[i].max);
+        ASSERT_LE(std::abs(f[i] - prev[i]), rig.channels[i].max_velocity * dt + 1e-9);
+      }
+      prev = f;
+    }
+    EXPECT_GT(c.limiter().clamped(0), 0u);
+  }
+}
+
+TEST(Controller, LoopingShowPlaysTheRequestedPasses) {
+  const Rig rig = two_channel_rig();
+  playback::Show show = jaw_show();
+  show.loop = true;
+  RecordingLink link;
+  ControllerOptions options;
+  options.loops = 3;
+  Controller c(rig, show, {&link}, options);
+  c.begin(0.0, rig.rest_frame());
+  run(c, 0.01);
+  EXPECT_NEAR(c.show_time(), 6.0, 0.011);
+}
+
+}  // namespace
+}  // namespace avar::control
