@@ -1,1 +1,5 @@
-int main() { return 0; }
+#include <iostream>
+
+#include "avar/cli.hpp"
+
+int main(int argc, char** argv) { return avar::app::run_cli(argc, argv, std::cout, std::cerr); }

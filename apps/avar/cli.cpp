@@ -1,0 +1,97 @@
+#include "avar/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <ostream>
+
+#include "avar/check_command.hpp"
+#include "avar/exit_codes.hpp"
+#include "avar/play_command.hpp"
+#include "avar/sim_command.hpp"
+
+namespace avar::app {
+
+int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{"avar: play keyframed shows on animatronic figures, real or simulated"};
+  app.footer(
+      "Examples:\n"
+      "  avar play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml\n"
+      "      play on the rig's links (here a simulated Maestro), in real time\n"
+      "  avar play SHOW --rig RIG --fast --plot out.svg\n"
+      "      play on the simulator on a simulated clock and plot commanded vs simulated positions\n"
+      "  avar play SHOW --rig RIG --port /dev/ttyACM0\n"
+      "      drive a real Maestro (its USB command port) instead of the rig's port\n"
+      "  avar check SHOW --rig RIG\n"
+      "      validate both files without moving anything\n"
+      "  avar sim maestro --pty\n"
+      "      run a simulated Maestro and print the serial port other programs can open\n"
+      "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
+  app.require_subcommand(1);
+
+  PlayOptions play;
+  double rate = 0;
+  std::uint64_t loops = 0;
+  std::string port, trace, plot;
+  bool realtime_flag = false;
+  bool no_progress = false;
+  CLI::App* play_cmd = app.add_subcommand("play", "Play a show on a rig: ease in from the present pose, play, ease out to rest");
+  play_cmd->add_option("show", play.show_path, "Show file (YAML: duration, loop, tracks of keys)")->required();
+  play_cmd->add_option("--rig", play.rig_path, "Rig file (YAML: links, channels, actuators)")->required();
+  CLI::Option* port_opt = play_cmd->add_option("--port", port, "Serial port for the rig's link, e.g. /dev/ttyACM0 (overrides the rig)");
+  CLI::Option* sim_opt = play_cmd->add_flag("--sim", play.simulate, "Simulate every link, whatever ports the rig names");
+  port_opt->excludes(sim_opt);
+  CLI::Option* rate_opt =
+      play_cmd->add_option("--rate", rate, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)")->check(CLI::Range(1.0, 1000.0));
+  CLI::Option* rt_opt = play_cmd->add_flag("--realtime", realtime_flag, "Run on the wall clock (the default)");
+  CLI::Option* fast_opt =
+      play_cmd->add_flag("--fast", play.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
+  rt_opt->excludes(fast_opt);
+  CLI::Option* loops_opt =
+      play_cmd->add_option("--loops", loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
+  CLI::Option* trace_opt = play_cmd->add_option("--trace", trace, "Write every tick to this CSV file");
+  CLI::Option* plot_opt = play_cmd->add_option("--plot", plot, "Write an SVG plot of commanded vs simulated position per channel");
+  play_cmd->add_flag("--no-progress", no_progress, "Do not draw the progress line");
+
+  std::string check_show, check_rig;
+  CLI::App* check_cmd = app.add_subcommand("check", "Validate a show against a rig and report every problem, moving nothing");
+  check_cmd->add_option("show", check_show, "Show file")->required();
+  check_cmd->add_option("--rig", check_rig, "Rig file")->required();
+
+  SimMaestroOptions sim_maestro;
+  CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
+  sim_cmd->require_subcommand(1);
+  CLI::App* sim_maestro_cmd =
+      sim_cmd->add_subcommand("maestro", "A simulated Pololu Maestro on a pseudo-terminal; prints the port path, serves until Ctrl-C");
+  sim_maestro_cmd->add_flag("--pty", sim_maestro.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
+  sim_maestro_cmd->add_option("--channels", sim_maestro.channels, "Channel count: 6, 12, 18 or 24")
+      ->check(CLI::IsMember({6, 12, 18, 24}));
+  sim_maestro_cmd->add_option("--device-number", sim_maestro.device_number, "Device number for the Pololu protocol, 0 to 127")
+      ->check(CLI::Range(0, 127));
+  sim_maestro_cmd->add_flag("--crc", sim_maestro.crc, "Expect a CRC-7 byte after every command");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e, out, err);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e, out, err);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e, out, err);
+    return kExitBadInput;
+  }
+
+  if (*play_cmd) {
+    if (*port_opt) play.port = port;
+    if (*rate_opt) play.rate_hz = rate;
+    if (*loops_opt) play.loops = loops;
+    if (*trace_opt) play.trace_path = trace;
+    if (*plot_opt) play.plot_path = plot;
+    play.progress = !no_progress;
+    return run_play(play, out, err);
+  }
+  if (*check_cmd) return run_check(check_show, check_rig, out, err);
+  if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
+  return kExitBadInput;
+}
+
+}  // namespace avar::app

@@ -1,0 +1,138 @@
+#include "avar/figure_links.hpp"
+
+#include <chrono>
+
+#include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/sim_maestro.hpp"
+
+namespace avar::app {
+
+firmware_iface::MaestroLinkConfig maestro_config(const control::Rig& rig, std::size_t link) {
+  const control::LinkSpec& spec = rig.links[link];
+  firmware_iface::MaestroLinkConfig config;
+  config.framing.pololu = spec.maestro.pololu_form;
+  config.framing.device_number = spec.maestro.device_number;
+  config.framing.crc = spec.maestro.crc;
+  config.channel_count = spec.maestro.channel_count;
+  config.baud_detect = spec.maestro.baud_detect;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    firmware_iface::MaestroActuator m{a.channel, a.device_channel, a.calibration, {}, {}};
+    // Device-side limits are given in channel units; the Maestro counts in pulse width.
+    if (a.speed_limit) m.speed_us_per_s = *a.speed_limit * a.calibration.us_per_unit();
+    if (a.acceleration_limit) m.acceleration_us_per_s2 = *a.acceleration_limit * a.calibration.us_per_unit();
+    config.actuators.push_back(m);
+  }
+  return config;
+}
+
+struct FigureLinks::Entry {
+  std::size_t link_index = 0;
+  bool simulated = false;
+  std::unique_ptr<sim::SimMaestro> device;
+  std::unique_ptr<sim::PtyDeviceHost> host;
+  std::unique_ptr<firmware_iface::SerialTransport> transport;
+  std::unique_ptr<firmware_iface::MaestroLink> link;
+};
+
+namespace {
+
+/// A simulated Maestro set up as its owner would have set up the real one: the rig's channel
+/// count, framing and CRC, each used channel's pulse range opened to the actuator's window, and
+/// every servo parked at its rest pose (where the last soft stop left it).
+sim::SimMaestroConfig simulated_maestro(const control::Rig& rig, std::size_t link) {
+  const control::LinkSpec& spec = rig.links[link];
+  sim::SimMaestroConfig config;
+  config.channel_count = spec.maestro.channel_count;
+  config.device_number = spec.maestro.device_number;
+  config.crc = spec.maestro.crc;
+  config.baud_detect = spec.maestro.baud_detect;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    auto& ch = config.channels[static_cast<std::size_t>(a.device_channel)];
+    ch.min_us = a.calibration.pulse_low_us();
+    ch.max_us = a.calibration.pulse_high_us();
+    ch.initial_position_us = a.calibration.to_pulse_us(rig.channels[a.channel].rest);
+  }
+  return config;
+}
+
+}  // namespace
+
+FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection) : rig_(rig) {
+  if (selection.port && rig.links.size() != 1)
+    throw InputError({rig.file, rig.links[0].where.line, rig.links[0].where.column},
+                     "--port sets the port of a rig's single link, but this rig has " + std::to_string(rig.links.size()) +
+                         " links; set each link's port in the rig file");
+  for (std::size_t i = 0; i < rig.links.size(); ++i) {
+    auto entry = std::make_unique<Entry>();
+    entry->link_index = i;
+    std::string port = selection.port.value_or(rig.links[i].port);
+    entry->simulated = selection.simulate_all || port == "sim";
+    if (entry->simulated) {
+      entry->device = std::make_unique<sim::SimMaestro>(simulated_maestro(rig, i));
+      entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device, sim::PtyDeviceHost::Clock::stepped);
+      port = entry->host->slave_path();
+    }
+    entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
+    entry->link = std::make_unique<firmware_iface::MaestroLink>(*entry->transport, maestro_config(rig, i));
+    entries_.push_back(std::move(entry));
+  }
+}
+
+FigureLinks::~FigureLinks() {
+  // Close the serial side before the simulated devices behind it go away.
+  for (auto& e : entries_) {
+    e->link.reset();
+    e->transport.reset();
+  }
+}
+
+std::vector<firmware_iface::ActuatorLink*> FigureLinks::links() const {
+  std::vector<firmware_iface::ActuatorLink*> out;
+  for (const auto& e : entries_) out.push_back(e->link.get());
+  return out;
+}
+
+bool FigureLinks::any_simulated() const {
+  for (const auto& e : entries_)
+    if (e->simulated) return true;
+  return false;
+}
+
+bool FigureLinks::all_simulated() const {
+  for (const auto& e : entries_)
+    if (!e->simulated) return false;
+  return true;
+}
+
+std::string FigureLinks::describe(std::size_t link) const {
+  const Entry& e = *entries_[link];
+  return (e.simulated ? "simulated " : "") + e.link->describe();
+}
+
+void FigureLinks::step_simulation(double dt_s, std::span<double> measured, std::span<bool> known) {
+  for (const auto& e : entries_) {
+    if (!e->simulated) continue;
+    // Everything sent this tick must have reached the device before its time moves on, so
+    // a run on the stepped clock is deterministic.
+    e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
+    e->host->with_device([&](auto&) {
+      e->device->advance(dt_s);
+      for (const control::ActuatorSpec& a : rig_.actuators) {
+        if (a.link != e->link_index) continue;
+        measured[a.channel] = a.calibration.to_channel(e->device->servo_position_us(a.device_channel));
+        known[a.channel] = true;
+      }
+    });
+  }
+}
+
+std::uint64_t FigureLinks::bytes_sent() const {
+  std::uint64_t total = 0;
+  for (const auto& e : entries_) total += e->transport->bytes_written();
+  return total;
+}
+
+}  // namespace avar::app

@@ -1,0 +1,222 @@
+#include "avar/play_command.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_check.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/control/controller.hpp"
+#include "avar/control/runner.hpp"
+#include "avar/exit_codes.hpp"
+#include "avar/figure_links.hpp"
+#include "avar/interrupts.hpp"
+#include "avar/play_recorder.hpp"
+#include "avar/svg_plot.hpp"
+
+namespace avar::app {
+namespace {
+
+struct Loaded {
+  control::Rig rig;
+  playback::Show show;
+};
+
+/// Loads and validates both files whole. Prints every problem; returns nullopt on any error.
+std::optional<Loaded> load_and_check(const std::string& show_path, const std::string& rig_path, std::ostream& err) {
+  try {
+    Loaded loaded{config::load_rig_file(rig_path), config::load_show_file(show_path)};
+    const config::ShowCheck check = config::check_show_against_rig(loaded.show, loaded.rig);
+    for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';
+    for (const auto& e : check.errors) err << "error: " << e.to_string() << '\n';
+    if (!check.ok()) return std::nullopt;
+    return loaded;
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+    return std::nullopt;
+  }
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& figure, const control::Controller& controller,
+                   const PlayRecorder& recorder, const control::RunResult& run, bool realtime, double rate_hz) {
+  const control::Rig& rig = loaded.rig;
+  out << "\nplayed '" << loaded.show.name << "' on rig '" << rig.name << "' at " << rate_hz << " Hz, "
+      << (realtime ? "real time" : "simulated time") << '\n';
+  for (std::size_t i = 0; i < rig.links.size(); ++i) out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
+  for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
+    const PhaseMark& p = recorder.phases()[i];
+    if (p.phase == control::Phase::finished) continue;
+    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << fixed(p.time_s, 2) << " s\n";
+  }
+  out << '\n'
+      << std::left << std::setw(12) << "channel" << std::setw(6) << "unit" << std::right << std::setw(11) << "max err"
+      << std::setw(11) << "rms err" << std::setw(9) << "clamped" << std::setw(10) << "rate-ltd" << '\n';
+  for (std::size_t i = 0; i < rig.channels.size(); ++i) {
+    const auto& c = rig.channels[i];
+    const auto& s = recorder.stats();
+    out << std::left << std::setw(12) << c.name << std::setw(6) << c.unit << std::right << std::setw(11)
+        << (s.has_samples(i) ? fixed(s.max_abs_error(i), 3) : "-") << std::setw(11)
+        << (s.has_samples(i) ? fixed(s.rms_error(i), 3) : "-") << std::setw(9) << controller.limiter().clamped(i)
+        << std::setw(10) << controller.limiter().rate_limited(i) << '\n';
+  }
+  if (!recorder.has_measurements())
+    out << "(no position feedback on these links: tracking error needs the simulator or a device that reports positions)\n";
+  std::uint64_t saturated = 0;
+  for (auto* link : figure.links()) saturated += link->saturated_pulses();
+  out << "\nticks " << run.ticks << ", deadline misses " << run.deadline_misses;
+  if (realtime) out << ", worst wake-up lateness " << fixed(run.worst_lateness_s * 1e3, 3) << " ms";
+  out << ", pulses saturated by calibration " << saturated << ", bytes sent " << figure.bytes_sent() << '\n';
+}
+
+void write_trace(const std::string& path, const control::Rig& rig, const PlayRecorder& r) {
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error("cannot write trace file " + path);
+  csv << "seconds,phase";
+  for (const auto& c : rig.channels) csv << ',' << c.name << ".target," << c.name << ".command," << c.name << ".measured";
+  csv << '\n' << std::setprecision(9);
+  const std::size_t n = rig.channels.size();
+  for (std::size_t k = 0; k < r.seconds().size(); ++k) {
+    csv << r.seconds()[k] << ',' << control::to_string(r.phase_per_tick()[k]);
+    for (std::size_t i = 0; i < n; ++i) {
+      csv << ',' << r.targets()[k * n + i] << ',' << r.commands()[k * n + i] << ',';
+      const double m = r.measured()[k * n + i];
+      if (!std::isnan(m)) csv << m;
+    }
+    csv << '\n';
+  }
+  if (!csv) throw std::runtime_error("cannot write trace file " + path);
+}
+
+void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorder& r) {
+  PlotData data;
+  data.title = "avar play: " + loaded.show.name + " on " + loaded.rig.name;
+  data.seconds = r.seconds();
+  const std::size_t n = loaded.rig.channels.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = loaded.rig.channels[i];
+    PlotChannel ch{c.name, c.unit, c.min, c.max, {}, {}};
+    ch.commanded.reserve(data.seconds.size());
+    for (std::size_t k = 0; k < data.seconds.size(); ++k) ch.commanded.push_back(r.commands()[k * n + i]);
+    if (r.has_measurements())
+      for (std::size_t k = 0; k < data.seconds.size(); ++k) ch.measured.push_back(r.measured()[k * n + i]);
+    data.channels.push_back(std::move(ch));
+  }
+  for (const PhaseMark& p : r.phases()) data.markers.emplace_back(p.time_s, control::to_string(p.phase));
+  write_svg_plot_file(path, data);
+}
+
+}  // namespace
+
+int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
+  std::optional<Loaded> loaded = load_and_check(options.show_path, options.rig_path, err);
+  if (!loaded) return kExitBadInput;
+  const control::Rig& rig = loaded->rig;
+
+  const double rate = options.rate_hz.value_or(rig.rate_hz);
+  if (!(rate >= 1 && rate <= 1000)) {
+    err << "error: --rate " << rate << " is outside 1 to 1000 ticks per second\n";
+    return kExitBadInput;
+  }
+  if (loaded->show.loop && options.fast && options.loops.value_or(1) == 0) {
+    err << "error: --fast cannot play a looping show forever; give --loops N\n";
+    return kExitBadInput;
+  }
+
+  std::unique_ptr<FigureLinks> figure;
+  try {
+    figure = std::make_unique<FigureLinks>(rig, LinkSelection{options.port, options.simulate});
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+  if (options.fast && !figure->all_simulated()) {
+    err << "error: --fast runs on a simulated clock and needs every link simulated; drop --port or add --sim\n";
+    return kExitBadInput;
+  }
+
+  const std::vector<firmware_iface::ActuatorLink*> links = figure->links();
+  for (firmware_iface::ActuatorLink* link : links) {
+    if (const Status s = link->start(); s != Status::ok) {
+      err << "error: " << link->describe() << " did not start: " << to_string(s)
+          << " (check power, cable, the device's serial mode and the baud rate)\n";
+      return kExitFault;
+    }
+  }
+  // Start pose: what the devices report, the rest pose for the rest.
+  std::vector<double> start_pose = rig.rest_frame();
+  std::unique_ptr<bool[]> known(new bool[rig.channels.size()]());
+  for (firmware_iface::ActuatorLink* link : links)
+    (void)link->read_positions(start_pose, std::span<bool>(known.get(), rig.channels.size()));
+
+  control::ControllerOptions controller_options;
+  if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
+  control::Controller controller(rig, loaded->show, links, controller_options);
+  controller.begin(0.0, start_pose);
+
+  const bool keep = options.trace_path || options.plot_path;
+  const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(controller_options.loops, 1)) : 1.0;
+  const auto expected_ticks = static_cast<std::size_t>((passes * loaded->show.duration + 10.0) * rate);
+  const bool realtime = !options.fast;
+  const bool show_progress = options.progress && realtime;
+  PlayRecorder recorder(*figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
+                        ::isatty(STDERR_FILENO) == 1);
+
+  err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
+      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases" : "") << '\n';
+  control::RunResult run;
+  {
+    InterruptCounter interrupts;
+    run = control::run_loop(controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped},
+                            recorder, interrupts.count());
+  }
+  recorder.finish();
+
+  print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate);
+  try {
+    if (options.trace_path) {
+      write_trace(*options.trace_path, rig, recorder);
+      out << "trace: " << *options.trace_path << '\n';
+    }
+    if (options.plot_path) {
+      write_plot(*options.plot_path, *loaded, recorder);
+      out << "plot: " << *options.plot_path << '\n';
+    }
+  } catch (const std::exception& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+
+  const control::Fault& fault = controller.fault();
+  if (fault.cause != control::FaultCause::none) {
+    err << "fault at " << fixed(fault.time_s, 3) << " s: " << control::to_string(fault.cause) << " ("
+        << to_string(fault.status) << ") on "
+        << (fault.cause == control::FaultCause::link_failure ? "link " + rig.links[fault.index].name
+                                                             : "channel " + rig.channels[fault.index].name)
+        << '\n';
+    return kExitFault;
+  }
+  if (run.released) {
+    err << "released: every actuator was let go at once (second interrupt)\n";
+    return kExitInterrupted;
+  }
+  if (run.interrupted) {
+    err << "stopped: eased to rest after an interrupt\n";
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+}  // namespace avar::app

@@ -1,0 +1,29 @@
+#pragma once
+// `avar play SHOW --rig RIG`: validate both files, open the links (real or simulated), ease in,
+// play, ease out to rest, and report.
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace avar::app {
+
+struct PlayOptions {
+  std::string show_path;
+  std::string rig_path;
+  std::optional<std::string> port;   ///< override the rig's single link's port
+  bool simulate = false;             ///< --sim: simulate every link
+  std::optional<double> rate_hz;     ///< default: the rig's rate_hz
+  bool fast = false;                 ///< stepped simulated clock (simulator only)
+  std::optional<std::uint64_t> loops;///< passes of a looping show; 0 = until Ctrl-C
+  std::optional<std::string> trace_path;
+  std::optional<std::string> plot_path;
+  bool progress = true;              ///< progress line on the error stream while playing
+};
+
+/// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to
+/// `out` (summary) and `err` (progress, warnings, errors).
+int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace avar::app

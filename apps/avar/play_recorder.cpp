@@ -1,0 +1,79 @@
+#include "avar/play_recorder.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <span>
+
+namespace avar::app {
+
+PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
+                           std::ostream* progress, bool progress_is_terminal)
+    : figure_(figure),
+      channels_(channels),
+      keep_samples_(keep_samples),
+      progress_(progress),
+      terminal_(progress_is_terminal),
+      stats_(channels),
+      measured_(channels, std::numeric_limits<double>::quiet_NaN()),
+      known_(new bool[channels]()) {
+  if (keep_samples_) {
+    seconds_.reserve(expected_ticks);
+    phase_rows_.reserve(expected_ticks);
+    targets_.reserve(expected_ticks * channels);
+    commands_.reserve(expected_ticks * channels);
+    measured_rows_.reserve(expected_ticks * channels);
+  }
+}
+
+void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, const control::Controller& controller) {
+  const std::span<bool> known(known_.get(), channels_);
+  std::fill(known.begin(), known.end(), false);
+  if (figure_.any_simulated()) figure_.step_simulation(dt_s, measured_, known);
+  for (bool k : known) has_measurements_ = has_measurements_ || k;
+  stats_.add(controller.commanded(), measured_, known);
+
+  if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
+
+  if (keep_samples_) {
+    seconds_.push_back(now_s);
+    phase_rows_.push_back(controller.phase());
+    const auto target = controller.target();
+    const auto command = controller.commanded();
+    targets_.insert(targets_.end(), target.begin(), target.end());
+    commands_.insert(commands_.end(), command.begin(), command.end());
+    for (std::size_t i = 0; i < channels_; ++i)
+      measured_rows_.push_back(known[i] ? measured_[i] : std::numeric_limits<double>::quiet_NaN());
+  }
+  if (progress_ && now_s >= next_progress_s_) {
+    draw_progress(now_s, controller);
+    next_progress_s_ = now_s + (terminal_ ? 0.2 : 2.0);
+  }
+}
+
+void PlayRecorder::draw_progress(double now_s, const control::Controller& controller) {
+  const double duration = controller.show_duration();
+  const double show_t = controller.phase() == control::Phase::running ? controller.show_time() : 0.0;
+  const double within = duration > 0 ? std::fmod(show_t, duration) : 0.0;
+  const double fraction = controller.phase() == control::Phase::stopping || controller.phase() == control::Phase::finished
+                              ? 1.0
+                              : (duration > 0 ? within / duration : 0.0);
+  constexpr int kWidth = 24;
+  const int filled = static_cast<int>(fraction * kWidth + 0.5);
+  char line[160];
+  std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",
+                control::to_string(controller.phase()), within, duration, kWidth,
+                std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(fraction * 100 + 0.5), now_s);
+  if (terminal_)
+    *progress_ << '\r' << line << "\033[K" << std::flush;
+  else
+    *progress_ << line << '\n' << std::flush;
+}
+
+void PlayRecorder::finish() {
+  if (progress_ && terminal_) *progress_ << '\n' << std::flush;
+}
+
+}  // namespace avar::app

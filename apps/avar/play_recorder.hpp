@@ -1,0 +1,62 @@
+#pragma once
+// Watches a play run tick by tick: steps the simulated devices, accumulates tracking
+// statistics, keeps the samples a trace or plot needs, and draws the progress line.
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "avar/control/runner.hpp"
+#include "avar/figure_links.hpp"
+#include "avar/tracking_stats.hpp"
+
+namespace avar::app {
+
+struct PhaseMark {
+  double time_s;
+  control::Phase phase;
+};
+
+class PlayRecorder final : public control::TickObserver {
+ public:
+  /// keep_samples: store every tick for a trace or plot (sized for expected_ticks up front).
+  /// progress: nullptr for none; otherwise the stream and whether it is a terminal.
+  PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
+               std::ostream* progress, bool progress_is_terminal);
+
+  void after_tick(std::uint64_t tick, double now_s, double dt_s, const control::Controller& controller) override;
+  /// Ends the progress line.
+  void finish();
+
+  const TrackingStats& stats() const { return stats_; }
+  const std::vector<PhaseMark>& phases() const { return phases_; }
+  bool has_measurements() const { return has_measurements_; }
+
+  // Samples, when kept: one row per tick, channel-major blocks of `channels` values.
+  const std::vector<double>& seconds() const { return seconds_; }
+  const std::vector<double>& targets() const { return targets_; }
+  const std::vector<double>& commands() const { return commands_; }
+  const std::vector<double>& measured() const { return measured_rows_; }  ///< NaN when unknown
+  const std::vector<control::Phase>& phase_per_tick() const { return phase_rows_; }
+
+ private:
+  void draw_progress(double now_s, const control::Controller& controller);
+
+  FigureLinks& figure_;
+  std::size_t channels_;
+  bool keep_samples_;
+  std::ostream* progress_;
+  bool terminal_;
+  TrackingStats stats_;
+  std::vector<double> measured_;
+  std::unique_ptr<bool[]> known_;
+  bool has_measurements_ = false;
+  std::vector<PhaseMark> phases_;
+  double next_progress_s_ = 0;
+  std::vector<double> seconds_, targets_, commands_, measured_rows_;
+  std::vector<control::Phase> phase_rows_;
+};
+
+}  // namespace avar::app

@@ -1,0 +1,72 @@
+// avar-bench-tick: the cost of one control tick for the 8-channel hello-head rig (sample the show,
+// limit, calibrate, encode one Maestro packet, hand it to the transport), measured tick by tick.
+// The transport discards the bytes, so the figure is avar's own work, not the link's.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/control/controller.hpp"
+#include "avar/figure_links.hpp"
+#include "avar/firmware_iface/maestro_link.hpp"
+
+namespace {
+
+class DiscardTransport final : public avar::firmware_iface::ByteTransport {
+ public:
+  avar::Status write(std::span<const std::uint8_t> bytes) noexcept override {
+    written_ += bytes.size();
+    benchmark::DoNotOptimize(bytes.data());
+    return avar::Status::ok;
+  }
+  avar::Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return avar::Status::timeout; }
+  void discard_input() noexcept override {}
+  std::uint64_t bytes_written() const noexcept override { return written_; }
+  const std::string& name() const noexcept override { return name_; }
+
+ private:
+  std::uint64_t written_ = 0;
+  std::string name_ = "discard";
+};
+
+struct Head {
+  avar::control::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  avar::playback::Show show = avar::config::load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
+  DiscardTransport transport;
+  avar::firmware_iface::MaestroLink link{transport, avar::app::maestro_config(rig, 0)};
+};
+
+void BM_TickHelloHead(benchmark::State& state) {
+  Head head;
+  head.show.loop = true;  // keep playing for as many ticks as the benchmark wants
+  avar::control::Controller controller(head.rig, head.show, {&head.link});
+  controller.begin(0.0, head.rig.rest_frame());
+  const double dt = 1.0 / 1000.0;
+  std::vector<double> ns;
+  ns.reserve(1 << 22);
+  std::uint64_t k = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(controller.tick(static_cast<double>(k) * dt, dt));
+    const auto t1 = std::chrono::steady_clock::now();
+    if (ns.size() < ns.capacity()) ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+    ++k;
+  }
+  std::sort(ns.begin(), ns.end());
+  const double median = ns.empty() ? 0 : ns[ns.size() / 2];
+  const double worst = ns.empty() ? 0 : ns.back();
+  state.counters["median_ns"] = median;
+  state.counters["worst_ns"] = worst;
+  state.counters["bytes_per_tick"] = static_cast<double>(head.link.last_send_size());
+  std::printf("tick,rig=hello-head,channels=%zu,ticks=%zu,median_us=%.3f,worst_us=%.3f\n", head.rig.channels.size(), ns.size(),
+              median / 1000.0, worst / 1000.0);
+}
+BENCHMARK(BM_TickHelloHead)->Iterations(200000);
+
+}  // namespace
+
+BENCHMARK_MAIN();

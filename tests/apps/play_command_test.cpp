@@ -1,0 +1,191 @@
+// `avar play` and `avar check` run in-process, as a user runs them: exit codes, messages, and
+// that nothing reaches a device when the input is bad.
+#include <sys/file.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "avar/cli.hpp"
+#include "avar/exit_codes.hpp"
+#include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/sim_maestro.hpp"
+
+namespace avar::app {
+namespace {
+
+const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
+
+struct Result {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+Result avar(std::vector<std::string> args) {
+  args.insert(args.begin(), "avar");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string bundled_show_with(const std::string& from, const std::string& to) {
+  std::string text = read_file(kShow);
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
+  const std::string trace = ::testing::TempDir() + "hello-head-trace.csv";
+  const std::string plot = ::testing::TempDir() + "hello-head-plot.svg";
+  const Result r = avar({"play", kShow, "--rig", kRig, "--fast", "--trace", trace, "--plot", plot});
+  ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
+  for (const char* channel : {"jaw", "neck_pan", "neck_tilt", "neck_roll", "eyes_pan", "eyes_tilt", "lid_left", "lid_right"})
+    EXPECT_NE(r.out.find(channel), std::string::npos) << channel;
+  EXPECT_NE(r.out.find("max err"), std::string::npos);
+  EXPECT_NE(r.out.find("deadline misses 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("simulated Maestro"), std::string::npos) << r.out;
+
+  // The trace's last row: the figure is back at rest, commanded and (nearly) simulated.
+  std::ifstream csv(trace);
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("seconds,phase,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    last = line;
+    ++rows;
+  }
+  EXPECT_GT(rows, 12 * 50);  // 12 s show at 50 Hz, plus soft start and stop
+  std::vector<std::string> cells;
+  std::stringstream cells_in(last);
+  for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
+  ASSERT_EQ(cells.size(), 2u + 8u * 3u);
+  EXPECT_DOUBLE_EQ(std::stod(cells[3]), 0.0);            // jaw command = rest
+  EXPECT_NEAR(std::stod(cells[4]), 0.0, 0.5);            // jaw simulated position
+  EXPECT_DOUBLE_EQ(std::stod(cells[2 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
+  EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
+}
+
+TEST(PlayCommand, FastRunsAreDeterministic) {
+  const std::string a = ::testing::TempDir() + "det-a.csv";
+  const std::string b = ::testing::TempDir() + "det-b.csv";
+  ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", a}).code, kExitOk);
+  ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", b}).code, kExitOk);
+  EXPECT_EQ(read_file(a), read_file(b));
+}
+
+TEST(CheckCommand, AcceptsTheBundledShow) {
+  const Result r = avar({"check", kShow, "--rig", kRig});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("ok: show 'hello-head'"), std::string::npos) << r.out;
+}
+
+/// A simulated Maestro on a pty that a bad-input run is pointed at: it must receive nothing.
+struct WatchedPort {
+  sim::SimMaestro device{sim::SimMaestroConfig{}};
+  sim::PtyDeviceHost host{device, sim::PtyDeviceHost::Clock::stepped};
+  std::uint64_t bytes() { return host.with_device([&](auto&) { return device.bytes_received(); }); }
+};
+
+void expect_rejected(const std::string& show_text, const std::string& expected_message) {
+  WatchedPort port;
+  const std::string show = write_temp("bad-show.yaml", show_text);
+  const Result r = avar({"play", show, "--rig", kRig, "--port", port.host.slave_path()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(expected_message), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("error: " + show + ":"), std::string::npos) << "the message must start with the file: " << r.err;
+  EXPECT_EQ(port.bytes(), 0u) << "bytes reached the device before validation finished";
+}
+
+TEST(PlayCommand, KeysNotStrictlyIncreasingAreRejectedBeforeAnythingIsSent) {
+  expect_rejected(bundled_show_with("{time: 4.08, value: 5}", "{time: 3.5, value: 5}"), "strictly increase");
+}
+
+TEST(PlayCommand, ValuesOutsideTheChannelLimitsAreRejectedBeforeAnythingIsSent) {
+  expect_rejected(bundled_show_with("{time: 7.2, value: 22}", "{time: 7.2, value: 44}"),
+                  "value 44 at 7.2 s is outside channel 'jaw' limits [0, 30] deg");
+}
+
+TEST(PlayCommand, UnknownChannelsAreRejectedBeforeAnythingIsSent) {
+  expect_rejected(bundled_show_with("  jaw:\n", "  chin:\n"), "unknown channel 'chin'");
+}
+
+TEST(PlayCommand, MalformedYamlIsRejectedBeforeAnythingIsSent) {
+  expect_rejected(bundled_show_with("{time: 7.2, value: 22}", "{time: 7.2, value: 22"), "malformed YAML");
+}
+
+TEST(PlayCommand, UnknownInterpolationIsRejectedBeforeAnythingIsSent) {
+  expect_rejected(bundled_show_with("{time: 6.8, value: 18}", "{time: 6.8, value: 18, interpolation: cubic}"),
+                  "interpolation");
+}
+
+TEST(PlayCommand, BadRigIsRejectedWithItsLocation) {
+  std::string rig = read_file(kRig);
+  rig.replace(rig.find("protocol: maestro"), 17, "protocol: maestr0");
+  const std::string path = write_temp("bad-rig.yaml", rig);
+  const Result r = avar({"play", kShow, "--rig", path, "--fast"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(path + ":23:36: unknown protocol 'maestr0'; expected one of: maestro"), std::string::npos) << r.err;
+}
+
+TEST(PlayCommand, MissingPortIsNamed) {
+  const Result r = avar({"play", kShow, "--rig", kRig, "--port", "/dev/ttyACM_avar_absent"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("/dev/ttyACM_avar_absent: cannot open serial port"), std::string::npos) << r.err;
+}
+
+TEST(PlayCommand, BusyPortIsRefused) {
+  WatchedPort port;
+  const std::string path = port.host.slave_path();
+  // Another program holds the port (and its lock).
+  std::FILE* other = std::fopen(path.c_str(), "r+");
+  ASSERT_NE(other, nullptr);
+  ASSERT_EQ(::flock(::fileno(other), LOCK_EX | LOCK_NB), 0);
+  const Result r = avar({"play", kShow, "--rig", kRig, "--port", path});
+  std::fclose(other);
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(path + ": serial port is busy"), std::string::npos) << r.err;
+  EXPECT_EQ(port.bytes(), 0u);
+}
+
+TEST(PlayCommand, FastNeedsTheSimulator) {
+  WatchedPort port;
+  const Result r = avar({"play", kShow, "--rig", kRig, "--port", port.host.slave_path(), "--fast"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--fast runs on a simulated clock"), std::string::npos) << r.err;
+  EXPECT_EQ(port.bytes(), 0u);
+}
+
+TEST(Cli, HelpTeachesAndBadOptionsExitWithTwo) {
+  const Result help = avar({"--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("Examples:"), std::string::npos);
+  EXPECT_EQ(avar({"play", kShow}).code, kExitBadInput);  // --rig is required
+  EXPECT_EQ(avar({"play", kShow, "--rig", kRig, "--rate", "5000"}).code, kExitBadInput);
+  EXPECT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--realtime"}).code, kExitBadInput);
+}
+
+}  // namespace
+}  // namespace avar::app
