@@ -114,7 +114,8 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
       for (std::size_t k = 0; k < data.seconds.size(); ++k) ch.measured.push_back(r.measured()[k * n + i]);
     data.channels.push_back(std::move(ch));
   }
-  for (const PhaseMark& p : r.phases()) data.markers.emplace_back(p.time_s, control::to_string(p.phase));
+  for (const PhaseMark& p : r.phases())
+    if (p.phase != control::Phase::finished) data.markers.emplace_back(p.time_s, control::to_string(p.phase));
   write_svg_plot_file(path, data);
 }
 

@@ -147,12 +147,15 @@ void write_svg_plot(std::ostream& out, const PlotData& data) {
     for (double limit : {ch.min, ch.max})
       out << "<line x1=\"" << kLeft << "\" y1=\"" << num(y.map(limit)) << "\" x2=\"" << kWidth - kRight << "\" y2=\""
           << num(y.map(limit)) << "\" stroke=\"#c00\" stroke-dasharray=\"5,4\"/>\n";
-    for (const auto& [time, name] : data.markers) {
+    for (std::size_t m = 0; m < data.markers.size(); ++m) {
+      const auto& [time, name] = data.markers[m];
       if (time < t0 || time > t1) continue;
       out << "<line x1=\"" << num(x.map(time)) << "\" y1=\"" << num(top) << "\" x2=\"" << num(x.map(time)) << "\" y2=\""
           << num(bottom) << "\" stroke=\"#888\" stroke-dasharray=\"2,3\"/>\n";
+      // Labels step down the first panel so that close phase changes stay readable.
       if (p == 0)
-        out << "<text x=\"" << num(x.map(time) + 3) << "\" y=\"" << num(top + 11) << "\" fill=\"#555\">" << escape(name) << "</text>\n";
+        out << "<text x=\"" << num(x.map(time) + 3) << "\" y=\"" << num(top + 11 + 11 * static_cast<double>(m % 3))
+            << "\" fill=\"#555\">" << escape(name) << "</text>\n";
     }
     out << "<path d=\"" << path_of(data.seconds, ch.commanded, x, y) << "\" fill=\"none\" stroke=\"" << kCommandColour
         << "\" stroke-width=\"1.5\"/>\n";
