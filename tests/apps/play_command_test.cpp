@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_file.hpp"
 #include "avar/cli.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/sim/pty_device_host.hpp"
@@ -36,11 +37,7 @@ Result avar(std::vector<std::string> args) {
   return {code, out.str(), err.str()};
 }
 
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
+std::string write_temp(const std::string& name, const std::string& text) { return testing::write_temp_file(name, text); }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
@@ -57,8 +54,8 @@ std::string bundled_show_with(const std::string& from, const std::string& to) {
 }
 
 TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
-  const std::string trace = ::testing::TempDir() + "hello-head-trace.csv";
-  const std::string plot = ::testing::TempDir() + "hello-head-plot.svg";
+  const std::string trace = testing::temp_path("trace.csv");
+  const std::string plot = testing::temp_path("plot.svg");
   const Result r = avar({"play", kShow, "--rig", kRig, "--fast", "--trace", trace, "--plot", plot});
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   for (const char* channel : {"jaw", "neck_pan", "neck_tilt", "neck_roll", "eyes_pan", "eyes_tilt", "lid_left", "lid_right"})
@@ -89,8 +86,8 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
 }
 
 TEST(PlayCommand, FastRunsAreDeterministic) {
-  const std::string a = ::testing::TempDir() + "det-a.csv";
-  const std::string b = ::testing::TempDir() + "det-b.csv";
+  const std::string a = testing::temp_path("a.csv");
+  const std::string b = testing::temp_path("b.csv");
   ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", a}).code, kExitOk);
   ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", b}).code, kExitOk);
   EXPECT_EQ(read_file(a), read_file(b));

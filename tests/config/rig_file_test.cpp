@@ -2,17 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
+#include "../support/temp_file.hpp"
 #include <string>
 
 namespace avar::config {
 namespace {
 
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
+std::string write_temp(const std::string& name, const std::string& text) { return testing::write_temp_file(name, text); }
 
 const char* kGoodRig = R"(name: two
 links:

@@ -2,16 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
+#include "../support/temp_file.hpp"
 
 namespace avar::config {
 namespace {
 
-std::string write_temp(const std::string& text) {
-  const std::string path = ::testing::TempDir() + "show_under_test.yaml";
-  std::ofstream(path) << text;
-  return path;
-}
+std::string write_temp(const std::string& text) { return testing::write_temp_file("show.yaml", text); }
 
 /// The error for a show text, without the file name ("" when it loads).
 std::string error_of(const std::string& text) {

@@ -9,11 +9,11 @@
 #include <unistd.h>
 
 #include <array>
-#include <fstream>
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
 
+#include "../support/temp_file.hpp"
 #include "avar/core/input_error.hpp"
 
 namespace avar::firmware_iface {
@@ -107,8 +107,7 @@ TEST(SerialTransport, MissingPortNamesThePathAndWhatWasExpected) {
 }
 
 TEST(SerialTransport, RegularFileIsNotASerialDevice) {
-  const std::string path = ::testing::TempDir() + "avar_not_a_port.txt";
-  std::ofstream(path) << "x";
+  const std::string path = avar::testing::write_temp_file("not-a-port.txt", "x");
   EXPECT_THROW(SerialTransport(path, 115200), InputError);
 }
 
