@@ -173,16 +173,14 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
   PlayRecorder recorder(*figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
-                        ::isatty(STDERR_FILENO) == 1);
+                        ::isatty(STDERR_FILENO) == 1, &err);
 
+  // Signals count from here on: a Ctrl-C from now eases the figure to rest.
+  InterruptCounter interrupts;
   err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
-      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases" : "") << '\n';
-  control::RunResult run;
-  {
-    InterruptCounter interrupts;
-    run = control::run_loop(controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped},
-                            recorder, interrupts.count());
-  }
+      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases" : "") << std::endl;
+  const control::RunResult run = control::run_loop(
+      controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped}, recorder, interrupts.count());
   recorder.finish();
 
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate);

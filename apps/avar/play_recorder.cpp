@@ -10,12 +10,13 @@
 namespace avar::app {
 
 PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
-                           std::ostream* progress, bool progress_is_terminal)
+                           std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
     : figure_(figure),
       channels_(channels),
       keep_samples_(keep_samples),
       progress_(progress),
       terminal_(progress_is_terminal),
+      notices_(notices),
       stats_(channels),
       measured_(channels, std::numeric_limits<double>::quiet_NaN()),
       known_(new bool[channels]()) {
@@ -36,6 +37,11 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, const co
   stats_.add(controller.commanded(), measured_, known);
 
   if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
+  if (controller.stop_requested() && !stop_announced_) {
+    stop_announced_ = true;
+    if (progress_ && terminal_) *progress_ << '\n';
+    if (notices_) *notices_ << "interrupt: easing to rest; interrupt again to release every servo at once" << std::endl;
+  }
 
   if (keep_samples_) {
     seconds_.push_back(now_s);

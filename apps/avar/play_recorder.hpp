@@ -22,9 +22,10 @@ struct PhaseMark {
 class PlayRecorder final : public control::TickObserver {
  public:
   /// keep_samples: store every tick for a trace or plot (sized for expected_ticks up front).
-  /// progress: nullptr for none; otherwise the stream and whether it is a terminal.
+  /// progress: nullptr for none; otherwise the stream and whether it is a terminal. notices:
+  /// where to say that a stop was requested (nullptr for nowhere).
   PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
-               std::ostream* progress, bool progress_is_terminal);
+               std::ostream* progress, bool progress_is_terminal, std::ostream* notices);
 
   void after_tick(std::uint64_t tick, double now_s, double dt_s, const control::Controller& controller) override;
   /// Ends the progress line.
@@ -49,6 +50,8 @@ class PlayRecorder final : public control::TickObserver {
   bool keep_samples_;
   std::ostream* progress_;
   bool terminal_;
+  std::ostream* notices_;
+  bool stop_announced_ = false;
   TrackingStats stats_;
   std::vector<double> measured_;
   std::unique_ptr<bool[]> known_;
