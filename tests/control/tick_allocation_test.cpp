@@ -14,6 +14,10 @@ namespace {
 std::atomic<long> g_allocations{0};
 }
 
+// These replace the global allocation functions (malloc underneath), so free() is the right
+// partner; GCC cannot see that and warns in some builds.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
@@ -21,6 +25,7 @@ void* operator new(std::size_t size) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace avar::control {
 namespace {
