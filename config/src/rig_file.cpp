@@ -1,10 +1,10 @@
+#include "avar/core/format.hpp"
 #include "avar/config/rig_file.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
-#include <sstream>
 
 #include "avar/config/yaml_support.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
@@ -17,15 +17,9 @@ using control::ChannelSpec;
 using control::LinkSpec;
 using control::Rig;
 
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 double positive(const YamlRef& node, std::string_view what) {
   const double v = node.as_double(what);
-  if (v <= 0) node.fail("expected " + std::string(what) + " to be greater than 0, found " + number(v));
+  if (v <= 0) node.fail("expected " + std::string(what) + " to be greater than 0, found " + format_number(v));
   return v;
 }
 
@@ -39,11 +33,11 @@ ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   c.min = node.at("min", what).as_double("min of " + what);
   const YamlRef max = node.at("max", what);
   c.max = max.as_double("max of " + what);
-  if (!(c.max > c.min)) max.fail("expected max of " + what + " to be greater than its min " + number(c.min) + ", found " + number(c.max));
+  if (!(c.max > c.min)) max.fail("expected max of " + what + " to be greater than its min " + format_number(c.min) + ", found " + format_number(c.max));
   const YamlRef rest = node.at("rest", what);
   c.rest = rest.as_double("rest of " + what);
   if (c.rest < c.min || c.rest > c.max)
-    rest.fail("expected rest of " + what + " inside its limits [" + number(c.min) + ", " + number(c.max) + "], found " + number(c.rest));
+    rest.fail("expected rest of " + what + " inside its limits [" + format_number(c.min) + ", " + format_number(c.max) + "], found " + format_number(c.rest));
   const double range = c.max - c.min;
   // Defaults: a hobby servo crosses its range in ~0.25 s; the soft start and stop take ~2 s.
   c.max_velocity = node.find("max_velocity") ? positive(node.at("max_velocity", what), "max_velocity of " + what) : 4.0 * range;
@@ -138,13 +132,13 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   a.calibration.us_at_min = pulse("min_us");
   a.calibration.us_at_max = pulse("max_us");
   if (a.calibration.us_at_min == a.calibration.us_at_max)
-    cal.fail("expected min_us and max_us to differ (both are " + number(a.calibration.us_at_min) + " µs)");
+    cal.fail("expected min_us and max_us to differ (both are " + format_number(a.calibration.us_at_min) + " µs)");
   if (auto r = cal.find("reverse")) a.calibration.reverse = r->as_bool("reverse");
   if (auto t = cal.find("trim_us")) {
     a.calibration.trim_us = t->as_double("trim_us");
     if (a.calibration.pulse_low_us() < 64 || a.calibration.pulse_high_us() > 4000)
-      t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + number(a.calibration.pulse_low_us()) +
-              ", " + number(a.calibration.pulse_high_us()) + "] µs");
+      t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + format_number(a.calibration.pulse_low_us()) +
+              ", " + format_number(a.calibration.pulse_high_us()) + "] µs");
   }
   if (auto s = node.find("speed")) a.speed_limit = positive(*s, "the speed limit of " + what + " (" + ch.unit + "/s)");
   if (auto s = node.find("acceleration"))

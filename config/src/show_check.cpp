@@ -1,20 +1,14 @@
+#include "avar/core/format.hpp"
 #include "avar/config/show_check.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace avar::config {
 namespace {
 
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 std::string limits_text(const control::ChannelSpec& c) {
-  return "[" + number(c.min) + ", " + number(c.max) + "]" + (c.unit.empty() ? "" : " " + c.unit);
+  return "[" + format_number(c.min) + ", " + format_number(c.max) + "]" + (c.unit.empty() ? "" : " " + c.unit);
 }
 
 /// Scans the curve between two keys on a fine grid for its extreme values.
@@ -32,8 +26,8 @@ void check_segment_overshoot(const playback::Track& track, std::size_t k, const 
     hi = std::max(hi, v);
   }
   if (lo < c.min || hi > c.max)
-    warnings.push_back({keys[k].where, "the curve of '" + c.name + "' between " + number(t0) + " s and " + number(t1) +
-                                           " s reaches " + number(lo < c.min ? lo : hi) + ", outside its limits " +
+    warnings.push_back({keys[k].where, "the curve of '" + c.name + "' between " + format_number(t0) + " s and " + format_number(t1) +
+                                           " s reaches " + format_number(lo < c.min ? lo : hi) + ", outside its limits " +
                                            limits_text(c) + "; it will be clamped"});
 }
 
@@ -58,7 +52,7 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
     for (const playback::RawKey& key : keys) {
       if (key.value < c.min || key.value > c.max) {
         keys_in_range = false;
-        result.errors.push_back({key.where, "value " + number(key.value) + " at " + number(key.time) + " s is outside channel '" +
+        result.errors.push_back({key.where, "value " + format_number(key.value) + " at " + format_number(key.time) + " s is outside channel '" +
                                                 c.name + "' limits " + limits_text(c)});
       }
     }
@@ -69,7 +63,7 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
   for (std::size_t i = 0; i < rig.channels.size(); ++i)
     if (!driven[i])
       result.warnings.push_back({show.where, "no track drives channel '" + rig.channels[i].name + "'; it holds its rest pose " +
-                                                 number(rig.channels[i].rest)});
+                                                 format_number(rig.channels[i].rest)});
   return result;
 }
 

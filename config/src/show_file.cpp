@@ -1,19 +1,13 @@
+#include "avar/core/format.hpp"
 #include "avar/config/show_file.hpp"
 
 #include <filesystem>
 #include <set>
-#include <sstream>
 
 #include "avar/config/yaml_support.hpp"
 
 namespace avar::config {
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 playback::Handle read_handle(const YamlRef& node, std::string_view what) {
   if (!node.is_sequence() || node.size() != 2)
@@ -29,7 +23,7 @@ playback::RawKey read_key(const YamlRef& node, double duration, const std::strin
   const YamlRef time = node.at("time", what);
   key.time = time.as_double("the key time (seconds)");
   if (key.time < 0 || key.time > duration)
-    time.fail("key time " + number(key.time) + " s is outside the show, which runs from 0 to " + number(duration) + " s");
+    time.fail("key time " + format_number(key.time) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
   key.value = node.at("value", what).as_double("the key value");
   if (auto interp = node.find("interpolation")) {
     const auto parsed = playback::interpolation_from_name(interp->as_string("the interpolation"));

@@ -1,20 +1,14 @@
+#include "avar/core/format.hpp"
 #include "avar/playback/curve.hpp"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <sstream>
 
 #include "avar/playback/bezier_time_solve.hpp"
 
 namespace avar::playback {
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 /// Blender's BKE_fcurve_correct_bezpart: neither handle may reach further in time than the
 /// segment is long; a longer one is shortened, keeping its direction.
@@ -60,14 +54,14 @@ Curve Curve::build(const RawCurve& raw) {
   curve.segments_.reserve(raw.keys.size());
   for (std::size_t i = 0; i < raw.keys.size(); ++i) {
     const RawKey& k = raw.keys[i];
-    if (!std::isfinite(k.time)) throw InputError(k.where, "key time " + number(k.time) + " is not a finite number of seconds");
-    if (!std::isfinite(k.value)) throw InputError(k.where, "key value " + number(k.value) + " is not a finite number");
+    if (!std::isfinite(k.time)) throw InputError(k.where, "key time " + format_number(k.time) + " is not a finite number of seconds");
+    if (!std::isfinite(k.value)) throw InputError(k.where, "key value " + format_number(k.value) + " is not a finite number");
     if (i > 0 && !(k.time > raw.keys[i - 1].time))
-      throw InputError(k.where, "key time " + number(k.time) + " s is not after the previous key's " +
-                                    number(raw.keys[i - 1].time) + " s; key times must strictly increase");
+      throw InputError(k.where, "key time " + format_number(k.time) + " s is not after the previous key's " +
+                                    format_number(raw.keys[i - 1].time) + " s; key times must strictly increase");
     for (const auto* h : {&k.left, &k.right})
       if (*h && (!std::isfinite((*h)->time) || !std::isfinite((*h)->value)))
-        throw InputError(k.where, "a handle of the key at " + number(k.time) + " s is not a pair of finite numbers");
+        throw InputError(k.where, "a handle of the key at " + format_number(k.time) + " s is not a pair of finite numbers");
   }
   for (std::size_t i = 0; i < raw.keys.size(); ++i) {
     const RawKey& k = raw.keys[i];
@@ -83,10 +77,10 @@ Curve Curve::build(const RawCurve& raw) {
       s.v1 = next.value;
       if (k.interpolation == Interpolation::bezier) {
         if (!k.right)
-          throw InputError(k.where, "the key at " + number(k.time) +
+          throw InputError(k.where, "the key at " + format_number(k.time) +
                                         " s starts a bezier segment and needs a right handle: right: [time, value]");
         if (!next.left)
-          throw InputError(next.where, "the key at " + number(next.time) +
+          throw InputError(next.where, "the key at " + format_number(next.time) +
                                            " s ends a bezier segment and needs a left handle: left: [time, value]");
         s.tx[0] = k.time, s.tx[1] = k.right->time, s.tx[2] = next.left->time, s.tx[3] = next.time;
         s.vy[0] = k.value, s.vy[1] = k.right->value, s.vy[2] = next.left->value, s.vy[3] = next.value;

@@ -3,29 +3,12 @@
 // real Maestro link encoding into a transport.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "../support/allocation_counter.hpp"
+
 
 #include "avar/control/controller.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-// These replace the global allocation functions (malloc underneath), so free() is the right
-// partner; GCC cannot see that and warns in some builds.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace avar::control {
 namespace {
@@ -80,7 +63,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   Controller controller(rig, show, {&link});
   controller.begin(0.0, rig.rest_frame());
 
-  const long before = g_allocations.load();
+  const long before = testing::allocations.load();
   int k = 0;
   bool stopped = false;
   for (; controller.phase() != Phase::finished && k < 100000; ++k) {
@@ -90,7 +73,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
     }
     controller.tick(k * 0.001, 0.001);
   }
-  const long after = g_allocations.load();
+  const long after = testing::allocations.load();
   EXPECT_TRUE(stopped);
   EXPECT_GT(k, 3000);
   EXPECT_GT(transport.bytes_written(), 0u);

@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include "../support/allocation_counter.hpp"
+
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <fstream>
@@ -13,19 +13,6 @@
 
 #include "avar/kinematics/denavit_hartenberg.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace avar::kinematics {
 namespace {
@@ -160,13 +147,13 @@ TEST(ForwardKinematics, NoAllocationAfterTheWorkspaceExists) {
   Workspace ws(t);
   Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, static_cast<Eigen::Index>(t.dof()));
   std::vector<double> q(t.dof(), 0.1);
-  const long before = g_allocations.load();
+  const long before = testing::allocations.load();
   for (int i = 0; i < 1000; ++i) {
     q[0] = 0.0001 * i;
     forward_kinematics(t, q, ws);
     geometric_jacobian(t, ws, 0, J);
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(testing::allocations.load() - before, 0);
 }
 
 TEST(ModelBuilder, RejectsBadJointsWithTheirLocation) {
