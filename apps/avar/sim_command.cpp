@@ -53,7 +53,8 @@ int run_sim_maestro(const SimMaestroOptions& options, std::ostream& out, std::os
     last_bytes = bytes;
   }
   if (terminal) err << '\n';
-  err << "simulated Maestro stopped after " << last_bytes << " bytes\n";
+  const std::uint64_t total = host.with_device([&](sim::ByteDevice& d) { return d.bytes_received(); });
+  err << "simulated Maestro stopped after " << total << " bytes\n";
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   return kExitOk;
 }
