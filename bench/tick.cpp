@@ -57,13 +57,14 @@ void BM_TickHelloHead(benchmark::State& state) {
     ++k;
   }
   std::sort(ns.begin(), ns.end());
-  const double median = ns.empty() ? 0 : ns[ns.size() / 2];
-  const double worst = ns.empty() ? 0 : ns.back();
-  state.counters["median_ns"] = median;
-  state.counters["worst_ns"] = worst;
+  const auto at = [&](double fraction) { return ns.empty() ? 0.0 : ns[static_cast<std::size_t>(fraction * static_cast<double>(ns.size() - 1))]; };
+  state.counters["median_ns"] = at(0.5);
+  state.counters["worst_ns"] = at(1.0);
   state.counters["bytes_per_tick"] = static_cast<double>(head.link.last_send_size());
-  std::printf("tick,rig=hello-head,channels=%zu,ticks=%zu,median_us=%.3f,worst_us=%.3f\n", head.rig.channels.size(), ns.size(),
-              median / 1000.0, worst / 1000.0);
+  // The worst case on a time-shared machine is usually the scheduler, not the tick; the upper
+  // percentiles show how rare it is.
+  std::printf("tick,rig=hello-head,channels=%zu,ticks=%zu,median_us=%.3f,p99_us=%.3f,p999_us=%.3f,worst_us=%.3f\n",
+              head.rig.channels.size(), ns.size(), at(0.5) / 1000.0, at(0.99) / 1000.0, at(0.999) / 1000.0, at(1.0) / 1000.0);
 }
 BENCHMARK(BM_TickHelloHead)->Iterations(200000);
 
