@@ -51,6 +51,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::Option* trace_opt = play_cmd->add_option("--trace", trace, "Write every tick to this CSV file");
   CLI::Option* plot_opt = play_cmd->add_option("--plot", plot, "Write an SVG plot of commanded vs simulated position per channel");
   play_cmd->add_flag("--no-progress", no_progress, "Do not draw the progress line");
+  play_cmd->add_option("--priority", play.realtime.priority,
+                       "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
+      ->check(CLI::Range(0, 99));
+  play_cmd->add_option("--cpu", play.realtime.cpu, "Pin the loop thread to this CPU (default: any)")->check(CLI::NonNegativeNumber);
+  bool no_lock = false;
+  play_cmd->add_flag("--no-lock-memory", no_lock, "Do not lock the process's memory against paging");
 
   std::string check_show, check_rig;
   CLI::App* check_cmd = app.add_subcommand("check", "Validate a show against a rig and report every problem, moving nothing");
@@ -87,6 +93,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (*trace_opt) play.trace_path = trace;
     if (*plot_opt) play.plot_path = plot;
     play.progress = !no_progress;
+    play.realtime.lock_memory = !no_lock;
     return run_play(play, out, err);
   }
   if (*check_cmd) return run_check(check_show, check_rig, out, err);

@@ -76,20 +76,33 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
     out << "(no position feedback on these links: tracking error needs the simulator or a device that reports positions)\n";
   std::uint64_t saturated = 0;
   for (auto* link : figure.links()) saturated += link->saturated_pulses();
-  out << "\nticks " << run.ticks << ", deadline misses " << run.deadline_misses;
-  if (realtime) out << ", worst wake-up lateness " << fixed(run.worst_lateness_s * 1e3, 3) << " ms";
-  out << ", pulses saturated by calibration " << saturated << ", bytes sent " << figure.bytes_sent() << '\n';
+  out << "\nticks " << run.ticks << ", deadline misses " << run.deadline_misses << ", pulses saturated by calibration "
+      << saturated << ", bytes sent " << figure.bytes_sent() << '\n';
+  if (realtime) {
+    const auto us = [](std::int64_t ns) { return fixed(static_cast<double>(ns) / 1000.0, 1); };
+    out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 " << us(run.lateness.percentile_ns(0.99))
+        << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max " << us(run.lateness.max_ns()) << "; scheduling: "
+        << (run.realtime.fifo ? "SCHED_FIFO" : "normal") << (run.realtime.memory_locked ? ", memory locked" : "")
+        << (run.realtime.pinned ? ", pinned" : "") << '\n';
+  }
+  out << "tick stages (µs, last / worst):";
+  for (std::size_t i = 0; i < control::kStageCount; ++i) {
+    const auto stage = static_cast<control::Stage>(i);
+    const control::StageTime& t = controller.stage_time(stage);
+    out << ' ' << control::to_string(stage) << ' ' << fixed(static_cast<double>(t.last_ns) / 1000.0, 1) << " / "
+        << fixed(static_cast<double>(t.worst_ns) / 1000.0, 1) << (i + 1 < control::kStageCount ? "," : "\n");
+  }
 }
 
 void write_trace(const std::string& path, const control::Rig& rig, const PlayRecorder& r) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
-  csv << "seconds,phase";
+  csv << "seconds,phase,wake_late_us";
   for (const auto& c : rig.channels) csv << ',' << c.name << ".target," << c.name << ".command," << c.name << ".measured";
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();
   for (std::size_t k = 0; k < r.seconds().size(); ++k) {
-    csv << r.seconds()[k] << ',' << control::to_string(r.phase_per_tick()[k]);
+    csv << r.seconds()[k] << ',' << control::to_string(r.phase_per_tick()[k]) << ',' << r.lateness()[k] * 1e6;
     for (std::size_t i = 0; i < n; ++i) {
       csv << ',' << r.targets()[k * n + i] << ',' << r.commands()[k * n + i] << ',';
       const double m = r.measured()[k * n + i];
@@ -180,8 +193,10 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
       << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases" : "") << std::endl;
   const control::RunResult run = control::run_loop(
-      controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped}, recorder, interrupts.count());
+      controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime}, recorder,
+      interrupts.count());
   recorder.finish();
+  for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate);
   try {

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "avar/control/realtime_setup.hpp"
+
 namespace avar::app {
 
 struct PlayOptions {
@@ -20,6 +22,8 @@ struct PlayOptions {
   std::optional<std::string> trace_path;
   std::optional<std::string> plot_path;
   bool progress = true;              ///< progress line on the error stream while playing
+  /// Loop-thread scheduling in real time: SCHED_FIFO 50 and locked memory unless told otherwise.
+  control::RealtimeRequest realtime{50, true, -1};
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

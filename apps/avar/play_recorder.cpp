@@ -22,6 +22,7 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
       known_(new bool[channels]()) {
   if (keep_samples_) {
     seconds_.reserve(expected_ticks);
+    lateness_rows_.reserve(expected_ticks);
     phase_rows_.reserve(expected_ticks);
     targets_.reserve(expected_ticks * channels);
     commands_.reserve(expected_ticks * channels);
@@ -29,7 +30,7 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
   }
 }
 
-void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, const control::Controller& controller) {
+void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double lateness_s, const control::Controller& controller) {
   const std::span<bool> known(known_.get(), channels_);
   std::fill(known.begin(), known.end(), false);
   if (figure_.any_simulated()) figure_.step_simulation(dt_s, measured_, known);
@@ -45,6 +46,7 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, const co
 
   if (keep_samples_) {
     seconds_.push_back(now_s);
+    lateness_rows_.push_back(lateness_s);
     phase_rows_.push_back(controller.phase());
     const auto target = controller.target();
     const auto command = controller.commanded();

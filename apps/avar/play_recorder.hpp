@@ -27,7 +27,7 @@ class PlayRecorder final : public control::TickObserver {
   PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
                std::ostream* progress, bool progress_is_terminal, std::ostream* notices);
 
-  void after_tick(std::uint64_t tick, double now_s, double dt_s, const control::Controller& controller) override;
+  void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, const control::Controller& controller) override;
   /// Ends the progress line.
   void finish();
 
@@ -41,6 +41,7 @@ class PlayRecorder final : public control::TickObserver {
   const std::vector<double>& commands() const { return commands_; }
   const std::vector<double>& measured() const { return measured_rows_; }  ///< NaN when unknown
   const std::vector<control::Phase>& phase_per_tick() const { return phase_rows_; }
+  const std::vector<double>& lateness() const { return lateness_rows_; }  ///< seconds, per tick
 
  private:
   void draw_progress(double now_s, const control::Controller& controller);
@@ -58,7 +59,7 @@ class PlayRecorder final : public control::TickObserver {
   bool has_measurements_ = false;
   std::vector<PhaseMark> phases_;
   double next_progress_s_ = 0;
-  std::vector<double> seconds_, targets_, commands_, measured_rows_;
+  std::vector<double> seconds_, targets_, commands_, measured_rows_, lateness_rows_;
   std::vector<control::Phase> phase_rows_;
 };
 

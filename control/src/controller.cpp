@@ -1,5 +1,8 @@
 #include "avar/control/controller.hpp"
 
+#include <time.h>
+
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -35,6 +38,30 @@ const char* to_string(Phase p) noexcept {
     case Phase::finished: return "finished";
   }
   return "unknown";
+}
+
+const char* to_string(Stage s) noexcept {
+  switch (s) {
+    case Stage::sample: return "sample";
+    case Stage::limit: return "limit";
+    case Stage::send: return "send";
+  }
+  return "unknown";
+}
+
+std::int64_t monotonic_ns() noexcept {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
+void Controller::lap(Stage s, std::int64_t& mark) noexcept {
+  if (!options_.stage_clock) return;
+  const std::int64_t now = options_.stage_clock();
+  StageTime& t = stage_times_[static_cast<std::size_t>(s)];
+  t.last_ns = now - mark;
+  t.worst_ns = std::max(t.worst_ns, t.last_ns);
+  mark = now;
 }
 
 const char* to_string(FaultCause c) noexcept {
@@ -96,6 +123,7 @@ void Controller::release_now() noexcept {
 }
 
 Status Controller::tick(double now_s, double dt_s) noexcept {
+  std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
   if (phase_ == Phase::homing) {
     const double t = now_s - phase_start_;
     if (t >= ramp_.duration()) {
@@ -115,6 +143,7 @@ Status Controller::tick(double now_s, double dt_s) noexcept {
   }
   if (phase_ == Phase::stopping) ramp_.sample(now_s - phase_start_, target_);
   if (phase_ == Phase::idle || phase_ == Phase::finished) return Status::ok;
+  lap(Stage::sample, mark);
 
   if (limiter_.apply(target_, dt_s, commanded_) != Status::ok && fault_.cause == FaultCause::none) {
     // The limiter held the offending channels at their last value; ease everything to rest.
@@ -126,6 +155,8 @@ Status Controller::tick(double now_s, double dt_s) noexcept {
       }
     if (phase_ != Phase::stopping) start_stopping(now_s);
   }
+
+  lap(Stage::limit, mark);
 
   Status result = Status::ok;
   bool any_alive = false;
@@ -143,6 +174,7 @@ Status Controller::tick(double now_s, double dt_s) noexcept {
     if (fault_.cause == FaultCause::none) fault_ = {FaultCause::link_failure, s, i, now_s};
     if (phase_ != Phase::stopping) start_stopping(now_s);
   }
+  lap(Stage::send, mark);
   if (!any_alive) {
     phase_ = Phase::finished;
     return result;

@@ -2,7 +2,6 @@
 
 #include <time.h>
 
-#include <algorithm>
 #include <cerrno>
 
 namespace avar::control {
@@ -34,11 +33,14 @@ void sleep_until(const timespec& deadline) {
 RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
                    const std::atomic<int>& interrupts) {
   RunResult result;
+  const bool realtime = options.clock == ClockMode::realtime;
+  if (realtime) result.realtime = apply_realtime(options.realtime);
   const double dt = 1.0 / options.rate_hz;
   const long period_ns = static_cast<long>(static_cast<double>(kNanosPerSecond) / options.rate_hz + 0.5);
   timespec deadline{};
   clock_gettime(CLOCK_MONOTONIC, &deadline);
   int seen_interrupts = 0;
+  double lateness = 0;
 
   for (std::uint64_t k = 0; controller.phase() != Phase::finished; ++k) {
     // Tick times are nominal (k * dt) in both modes, so a run's curve samples do not depend on
@@ -58,9 +60,9 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
 
     controller.tick(now, dt);
     ++result.ticks;
-    observer.after_tick(k, now, dt, controller);
+    observer.after_tick(k, now, dt, lateness, controller);
 
-    if (options.clock == ClockMode::realtime) {
+    if (realtime) {
       deadline = add_ns(deadline, period_ns);
       timespec woke{};
       clock_gettime(CLOCK_MONOTONIC, &woke);
@@ -69,13 +71,16 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
         // catch up (a burst would replay stale ticks back to back).
         ++result.deadline_misses;
         deadline = woke;
+        lateness = 0;
         continue;
       }
       sleep_until(deadline);
       clock_gettime(CLOCK_MONOTONIC, &woke);
-      result.worst_lateness_s = std::max(result.worst_lateness_s, seconds_between(deadline, woke));
+      lateness = seconds_between(deadline, woke);
+      result.lateness.record(static_cast<std::int64_t>(lateness * 1e9));
     }
   }
+  if (realtime) release_realtime(result.realtime);
   return result;
 }
 

@@ -6,6 +6,7 @@
 // lock, string lookup or logging. One thread calls tick(); request_stop() may come from the
 // same thread (the runner polls the signal flag and forwards it).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -37,12 +38,28 @@ struct Fault {
   double time_s = 0;      ///< loop time at which it was detected
 };
 
+/// The stages of a tick whose cost is measured.
+enum class Stage { sample, limit, send };
+inline constexpr std::size_t kStageCount = 3;
+const char* to_string(Stage s) noexcept;
+
+/// Cost of one stage: the last tick's and the worst so far, in nanoseconds.
+struct StageTime {
+  std::int64_t last_ns = 0;
+  std::int64_t worst_ns = 0;
+};
+
+/// Reads CLOCK_MONOTONIC in nanoseconds. Real-time safe.
+std::int64_t monotonic_ns() noexcept;
+
 struct ControllerOptions {
   /// How many passes of a looping show to play before stopping; 0 = until stopped.
   /// A show that does not loop plays once whatever this says.
   std::uint64_t loops = 0;
   /// Shortest soft start / soft stop, seconds.
   double min_ramp_s = 0.25;
+  /// Clock for stage timing only (the motion never depends on it); nullptr: no timing.
+  std::int64_t (*stage_clock)() noexcept = monotonic_ns;
 };
 
 class Controller {
@@ -79,10 +96,13 @@ class Controller {
   /// The frame that the last tick asked for before limits.
   std::span<const double> target() const noexcept { return target_; }
   const Limiter& limiter() const noexcept { return limiter_; }
+  const StageTime& stage_time(Stage s) const noexcept { return stage_times_[static_cast<std::size_t>(s)]; }
   std::size_t channel_count() const noexcept { return rig_.channels.size(); }
 
  private:
   void start_stopping(double now_s) noexcept;
+  /// Closes the stage that began at *mark and opens the next one at the same instant.
+  void lap(Stage s, std::int64_t& mark) noexcept;
   bool show_over(double show_time_s) const noexcept;
 
   const Rig& rig_;
@@ -98,6 +118,7 @@ class Controller {
   std::vector<double> target_;
   std::vector<double> commanded_;
   std::vector<char> link_dead_;
+  std::array<StageTime, kStageCount> stage_times_{};
   Phase phase_ = Phase::idle;
   Fault fault_;
   bool stop_requested_ = false;

@@ -5,8 +5,12 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "avar/control/controller.hpp"
+#include "avar/control/latency_histogram.hpp"
+#include "avar/control/realtime_setup.hpp"
 
 namespace avar::control {
 
@@ -15,6 +19,7 @@ enum class ClockMode { realtime, stepped };
 struct RunOptions {
   double rate_hz = 50;  ///< ticks per second
   ClockMode clock = ClockMode::realtime;
+  RealtimeRequest realtime;  ///< scheduling for the loop thread (real-time clock only)
 };
 
 /// Called after every tick, on the loop thread (for the simulated plant, statistics, traces,
@@ -22,15 +27,17 @@ struct RunOptions {
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
-  virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, const Controller& controller) = 0;
+  /// lateness_s: how late this tick's wake-up came after its deadline (0 on the stepped clock).
+  virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, const Controller& controller) = 0;
 };
 
 struct RunResult {
   std::uint64_t ticks = 0;
   std::uint64_t deadline_misses = 0;  ///< ticks whose work ended after the next deadline
-  double worst_lateness_s = 0;        ///< worst wake-up after a deadline (realtime only)
+  LatencyHistogram lateness;          ///< wake-up lateness after each deadline (realtime only)
   bool interrupted = false;           ///< a stop was requested through `interrupts`
   bool released = false;              ///< a second interrupt released the actuators at once
+  RealtimeGrant realtime;             ///< what scheduling the loop got, and warnings
 };
 
 /// Ticks `controller` (which must have been begun at time 0) until it finishes. `interrupts`
