@@ -50,7 +50,8 @@ struct Figure32 {
     firmware_iface::MaestroLinkConfig c0, c1;
     for (int i = 0; i < 32; ++i) {
       const std::string name = "ch" + std::to_string(i);
-      rig.channels.push_back({name, "deg", -90, 90, 0, 400, 40, {}});
+      rig.channels.push_back({.name = name, .unit = "deg", .min = -90, .max = 90, .rest = 0, .max_velocity = 400,
+                              .max_acceleration = 4000, .max_jerk = 80000, .ramp_velocity = 40, .where = {}});
       auto& config = i < 16 ? c0 : c1;
       config.actuators.push_back({static_cast<std::size_t>(i), i % 16, {-90, 90, 600, 2400, i % 3 == 0, 0}, {}, {}});
       playback::RawCurve raw;
@@ -115,7 +116,7 @@ int main(int argc, char** argv) {
   // runner; stopped (eased to rest) once the measured span has elapsed.
   {
     Figure32 figure;
-    control::Controller controller(figure.rig, figure.show, figure.link_ptrs());
+    control::Controller controller(figure.rig, figure.show, figure.link_ptrs(), {.tick_period_s = 1.0 / rate});
     controller.begin(0.0, figure.rig.rest_frame());
     const auto ticks = static_cast<std::uint64_t>(seconds * rate);
     class Stopper final : public control::TickObserver {
@@ -147,14 +148,14 @@ int main(int argc, char** argv) {
   {
     const control::RealtimeGrant grant = control::apply_realtime(policy);
     Figure32 figure;
-    control::Controller controller(figure.rig, figure.show, figure.link_ptrs());
+    control::Controller controller(figure.rig, figure.show, figure.link_ptrs(), {.tick_period_s = 1.0 / rate});
     controller.begin(0.0, figure.rig.rest_frame());
     std::vector<double> ns;
     const int n = 200000;
     ns.reserve(n);
     for (int k = 0; k < n; ++k) {
       const std::int64_t t0 = control::monotonic_ns();
-      controller.tick(k * 0.001, 0.001);
+      controller.tick(k * 0.001);
       ns.push_back(static_cast<double>(control::monotonic_ns() - t0));
     }
     control::release_realtime(grant);

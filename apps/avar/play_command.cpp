@@ -63,14 +63,14 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   }
   out << '\n'
       << std::left << std::setw(12) << "channel" << std::setw(6) << "unit" << std::right << std::setw(11) << "max err"
-      << std::setw(11) << "rms err" << std::setw(9) << "clamped" << std::setw(10) << "rate-ltd" << '\n';
+      << std::setw(11) << "rms err" << std::setw(9) << "clamped" << std::setw(10) << "max lag" << '\n';
   for (std::size_t i = 0; i < rig.channels.size(); ++i) {
     const auto& c = rig.channels[i];
     const auto& s = recorder.stats();
     out << std::left << std::setw(12) << c.name << std::setw(6) << c.unit << std::right << std::setw(11)
         << (s.has_samples(i) ? fixed(s.max_abs_error(i), 3) : "-") << std::setw(11)
         << (s.has_samples(i) ? fixed(s.rms_error(i), 3) : "-") << std::setw(9) << controller.limiter().clamped(i)
-        << std::setw(10) << controller.limiter().rate_limited(i) << '\n';
+        << std::setw(10) << fixed(controller.limiter().max_lag(i), 3) << '\n';
   }
   if (!recorder.has_measurements())
     out << "(no position feedback on these links: tracking error needs the simulator or a device that reports positions)\n";
@@ -176,6 +176,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     (void)link->read_positions(start_pose, std::span<bool>(known.get(), rig.channels.size()));
 
   control::ControllerOptions controller_options;
+  controller_options.tick_period_s = 1.0 / rate;
   if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
   control::Controller controller(rig, loaded->show, links, controller_options);
   controller.begin(0.0, start_pose);

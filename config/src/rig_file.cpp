@@ -25,7 +25,8 @@ double positive(const YamlRef& node, std::string_view what) {
 
 ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   const std::string what = "channel '" + name + "'";
-  node.expect_only_keys({"unit", "min", "max", "rest", "max_velocity", "ramp_velocity"}, what);
+  node.expect_only_keys(
+      {"unit", "min", "max", "rest", "max_velocity", "max_acceleration", "max_jerk", "soft_margin", "ramp_velocity"}, what);
   ChannelSpec c;
   c.name = name;
   c.where = node.where();
@@ -39,8 +40,20 @@ ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   if (c.rest < c.min || c.rest > c.max)
     rest.fail("expected rest of " + what + " inside its limits [" + format_number(c.min) + ", " + format_number(c.max) + "], found " + format_number(c.rest));
   const double range = c.max - c.min;
-  // Defaults: a hobby servo crosses its range in ~0.25 s; the soft start and stop take ~2 s.
-  c.max_velocity = node.find("max_velocity") ? positive(node.at("max_velocity", what), "max_velocity of " + what) : 4.0 * range;
+  // Defaults: a hobby servo crosses its range in ~0.25 s, reaches that speed in ~0.1 s and its
+  // full acceleration in ~0.05 s; the soft start and stop take ~2 s for the whole range.
+  const auto limit_or = [&](const char* key, double fallback) {
+    return node.find(key) ? positive(node.at(key, what), std::string(key) + " of " + what) : fallback;
+  };
+  c.max_velocity = limit_or("max_velocity", 4.0 * range);
+  c.max_acceleration = limit_or("max_acceleration", 10.0 * c.max_velocity);
+  c.max_jerk = limit_or("max_jerk", 20.0 * c.max_acceleration);
+  if (auto margin = node.find("soft_margin")) {
+    c.soft_margin = margin->as_double("soft_margin of " + what);
+    if (c.soft_margin < 0 || 2 * c.soft_margin >= range)
+      margin->fail("expected soft_margin of " + what + " from 0 to less than half the range (" + format_number(range / 2) +
+                   "), found " + margin->describe());
+  }
   c.ramp_velocity = node.find("ramp_velocity") ? positive(node.at("ramp_velocity", what), "ramp_velocity of " + what)
                                                : std::min(c.max_velocity, 0.5 * range);
   return c;

@@ -23,7 +23,8 @@ std::vector<std::size_t> bind_tracks(const Rig& rig, const playback::Show& show)
 std::vector<ChannelLimits> limits_of(const Rig& rig) {
   std::vector<ChannelLimits> limits;
   limits.reserve(rig.channels.size());
-  for (const ChannelSpec& c : rig.channels) limits.push_back({c.min, c.max, c.max_velocity});
+  for (const ChannelSpec& c : rig.channels)
+    limits.push_back({c.min, c.max, c.max_velocity, c.max_acceleration, c.max_jerk, c.soft_margin});
   return limits;
 }
 
@@ -80,13 +81,14 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
       links_(std::move(links)),
       options_(options),
       sampler_(show, bind_tracks(rig, show), rig.rest_frame()),
-      limiter_(limits_of(rig)),
+      limiter_(limits_of(rig), options.tick_period_s),
       ramp_(rig.channels.size()),
       rest_(rig.rest_frame()),
       ramp_velocity_(rig.channels.size()),
       first_frame_(rig.channels.size()),
       target_(rig.channels.size()),
       commanded_(rig.channels.size()),
+      heading_(rig.channels.size()),
       link_dead_(links_.size(), 0) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
   sampler_.sample(0.0, first_frame_);
@@ -107,7 +109,9 @@ bool Controller::show_over(double show_time_s) const noexcept {
 }
 
 void Controller::start_stopping(double now_s) noexcept {
-  ramp_.plan(commanded_, rest_, ramp_velocity_, options_.min_ramp_s);
+  // From where the limiter is heading (its commands follow that with a fixed delay).
+  for (std::size_t i = 0; i < heading_.size(); ++i) heading_[i] = limiter_.heading(i);
+  ramp_.plan(heading_, rest_, ramp_velocity_, options_.min_ramp_s);
   phase_ = Phase::stopping;
   phase_start_ = now_s;
 }
@@ -122,7 +126,7 @@ void Controller::release_now() noexcept {
   phase_ = Phase::finished;
 }
 
-Status Controller::tick(double now_s, double dt_s) noexcept {
+Status Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
   if (phase_ == Phase::homing) {
     const double t = now_s - phase_start_;
@@ -145,7 +149,7 @@ Status Controller::tick(double now_s, double dt_s) noexcept {
   if (phase_ == Phase::idle || phase_ == Phase::finished) return Status::ok;
   lap(Stage::sample, mark);
 
-  if (limiter_.apply(target_, dt_s, commanded_) != Status::ok && fault_.cause == FaultCause::none) {
+  if (limiter_.apply(target_, commanded_) != Status::ok && fault_.cause == FaultCause::none) {
     // The limiter held the offending channels at their last value; ease everything to rest.
     fault_ = {FaultCause::non_finite_command, Status::not_finite, 0, now_s};
     for (std::size_t i = 0; i < target_.size(); ++i)
@@ -179,7 +183,7 @@ Status Controller::tick(double now_s, double dt_s) noexcept {
     phase_ = Phase::finished;
     return result;
   }
-  if (phase_ == Phase::stopping && now_s - phase_start_ >= ramp_.duration()) phase_ = Phase::finished;
+  if (phase_ == Phase::stopping && now_s - phase_start_ >= ramp_.duration() && limiter_.settled()) phase_ = Phase::finished;
   return result;
 }
 

@@ -3,6 +3,8 @@
 #include <time.h>
 
 #include <cerrno>
+#include <cmath>
+#include <stdexcept>
 
 namespace avar::control {
 namespace {
@@ -32,6 +34,8 @@ void sleep_until(const timespec& deadline) {
 
 RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
                    const std::atomic<int>& interrupts) {
+  if (std::abs(1.0 / options.rate_hz - controller.tick_period()) > 1e-9 * controller.tick_period())
+    throw std::invalid_argument("the run's rate does not match the controller's tick period");
   RunResult result;
   const bool realtime = options.clock == ClockMode::realtime;
   if (realtime) result.realtime = apply_realtime(options.realtime);
@@ -58,7 +62,7 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
       controller.request_stop(now);
     }
 
-    controller.tick(now, dt);
+    controller.tick(now);
     ++result.ticks;
     observer.after_tick(k, now, dt, lateness, controller);
 

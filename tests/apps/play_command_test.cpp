@@ -144,7 +144,7 @@ TEST(PlayCommand, BadRigIsRejectedWithItsLocation) {
   const std::string path = write_temp("bad-rig.yaml", rig);
   const Result r = avar({"play", kShow, "--rig", path, "--fast"});
   EXPECT_EQ(r.code, kExitBadInput);
-  EXPECT_NE(r.err.find(path + ":23:36: unknown protocol 'maestr0'; expected one of: maestro"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(path + ":25:36: unknown protocol 'maestr0'; expected one of: maestro"), std::string::npos) << r.err;
 }
 
 TEST(PlayCommand, MissingPortIsNamed) {

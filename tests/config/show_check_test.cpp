@@ -8,8 +8,8 @@ namespace {
 control::Rig rig() {
   control::Rig r;
   r.name = "r";
-  r.channels.push_back({"jaw", "deg", 0, 30, 0, 100, 10, {}});
-  r.channels.push_back({"pan", "deg", -60, 60, 0, 100, 10, {}});
+  r.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 100, .max_acceleration = 1000, .max_jerk = 10000, .ramp_velocity = 10, .where = {}});
+  r.channels.push_back({.name = "pan", .unit = "deg", .min = -60, .max = 60, .rest = 0, .max_velocity = 100, .max_acceleration = 1000, .max_jerk = 10000, .ramp_velocity = 10, .where = {}});
   return r;
 }
 

@@ -45,8 +45,8 @@ struct Bench {
   static Rig make_rig() {
     Rig r;
     r.name = "e2e";
-    r.channels.push_back({"jaw", "deg", 0, 30, 0, 200, 30, {}});
-    r.channels.push_back({"pan", "deg", -45, 45, 0, 300, 60, {}});
+    r.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 200, .max_acceleration = 2000, .max_jerk = 20000, .ramp_velocity = 30, .where = {}});
+    r.channels.push_back({.name = "pan", .unit = "deg", .min = -45, .max = 45, .rest = 0, .max_velocity = 300, .max_acceleration = 3000, .max_jerk = 30000, .ramp_velocity = 60, .where = {}});
     return r;
   }
   static playback::Show make_show() {
@@ -97,7 +97,7 @@ TEST(EndToEnd, ShowThroughRealDriverAndSerialTransportToTheSimulatedMaestro) {
   ASSERT_EQ(b.link.read_positions(pose, std::span<bool>(known.get(), 2)), Status::ok);
   EXPECT_FALSE(known[0]);  // no pulses yet: the Maestro cannot say where the servo is
 
-  Controller controller(b.rig, b.show, {&b.link});
+  Controller controller(b.rig, b.show, {&b.link}, {.tick_period_s = 0.02});
   controller.begin(0.0, pose);
   StepDevice step(b);
   const std::atomic<int> no_interrupts{0};
@@ -134,10 +134,11 @@ TEST(EndToEnd, ShowThroughRealDriverAndSerialTransportToTheSimulatedMaestro) {
     EXPECT_EQ(frames, run.ticks);
     // The last frame is the rest pose: jaw 0 deg -> 1000 µs, pan 0 deg -> 1500 µs.
     EXPECT_EQ(log.back().values, (std::vector<std::uint16_t>{4000, 6000}));
-    // The show's peak (25 deg jaw at 0.5 s -> 1833.3 µs) was commanded.
+    // The show's peak (25 deg jaw at 0.5 s -> 1833.3 µs) was commanded, up to the smoothing.
     std::uint16_t peak = 0;
     for (std::size_t i = 7; i < log.size(); ++i) peak = std::max(peak, log[i].values[0]);
-    EXPECT_EQ(peak, 7333);
+    EXPECT_LE(peak, 7333);  // the corner is rounded by the acceleration and jerk limits
+    EXPECT_GT(peak, 6900);
     EXPECT_EQ(b.device.errors(), 0);
   });
   // Let the servos settle, then check where they are: at rest.

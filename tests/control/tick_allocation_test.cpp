@@ -36,7 +36,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   link_config.channel_count = 12;
   for (int i = 0; i < 8; ++i) {
     const std::string name = "ch" + std::to_string(i);
-    rig.channels.push_back({name, "deg", -45, 45, 0, 400, 60, {}});
+    rig.channels.push_back({.name = name, .unit = "deg", .min = -45, .max = 45, .rest = 0, .max_velocity = 400, .max_acceleration = 4000, .max_jerk = 40000, .ramp_velocity = 60, .where = {}});
     // Two runs of consecutive device channels (0-3 and 6-9) exercise both packet kinds.
     const int device_channel = i < 4 ? i : i + 2;
     link_config.actuators.push_back({static_cast<std::size_t>(i), device_channel, {-45, 45, 1000, 2000, i % 2 == 1, 5}, {}, {}});
@@ -60,7 +60,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   }
   CountingTransport transport;
   firmware_iface::MaestroLink link(transport, link_config);
-  Controller controller(rig, show, {&link});
+  Controller controller(rig, show, {&link}, {.tick_period_s = 0.001});
   controller.begin(0.0, rig.rest_frame());
 
   const long before = testing::allocations.load();
@@ -71,7 +71,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
       controller.request_stop(k * 0.001);
       stopped = true;
     }
-    controller.tick(k * 0.001, 0.001);
+    controller.tick(k * 0.001);
   }
   const long after = testing::allocations.load();
   EXPECT_TRUE(stopped);

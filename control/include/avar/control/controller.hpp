@@ -58,6 +58,8 @@ struct ControllerOptions {
   std::uint64_t loops = 0;
   /// Shortest soft start / soft stop, seconds.
   double min_ramp_s = 0.25;
+  /// The tick period tick() will be called with (seconds); the limiter is sized for it.
+  double tick_period_s = 0.02;
   /// Clock for stage timing only (the motion never depends on it); nullptr: no timing.
   std::int64_t (*stage_clock)() noexcept = monotonic_ns;
 };
@@ -74,8 +76,9 @@ class Controller {
   /// devices' reported positions, or the rest pose where unknown).
   void begin(double now_s, std::span<const double> start_pose) noexcept;
 
-  /// One tick at loop time now_s with period dt_s. Returns the status of this tick's sends.
-  Status tick(double now_s, double dt_s) noexcept;
+  /// One tick at loop time now_s. Its period must be options.tick_period_s. Returns the status
+  /// of this tick's sends.
+  Status tick(double now_s) noexcept;
 
   /// Eases to rest from wherever the figure is, then finishes. Idempotent.
   void request_stop(double now_s) noexcept;
@@ -98,6 +101,7 @@ class Controller {
   const Limiter& limiter() const noexcept { return limiter_; }
   const StageTime& stage_time(Stage s) const noexcept { return stage_times_[static_cast<std::size_t>(s)]; }
   std::size_t channel_count() const noexcept { return rig_.channels.size(); }
+  double tick_period() const noexcept { return options_.tick_period_s; }
 
  private:
   void start_stopping(double now_s) noexcept;
@@ -117,6 +121,7 @@ class Controller {
   std::vector<double> first_frame_;
   std::vector<double> target_;
   std::vector<double> commanded_;
+  std::vector<double> heading_;
   std::vector<char> link_dead_;
   std::array<StageTime, kStageCount> stage_times_{};
   Phase phase_ = Phase::idle;

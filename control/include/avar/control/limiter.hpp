@@ -1,7 +1,17 @@
 #pragma once
-// Per-channel motion limits applied to every command before it reaches a link: position range,
-// then speed. Sized once; apply() is real-time safe (no allocation, no exception, no lock).
+// Per-channel motion limits applied to every command before it reaches a link.
+//
+// Each channel's target is clamped into its range less the soft margins, rate-limited to the
+// velocity limit, then smoothed by two moving averages, of N1 and N2 ticks. A moving average of
+// a signal never leaves the signal's range, so no command passes the clamped target or the
+// range; the first average bounds the acceleration by 2V/(N1 dt) and the second the jerk by
+// 2A/(N2 dt) (a factor 2 for a full reversal), so N1 and N2 are the smallest that keep A and J.
+// A held target is reached exactly, at rest, after the travel at V plus N1 + N2 ticks.
+// The averages delay the motion by a fixed time; every channel is padded to the same delay,
+// delay(), so channels that move together in the show stay together on the figure.
+// Sized once for a tick period; apply() is real-time safe (no allocation, exception or lock).
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -11,37 +21,82 @@
 namespace avar::control {
 
 struct ChannelLimits {
-  double min = 0;           ///< channel units
-  double max = 1;           ///< channel units, > min
-  double max_velocity = 1;  ///< channel units per second, > 0
+  double min = 0;               ///< hard range, channel units
+  double max = 1;               ///< > min
+  double max_velocity = 1;      ///< units/s, > 0
+  double max_acceleration = 1;  ///< units/s², > 0
+  double max_jerk = 1;          ///< units/s³, > 0
+  double soft_margin = 0;       ///< targets stay this far inside [min, max], units, >= 0
 };
 
 class Limiter {
  public:
-  explicit Limiter(std::vector<ChannelLimits> limits);
+  /// dt_s: the tick period every apply() will use. Throws std::invalid_argument for
+  /// non-positive limits or period.
+  Limiter(std::vector<ChannelLimits> limits, double dt_s);
 
-  /// Sets the last output (the pose the figure is known or assumed to be in). Values are
-  /// clamped into range. Size must equal the channel count.
+  /// Sets the present pose, at rest. Values are clamped into range; non-finite ones keep the
+  /// previous value.
   void reset(std::span<const double> pose) noexcept;
 
-  /// out[i] = target[i] clamped into [min, max], then moved at most max_velocity * dt_s from
-  /// the previous output. A non-finite target holds that channel's previous output and the
-  /// call returns Status::not_finite; otherwise Status::ok. target and out may alias.
-  Status apply(std::span<const double> target, double dt_s, std::span<double> out) noexcept;
+  /// One tick toward `target`: out[i] is the new command. A non-finite target keeps heading for
+  /// that channel's previous goal and the call returns Status::not_finite. target and out may
+  /// alias.
+  Status apply(std::span<const double> target, std::span<double> out) noexcept;
 
-  std::size_t size() const noexcept { return limits_.size(); }
-  const ChannelLimits& limits(std::size_t channel) const noexcept { return limits_[channel]; }
+  /// How long after a target is given its motion reaches the commands (seconds), the same for
+  /// every channel.
+  double delay() const noexcept { return delay_s_; }
+  /// True when every channel's command has come to rest on its goal.
+  bool settled() const noexcept;
+
+  std::size_t size() const noexcept { return channels_.size(); }
+  const ChannelLimits& limits(std::size_t channel) const noexcept { return channels_[channel].limits; }
+  /// The commands of the last tick.
   std::span<const double> last() const noexcept { return last_; }
-  /// Samples whose target lay outside [min, max] (channel index).
-  std::uint64_t clamped(std::size_t channel) const noexcept { return clamped_[channel]; }
-  /// Samples slowed down by the velocity limit.
-  std::uint64_t rate_limited(std::size_t channel) const noexcept { return rate_limited_[channel]; }
+  /// The rate-limited target of the last tick (where the commands are heading).
+  double heading(std::size_t channel) const noexcept { return channels_[channel].rate_limited; }
+  /// Samples whose target lay outside the range less its margins.
+  std::uint64_t clamped(std::size_t channel) const noexcept { return channels_[channel].clamped; }
+  /// Largest distance between the (clamped) target, taken delay() earlier, and the command:
+  /// how far the limits made the figure trail the show.
+  double max_lag(std::size_t channel) const noexcept { return channels_[channel].max_lag; }
 
  private:
-  std::vector<ChannelLimits> limits_;
+  /// A moving average over a ring buffer with a running sum (recomputed exactly once per lap,
+  /// so rounding never accumulates).
+  struct MovingAverage {
+    std::vector<double> ring;
+    std::size_t next = 0;
+    double sum = 0;
+    void fill(double v) noexcept;
+    double push(double v) noexcept;
+  };
+  /// A pure delay of ring.size() ticks (none when empty).
+  struct DelayLine {
+    std::vector<double> ring;
+    std::size_t next = 0;
+    void fill(double v) noexcept { std::fill(ring.begin(), ring.end(), v); }
+    double push(double v) noexcept;
+  };
+  struct Channel {
+    ChannelLimits limits;
+    double goal = 0;          ///< clamped target
+    double rate_limited = 0;  ///< after the velocity limit
+    MovingAverage acceleration_stage;
+    MovingAverage jerk_stage;
+    DelayLine padding;        ///< up to the common delay
+    DelayLine goal_delay;     ///< the goal as it was delay() ago, for the lag figure
+    std::uint64_t steady_ticks = 0;  ///< ticks the rate-limited value has not changed
+    std::size_t settle_ticks = 0;    ///< ticks after which the output equals a steady input
+    std::uint64_t clamped = 0;
+    double max_lag = 0;
+  };
+
+  double dt_s_;
+  double delay_s_ = 0;
+  std::vector<Channel> channels_;
   std::vector<double> last_;
-  std::vector<std::uint64_t> clamped_;
-  std::vector<std::uint64_t> rate_limited_;
 };
 
 }  // namespace avar::control

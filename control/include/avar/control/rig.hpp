@@ -21,8 +21,11 @@ struct ChannelSpec {
   double min = 0;           ///< hard lower limit (channel units); no command goes below
   double max = 1;           ///< hard upper limit (channel units), > min
   double rest = 0;          ///< rest pose, inside [min, max]: soft stop and faults go here
-  double max_velocity = 0;  ///< limiter: largest speed commanded (units/s), > 0
-  double ramp_velocity = 0; ///< peak speed of soft start and soft stop (units/s), > 0
+  double max_velocity = 0;      ///< limiter: largest speed commanded (units/s), > 0
+  double max_acceleration = 0;  ///< limiter: units/s², > 0
+  double max_jerk = 0;          ///< limiter: units/s³, > 0
+  double soft_margin = 0;       ///< targets stay this far inside [min, max] (units), >= 0
+  double ramp_velocity = 0;     ///< peak speed of soft start and soft stop (units/s), > 0
   SourceLocation where;
 };
 

@@ -40,7 +40,8 @@ struct RunResult {
   RealtimeGrant realtime;             ///< what scheduling the loop got, and warnings
 };
 
-/// Ticks `controller` (which must have been begun at time 0) until it finishes. `interrupts`
+/// Ticks `controller` (which must have been begun at time 0, with a tick period of 1/rate_hz:
+/// std::invalid_argument otherwise) until it finishes. `interrupts`
 /// counts Ctrl-C / SIGTERM: the first asks for a soft stop to rest, the second releases at once.
 RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
                    const std::atomic<int>& interrupts);
