@@ -1,7 +1,9 @@
 #include "avar/figure_links.hpp"
 
 #include <chrono>
+#include <cmath>
 
+#include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/sim_maestro.hpp"
@@ -34,6 +36,10 @@ struct FigureLinks::Entry {
   std::unique_ptr<sim::PtyDeviceHost> host;
   std::unique_ptr<firmware_iface::SerialTransport> transport;
   std::unique_ptr<firmware_iface::MaestroLink> link;
+  std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
+  firmware_iface::ActuatorLink* outer() const {
+    return threaded ? static_cast<firmware_iface::ActuatorLink*>(threaded.get()) : link.get();
+  }
 };
 
 namespace {
@@ -77,6 +83,10 @@ FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection
     }
     entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
     entry->link = std::make_unique<firmware_iface::MaestroLink>(*entry->transport, maestro_config(rig, i));
+    if (selection.threaded_rate_hz > 0) {
+      const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
+      entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
+    }
     entries_.push_back(std::move(entry));
   }
 }
@@ -84,6 +94,7 @@ FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection
 FigureLinks::~FigureLinks() {
   // Close the serial side before the simulated devices behind it go away.
   for (auto& e : entries_) {
+    e->threaded.reset();
     e->link.reset();
     e->transport.reset();
   }
@@ -91,7 +102,7 @@ FigureLinks::~FigureLinks() {
 
 std::vector<firmware_iface::ActuatorLink*> FigureLinks::links() const {
   std::vector<firmware_iface::ActuatorLink*> out;
-  for (const auto& e : entries_) out.push_back(e->link.get());
+  for (const auto& e : entries_) out.push_back(e->outer());
   return out;
 }
 

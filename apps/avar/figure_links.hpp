@@ -17,6 +17,9 @@ namespace avar::app {
 struct LinkSelection {
   std::optional<std::string> port;  ///< overrides the port of the rig's single link
   bool simulate_all = false;        ///< simulate every link whatever its port says
+  /// Serve each link from its own I/O thread with a watchdog (real time), at this tick rate;
+  /// 0: send on the loop thread (stepped time, deterministic).
+  double threaded_rate_hz = 0;
 };
 
 /// The Maestro driver settings for one link of the rig (calibrations and device-side limits).

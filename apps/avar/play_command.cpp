@@ -151,7 +151,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
 
   std::unique_ptr<FigureLinks> figure;
   try {
-    figure = std::make_unique<FigureLinks>(rig, LinkSelection{options.port, options.simulate});
+    figure = std::make_unique<FigureLinks>(rig, LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate});
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;

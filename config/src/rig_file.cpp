@@ -70,7 +70,7 @@ int maestro_channels_for_model(const YamlRef& node) {
 
 LinkSpec read_link(const std::string& name, const YamlRef& node) {
   const std::string what = "link '" + name + "'";
-  node.expect_only_keys({"port", "baud", "maestro"}, what);
+  node.expect_only_keys({"port", "baud", "watchdog_ms", "maestro"}, what);
   LinkSpec link;
   link.name = name;
   link.where = node.where();
@@ -80,6 +80,11 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
     if (b <= 0 || b > 4'000'000 || !firmware_iface::SerialTransport::is_supported_baud(static_cast<int>(b)))
       baud->fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " + baud->describe());
     link.baud = static_cast<int>(b);
+  }
+  if (auto w = node.find("watchdog_ms")) {
+    const double ms = w->as_double("watchdog_ms of " + what);
+    if (ms < 1 || ms > 60000) w->fail("expected watchdog_ms of " + what + " from 1 to 60000 milliseconds, found " + w->describe());
+    link.watchdog_s = ms / 1000.0;
   }
   if (auto m = node.find("maestro")) {
     const std::string mwhat = "the maestro settings of " + what;

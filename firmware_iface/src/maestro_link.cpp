@@ -95,7 +95,7 @@ Status MaestroLink::send(std::span<const double> frame) noexcept {
     const MaestroActuator& a = config_.actuators[slots_[s]];
     bool clamped = false;
     const double us = a.calibration.to_pulse_us(frame[a.channel], &clamped);
-    if (clamped) ++saturated_;
+    if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
     targets_[s] = maestro::quarter_us_from_us(us);
   }
   return write_targets();

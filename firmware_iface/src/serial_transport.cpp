@@ -97,7 +97,7 @@ Status SerialTransport::write(std::span<const std::uint8_t> bytes) noexcept {
   try {
     write_buffer_.assign(bytes.begin(), bytes.end());
     port_->Write(write_buffer_);
-    bytes_written_ += bytes.size();
+    bytes_written_.fetch_add(bytes.size(), std::memory_order_relaxed);
     return Status::ok;
   } catch (...) {
     return Status::io_error;

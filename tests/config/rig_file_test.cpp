@@ -97,6 +97,10 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
             ":5:43: expected rest of channel 'jaw' inside its limits [0, 30], found 40");
   EXPECT_EQ(error_of(replace(kGoodRig, "baud: 115200", "baud: 12345")),
             ":3:27: expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found '12345'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "baud: 115200", "baud: 115200, watchdog_ms: 0")),
+            ":3:48: expected watchdog_ms of link 'head' from 1 to 60000 milliseconds, found '0'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 0, soft_margin: 20")),
+            ":5:59: expected soft_margin of channel 'jaw' from 0 to less than half the range (15), found '20'");
   EXPECT_EQ(error_of(replace(kGoodRig, "model: mini12", "model: mega")),
             ":3:52: unknown Maestro model 'mega'; expected one of: micro6, mini12, mini18, mini24");
   EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: thirty, rest: 0")),

@@ -39,7 +39,7 @@ Rig two_channel_rig() {
   rig.name = "test";
   rig.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 200, .max_acceleration = 2000, .max_jerk = 20000, .ramp_velocity = 20, .where = {}});
   rig.channels.push_back({.name = "pan", .unit = "deg", .min = -60, .max = 60, .rest = 10, .max_velocity = 300, .max_acceleration = 3000, .max_jerk = 30000, .ramp_velocity = 40, .where = {}});
-  rig.links.push_back({"head", Protocol::maestro, "sim", 115200, {}, {}});
+  rig.links.emplace_back().name = "head";
   return rig;
 }
 
@@ -131,7 +131,7 @@ TEST(Controller, LinkFailureLatchesAFaultAndStopsSending) {
 
 TEST(Controller, OtherLinksEaseToRestWhenOneFails) {
   Rig rig = two_channel_rig();
-  rig.links.push_back({"body", Protocol::maestro, "sim", 115200, {}, {}});
+  rig.links.emplace_back().name = "body";
   const playback::Show show = jaw_show();
   RecordingLink good, bad;
   bad.fail_from_send = 80;

@@ -46,6 +46,7 @@ struct LinkSpec {
   Protocol protocol = Protocol::maestro;
   std::string port;
   int baud = 115200;
+  double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
   MaestroOptions maestro;
   SourceLocation where;
 

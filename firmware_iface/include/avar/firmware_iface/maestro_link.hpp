@@ -3,6 +3,7 @@
 // one "Set Multiple Targets" packet per run of consecutive device channels (one "Set Target" per
 // channel on a Micro Maestro, which lacks that command), all in a single write.
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -47,7 +48,7 @@ class MaestroLink final : public ActuatorLink {
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
   Status send(std::span<const double> frame) noexcept override;
   Status release() noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_; }
+  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
 
   /// Reads (and so clears) the device's error register.
@@ -71,7 +72,7 @@ class MaestroLink final : public ActuatorLink {
   std::vector<Run> runs_;
   std::vector<std::uint16_t> targets_;    ///< quarter-µs per slot, rebuilt each send
   std::vector<std::uint8_t> packet_;      ///< the whole tick's bytes
-  std::uint64_t saturated_ = 0;
+  std::atomic<std::uint64_t> saturated_{0};  ///< counted on the sending thread, read anywhere
   std::size_t last_send_size_ = 0;
   std::string description_;
 };

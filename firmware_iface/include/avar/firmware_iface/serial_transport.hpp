@@ -2,6 +2,7 @@
 // ByteTransport over a serial port (USB CDC such as /dev/ttyACM0, a UART, or the slave side of a
 // pseudo-terminal), using libserial. 8N1, no flow control, raw bytes.
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,7 +28,8 @@ class SerialTransport final : public ByteTransport {
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
   void discard_input() noexcept override;
-  std::uint64_t bytes_written() const noexcept override { return bytes_written_; }
+  /// Readable from any thread.
+  std::uint64_t bytes_written() const noexcept override { return bytes_written_.load(std::memory_order_relaxed); }
   const std::string& name() const noexcept override { return path_; }
 
   /// Baud rates a serial port can be opened at (the termios standard set).
@@ -41,7 +43,7 @@ class SerialTransport final : public ByteTransport {
   std::unique_ptr<LibSerial::SerialPort> port_;
   std::vector<std::uint8_t> write_buffer_;  // capacity max_chunk, reused: no allocation per write
   std::vector<std::uint8_t> read_buffer_;   // capacity max_chunk, reused
-  std::uint64_t bytes_written_ = 0;
+  std::atomic<std::uint64_t> bytes_written_{0};
 };
 
 }  // namespace avar::firmware_iface

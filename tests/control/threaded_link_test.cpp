@@ -1,0 +1,191 @@
+// The I/O thread and its mailbox: frames arrive whole and newest-first, a stalled link never
+// blocks the tick, and the watchdog turns silence into a fault. Run under ThreadSanitizer too.
+#include "avar/control/threaded_link.hpp"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "avar/control/controller.hpp"
+#include "avar/control/frame_mailbox.hpp"
+
+namespace avar::control {
+namespace {
+
+TEST(FrameMailbox, DeliversOnlyTheNewestFrameOnce) {
+  FrameMailbox box(2);
+  std::vector<double> out{-1, -1};
+  EXPECT_FALSE(box.take(out));
+  box.publish(std::vector<double>{1, 1});
+  box.publish(std::vector<double>{2, 2});
+  ASSERT_TRUE(box.take(out));
+  EXPECT_EQ(out, (std::vector<double>{2, 2}));
+  EXPECT_FALSE(box.take(out));
+}
+
+TEST(FrameMailbox, ReaderAlwaysSeesWholeFramesInOrderUnderContention) {
+  constexpr int kFrames = 200000;
+  FrameMailbox box(16);
+  std::thread writer([&] {
+    std::vector<double> frame(16);
+    for (int k = 1; k <= kFrames; ++k) {
+      std::fill(frame.begin(), frame.end(), static_cast<double>(k));
+      box.publish(frame);
+    }
+  });
+  std::vector<double> got(16, 0.0);
+  double last = 0;
+  while (last < kFrames) {
+    if (!box.take(got)) continue;
+    for (double v : got) ASSERT_EQ(v, got[0]) << "a torn frame";
+    ASSERT_GT(got[0], last) << "an old frame after a newer one";
+    last = got[0];
+  }
+  writer.join();
+}
+
+/// An ActuatorLink that can be made to stall (as a device that stops reading would stall a
+/// write) and records what it was sent.
+class StallableLink final : public firmware_iface::ActuatorLink {
+ public:
+  Status start() override { return Status::ok; }
+  Status read_positions(std::span<double>, std::span<bool>) override { return Status::ok; }
+  Status send(std::span<const double> frame) noexcept override {
+    std::unique_lock lock(mutex_);
+    sent_.emplace_back(frame.begin(), frame.end());
+    cv_.notify_all();
+    cv_.wait(lock, [&] { return !stalled_; });
+    return Status::ok;
+  }
+  Status release() noexcept override {
+    std::lock_guard lock(mutex_);
+    ++releases_;
+    return Status::ok;
+  }
+  std::uint64_t saturated_pulses() const noexcept override { return 0; }
+  const std::string& describe() const noexcept override { return name_; }
+
+  void stall(bool on) {
+    std::lock_guard lock(mutex_);
+    stalled_ = on;
+    cv_.notify_all();
+  }
+  /// Waits until at least n frames were sent; returns the last one.
+  std::vector<double> wait_sent(std::size_t n) {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return sent_.size() >= n; });
+    return sent_.back();
+  }
+  std::size_t sent_count() {
+    std::lock_guard lock(mutex_);
+    return sent_.size();
+  }
+  int releases() {
+    std::lock_guard lock(mutex_);
+    return releases_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::vector<std::vector<double>> sent_;
+  bool stalled_ = false;
+  int releases_ = 0;
+  std::string name_ = "stallable";
+};
+
+TEST(ThreadedLink, SendsTheNewestFrameFromItsOwnThread) {
+  StallableLink inner;
+  ThreadedLink link(inner, 2, 50);
+  EXPECT_EQ(link.send(std::vector<double>{1, 2}), Status::ok);
+  EXPECT_EQ(inner.wait_sent(1), (std::vector<double>{1, 2}));
+}
+
+TEST(ThreadedLink, AStalledLinkNeverBlocksTheTickAndTheWatchdogFires) {
+  StallableLink inner;
+  ThreadedLink link(inner, 1, 10);
+  inner.stall(true);
+  ASSERT_EQ(link.send(std::vector<double>{0}), Status::ok);
+  inner.wait_sent(1);  // the I/O thread is now stuck inside the inner send
+  int ticks_until_timeout = 0;
+  Status s = Status::ok;
+  for (int k = 1; k <= 100 && s == Status::ok; ++k) {
+    s = link.send(std::vector<double>{static_cast<double>(k)});  // returns at once every time
+    ticks_until_timeout = k;
+  }
+  // The send that stalled was the first without completion; ten more are allowed, the next
+  // (the eleventh in a row) times out.
+  EXPECT_EQ(s, Status::timeout);
+  EXPECT_EQ(ticks_until_timeout, 10);
+  inner.stall(false);
+  // Once unstalled, the newest frame goes out (the ones in between were dropped).
+  EXPECT_EQ(inner.wait_sent(2), (std::vector<double>{10.0}));
+}
+
+TEST(ThreadedLink, ReleaseRunsOnTheIoThreadOnceAndStopsSending) {
+  StallableLink inner;
+  {
+    ThreadedLink link(inner, 1, 10);
+    link.send(std::vector<double>{1});
+    inner.wait_sent(1);
+    link.release();
+    link.release();
+  }
+  EXPECT_EQ(inner.releases(), 1);
+  EXPECT_EQ(inner.sent_count(), 1u);
+}
+
+// End to end at the controller: one of two links goes silent mid-show; the tick never blocks,
+// the watchdog reports it within its tick budget, and the other link eases to rest.
+TEST(ThreadedLink, SilentLinkMidShowFaultsWithinTheWatchdogAndTheRestEasesToRest) {
+  Rig rig;
+  rig.name = "two links";
+  for (const char* name : {"a", "b"})
+    rig.channels.push_back({.name = name, .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 100,
+                            .max_acceleration = 1000, .max_jerk = 20000, .ramp_velocity = 20, .where = {}});
+  playback::Show show;
+  show.name = "hold";
+  show.duration = 4;
+  for (const char* name : {"a", "b"}) {
+    playback::RawCurve raw;
+    playback::RawKey k0, k1;
+    k0.time = 0, k0.value = 10, k1.time = 1, k1.value = 20;
+    raw.keys = {k0, k1};
+    playback::Curve curve = playback::Curve::build(raw);
+    show.tracks.push_back({name, raw, std::move(curve), {}});
+  }
+  StallableLink healthy_inner, silent_inner;
+  constexpr std::uint32_t kWatchdogTicks = 12;  // 0.12 s at 100 Hz
+  ThreadedLink healthy(healthy_inner, 2, 1000), silent(silent_inner, 2, kWatchdogTicks);
+  Controller c(rig, show, {&healthy, &silent}, {.tick_period_s = 0.01});
+  c.begin(0, rig.rest_frame());
+  const double dt = 0.01;
+  int k = 0;
+  for (; k < 150; ++k) {
+    c.tick(k * dt);
+    healthy_inner.wait_sent(static_cast<std::size_t>(k) + 1);  // keep the healthy link in step
+    silent_inner.wait_sent(static_cast<std::size_t>(k) + 1);
+  }
+  silent_inner.stall(true);  // the device stops answering: its writes never complete
+  const int silent_from = k;
+  for (; c.phase() != Phase::finished && k < 2000; ++k) {
+    c.tick(k * dt);
+    healthy_inner.wait_sent(static_cast<std::size_t>(k) + 1);
+  }
+  EXPECT_EQ(c.fault().cause, FaultCause::link_failure);
+  EXPECT_EQ(c.fault().index, 1u);
+  EXPECT_EQ(c.fault().status, Status::timeout);
+  // Detected within the watchdog (plus the send that was already under way).
+  EXPECT_LE(c.fault().time_s - silent_from * dt, (kWatchdogTicks + 2) * dt + 1e-9);
+  // The healthy link brought its channels to rest.
+  const std::vector<double> last = healthy_inner.wait_sent(static_cast<std::size_t>(k));
+  EXPECT_DOUBLE_EQ(last[0], 0.0);
+  EXPECT_DOUBLE_EQ(last[1], 0.0);
+  silent_inner.stall(false);
+}
+
+}  // namespace
+}  // namespace avar::control
