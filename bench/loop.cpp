@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
     class Stopper final : public control::TickObserver {
      public:
       Stopper(std::uint64_t n, control::Controller& c) : n_(n), c_(c) {}
-      void after_tick(std::uint64_t tick, double now, double, double, const control::Controller&) override {
+      void after_tick(std::uint64_t tick, double now, double, double, control::Controller&) override {
         if (tick + 1 == n_) c_.request_stop(now);
       }
 

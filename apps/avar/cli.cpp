@@ -55,6 +55,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                        "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
       ->check(CLI::Range(0, 99));
   play_cmd->add_option("--cpu", play.realtime.cpu, "Pin the loop thread to this CPU (default: any)")->check(CLI::NonNegativeNumber);
+  play_cmd->add_option("--deadline-budget", play.deadline_miss_budget,
+                       "Deadline misses allowed in one run before it faults (default: unlimited)");
   bool no_lock = false;
   play_cmd->add_flag("--no-lock-memory", no_lock, "Do not lock the process's memory against paging");
 

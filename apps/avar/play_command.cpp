@@ -58,7 +58,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   for (std::size_t i = 0; i < rig.links.size(); ++i) out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
   for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
     const PhaseMark& p = recorder.phases()[i];
-    if (p.phase == control::Phase::finished) continue;
+    if (p.phase == control::Phase::disabled) continue;
     out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << fixed(p.time_s, 2) << " s\n";
   }
   out << '\n'
@@ -128,7 +128,7 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
     data.channels.push_back(std::move(ch));
   }
   for (const PhaseMark& p : r.phases())
-    if (p.phase != control::Phase::finished) data.markers.emplace_back(p.time_s, control::to_string(p.phase));
+    if (p.phase != control::Phase::disabled) data.markers.emplace_back(p.time_s, control::to_string(p.phase));
   write_svg_plot_file(path, data);
 }
 
@@ -192,10 +192,12 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
   err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
-      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases" : "") << std::endl;
-  const control::RunResult run = control::run_loop(
-      controller, {rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime}, recorder,
-      interrupts.count());
+      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "")
+      << std::endl;
+  control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
+  run_options.deadline_miss_budget = options.deadline_miss_budget;
+  run_options.estop = &interrupts.estop();
+  const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
   recorder.finish();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
@@ -214,13 +216,19 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
-  const control::Fault& fault = controller.fault();
+  const control::Fault& fault = controller.latched_fault();
   if (fault.cause != control::FaultCause::none) {
-    err << "fault at " << fixed(fault.time_s, 3) << " s: " << control::to_string(fault.cause) << " ("
-        << to_string(fault.status) << ") on "
-        << (fault.cause == control::FaultCause::link_failure ? "link " + rig.links[fault.index].name
-                                                             : "channel " + rig.channels[fault.index].name)
-        << '\n';
+    const bool about_link = fault.cause == control::FaultCause::link_watchdog || fault.cause == control::FaultCause::link_failure;
+    const bool about_channel = fault.cause == control::FaultCause::tracking_error || fault.cause == control::FaultCause::non_finite ||
+                               fault.cause == control::FaultCause::device_overheat ||
+                               fault.cause == control::FaultCause::device_overload;
+    err << "fault at " << fixed(fault.time_s, 3) << " s while " << control::to_string(fault.from) << ": "
+        << control::to_string(fault.cause);
+    if (about_link) err << " on link " << rig.links[fault.index].name << " (" << to_string(fault.status) << ")";
+    if (about_channel) err << " on channel " << rig.channels[fault.index].name;
+    if (fault.cause == control::FaultCause::tracking_error) err << " (error " << fixed(fault.value, 3) << ")";
+    if (fault.cause == control::FaultCause::deadline_budget) err << " (" << fault.value << " misses)";
+    err << "; actuators took their fail-safe actions (hold, rest or release, from the rig)\n";
     return kExitFault;
   }
   if (run.released) {

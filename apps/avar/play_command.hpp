@@ -24,6 +24,8 @@ struct PlayOptions {
   bool progress = true;              ///< progress line on the error stream while playing
   /// Loop-thread scheduling in real time: SCHED_FIFO 50 and locked memory unless told otherwise.
   control::RealtimeRequest realtime{50, true, -1};
+  /// More deadline misses than this in one run is a fault.
+  std::uint64_t deadline_miss_budget = UINT64_MAX;
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

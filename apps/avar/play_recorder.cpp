@@ -30,12 +30,13 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
   }
 }
 
-void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double lateness_s, const control::Controller& controller) {
+void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double lateness_s, control::Controller& controller) {
   const std::span<bool> known(known_.get(), channels_);
   std::fill(known.begin(), known.end(), false);
   if (figure_.any_simulated()) figure_.step_simulation(dt_s, measured_, known);
   for (bool k : known) has_measurements_ = has_measurements_ || k;
   stats_.add(controller.commanded(), measured_, known);
+  controller.feed_back(measured_, known);
 
   if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
   if (controller.stop_requested() && !stop_announced_) {
@@ -65,7 +66,7 @@ void PlayRecorder::draw_progress(double now_s, const control::Controller& contro
   const double duration = controller.show_duration();
   const double show_t = controller.phase() == control::Phase::running ? controller.show_time() : 0.0;
   const double within = duration > 0 ? std::fmod(show_t, duration) : 0.0;
-  const double fraction = controller.phase() == control::Phase::stopping || controller.phase() == control::Phase::finished
+  const double fraction = controller.phase() == control::Phase::stopping || controller.phase() == control::Phase::disabled
                               ? 1.0
                               : (duration > 0 ? within / duration : 0.0);
   constexpr int kWidth = 24;

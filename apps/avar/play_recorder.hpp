@@ -27,7 +27,7 @@ class PlayRecorder final : public control::TickObserver {
   PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
                std::ostream* progress, bool progress_is_terminal, std::ostream* notices);
 
-  void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, const control::Controller& controller) override;
+  void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& controller) override;
   /// Ends the progress line.
   void finish();
 

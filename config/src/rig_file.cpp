@@ -26,7 +26,9 @@ double positive(const YamlRef& node, std::string_view what) {
 ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   const std::string what = "channel '" + name + "'";
   node.expect_only_keys(
-      {"unit", "min", "max", "rest", "max_velocity", "max_acceleration", "max_jerk", "soft_margin", "ramp_velocity"}, what);
+      {"unit", "min", "max", "rest", "max_velocity", "max_acceleration", "max_jerk", "soft_margin", "ramp_velocity",
+       "tracking_tolerance"},
+      what);
   ChannelSpec c;
   c.name = name;
   c.where = node.where();
@@ -54,6 +56,7 @@ ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
       margin->fail("expected soft_margin of " + what + " from 0 to less than half the range (" + format_number(range / 2) +
                    "), found " + margin->describe());
   }
+  if (auto tol = node.find("tracking_tolerance")) c.tracking_tolerance = positive(*tol, "tracking_tolerance of " + what);
   c.ramp_velocity = node.find("ramp_velocity") ? positive(node.at("ramp_velocity", what), "ramp_velocity of " + what)
                                                : std::min(c.max_velocity, 0.5 * range);
   return c;
@@ -104,7 +107,8 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
 
 ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t index) {
   const std::string what = "actuator " + std::to_string(index + 1);
-  node.expect_only_keys({"channel", "protocol", "link", "device_channel", "calibration", "speed", "acceleration"}, what);
+  node.expect_only_keys(
+      {"channel", "protocol", "link", "device_channel", "calibration", "speed", "acceleration", "failsafe"}, what);
   ActuatorSpec a;
   a.where = node.where();
 
@@ -157,6 +161,13 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     if (a.calibration.pulse_low_us() < 64 || a.calibration.pulse_high_us() > 4000)
       t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + format_number(a.calibration.pulse_low_us()) +
               ", " + format_number(a.calibration.pulse_high_us()) + "] µs");
+  }
+  if (auto f = node.find("failsafe")) {
+    const std::string action = f->as_string("the fail-safe action of " + what);
+    if (action == "hold") a.failsafe = control::Failsafe::hold;
+    else if (action == "rest") a.failsafe = control::Failsafe::rest;
+    else if (action == "release") a.failsafe = control::Failsafe::release;
+    else f->fail("unknown fail-safe action " + f->describe() + "; expected one of: hold, rest, release");
   }
   if (auto s = node.find("speed")) a.speed_limit = positive(*s, "the speed limit of " + what + " (" + ch.unit + "/s)");
   if (auto s = node.find("acceleration"))

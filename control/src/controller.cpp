@@ -32,11 +32,26 @@ std::vector<ChannelLimits> limits_of(const Rig& rig) {
 
 const char* to_string(Phase p) noexcept {
   switch (p) {
-    case Phase::idle: return "idle";
+    case Phase::disabled: return "disabled";
     case Phase::homing: return "homing";
     case Phase::running: return "running";
     case Phase::stopping: return "stopping";
-    case Phase::finished: return "finished";
+    case Phase::faulted: return "faulted";
+  }
+  return "unknown";
+}
+
+const char* to_string(FaultCause c) noexcept {
+  switch (c) {
+    case FaultCause::none: return "none";
+    case FaultCause::estop: return "e-stop";
+    case FaultCause::link_watchdog: return "link watchdog";
+    case FaultCause::link_failure: return "link failure";
+    case FaultCause::tracking_error: return "tracking error";
+    case FaultCause::non_finite: return "non-finite command";
+    case FaultCause::device_overheat: return "device over-temperature";
+    case FaultCause::device_overload: return "device overload";
+    case FaultCause::deadline_budget: return "deadline misses over budget";
   }
   return "unknown";
 }
@@ -56,24 +71,6 @@ std::int64_t monotonic_ns() noexcept {
   return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
 }
 
-void Controller::lap(Stage s, std::int64_t& mark) noexcept {
-  if (!options_.stage_clock) return;
-  const std::int64_t now = options_.stage_clock();
-  StageTime& t = stage_times_[static_cast<std::size_t>(s)];
-  t.last_ns = now - mark;
-  t.worst_ns = std::max(t.worst_ns, t.last_ns);
-  mark = now;
-}
-
-const char* to_string(FaultCause c) noexcept {
-  switch (c) {
-    case FaultCause::none: return "none";
-    case FaultCause::non_finite_command: return "non-finite command";
-    case FaultCause::link_failure: return "link failure";
-  }
-  return "unknown";
-}
-
 Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
                        ControllerOptions options)
     : rig_(rig),
@@ -84,23 +81,49 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
       limiter_(limits_of(rig), options.tick_period_s),
       ramp_(rig.channels.size()),
       rest_(rig.rest_frame()),
+      failsafe_goal_(rig.channels.size()),
+      channel_rests_(rig.channels.size(), 1),
       ramp_velocity_(rig.channels.size()),
       first_frame_(rig.channels.size()),
       target_(rig.channels.size()),
       commanded_(rig.channels.size()),
       heading_(rig.channels.size()),
+      measured_(rig.channels.size()),
+      measured_known_(rig.channels.size(), 0),
       link_dead_(links_.size(), 0) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
+  // A channel eases to rest on a fault unless none of its actuators asks for that.
+  std::vector<char> has_actuator(rig.channels.size(), 0);
+  for (const ActuatorSpec& a : rig.actuators) {
+    if (!has_actuator[a.channel]) channel_rests_[a.channel] = 0;
+    has_actuator[a.channel] = 1;
+    if (a.failsafe == Failsafe::rest) channel_rests_[a.channel] = 1;
+  }
   sampler_.sample(0.0, first_frame_);
 }
 
+void Controller::lap(Stage s, std::int64_t& mark) noexcept {
+  if (!options_.stage_clock) return;
+  const std::int64_t now = options_.stage_clock();
+  StageTime& t = stage_times_[static_cast<std::size_t>(s)];
+  t.last_ns = now - mark;
+  t.worst_ns = std::max(t.worst_ns, t.last_ns);
+  mark = now;
+}
+
 void Controller::begin(double now_s, std::span<const double> start_pose) noexcept {
+  if (phase_ != Phase::disabled) return;
   limiter_.reset(start_pose);
   const auto from = limiter_.last();
   std::copy(from.begin(), from.end(), commanded_.begin());
   ramp_.plan(commanded_, first_frame_, ramp_velocity_, options_.min_ramp_s);
   phase_ = Phase::homing;
   phase_start_ = now_s;
+  last_now_ = now_s;
+  begun_ = true;
+  stop_requested_ = false;
+  show_start_ = -1;
+  show_time_ = 0;
 }
 
 bool Controller::show_over(double show_time_s) const noexcept {
@@ -108,82 +131,133 @@ bool Controller::show_over(double show_time_s) const noexcept {
   return options_.loops > 0 && show_time_s >= static_cast<double>(options_.loops) * show_.duration;
 }
 
-void Controller::start_stopping(double now_s) noexcept {
+void Controller::ease_to(std::span<const double> goal, double now_s) noexcept {
   // From where the limiter is heading (its commands follow that with a fixed delay).
   for (std::size_t i = 0; i < heading_.size(); ++i) heading_[i] = limiter_.heading(i);
-  ramp_.plan(heading_, rest_, ramp_velocity_, options_.min_ramp_s);
-  phase_ = Phase::stopping;
+  ramp_.plan(heading_, goal, ramp_velocity_, options_.min_ramp_s);
   phase_start_ = now_s;
+}
+
+bool Controller::ramp_done(double now_s) const noexcept {
+  return now_s - phase_start_ >= ramp_.duration() && limiter_.settled();
 }
 
 void Controller::request_stop(double now_s) noexcept {
   stop_requested_ = true;
-  if (phase_ == Phase::homing || phase_ == Phase::running) start_stopping(now_s);
+  if (phase_ != Phase::homing && phase_ != Phase::running) return;
+  ease_to(rest_, now_s);
+  phase_ = Phase::stopping;
+}
+
+void Controller::fault(FaultCause cause, std::size_t index, double value, double now_s, Status status) noexcept {
+  ++faults_seen_;
+  if (fault_.cause != FaultCause::none) return;  // the first fault stays latched
+  fault_ = {cause, status, index, value, now_s, phase_};
+  // Nothing was moving: latch, but do not start driving anything.
+  drive_in_fault_ = phase_ != Phase::disabled;
+  phase_ = Phase::faulted;
+  if (!drive_in_fault_) return;
+  for (const ActuatorSpec& a : rig_.actuators)
+    if (a.failsafe == Failsafe::release && a.link < links_.size()) links_[a.link]->release_channel(a.channel);
+  for (std::size_t c = 0; c < failsafe_goal_.size(); ++c) failsafe_goal_[c] = channel_rests_[c] ? rest_[c] : limiter_.heading(c);
+  ease_to(failsafe_goal_, now_s);
+}
+
+void Controller::feed_back(std::span<const double> measured, std::span<const bool> known) noexcept {
+  for (std::size_t c = 0; c < measured_.size(); ++c) {
+    measured_known_[c] = known[c] ? 1 : 0;
+    if (known[c]) measured_[c] = measured[c];
+  }
+}
+
+bool Controller::active() const noexcept {
+  switch (phase_) {
+    case Phase::homing:
+    case Phase::running:
+    case Phase::stopping: return true;
+    case Phase::faulted: {
+      bool alive = false;
+      for (char dead : link_dead_) alive = alive || !dead;
+      return drive_in_fault_ && alive && !ramp_done(last_now_);
+    }
+    case Phase::disabled: return false;
+  }
+  return false;
+}
+
+bool Controller::reset() noexcept {
+  if (phase_ != Phase::faulted || active()) return false;
+  fault_ = {};
+  std::fill(link_dead_.begin(), link_dead_.end(), 0);
+  phase_ = Phase::disabled;
+  return true;
 }
 
 void Controller::release_now() noexcept {
   for (firmware_iface::ActuatorLink* link : links_) (void)link->release();
-  phase_ = Phase::finished;
+  phase_ = Phase::disabled;
 }
 
 Status Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
-  if (phase_ == Phase::homing) {
-    const double t = now_s - phase_start_;
-    if (t >= ramp_.duration()) {
-      phase_ = Phase::running;
-      show_start_ = now_s;
-    } else {
-      ramp_.sample(t, target_);
-    }
-  }
-  if (phase_ == Phase::running) {
-    show_time_ = now_s - show_start_;
-    if (show_over(show_time_)) {
-      start_stopping(now_s);
-    } else {
-      sampler_.sample(show_time_, target_);
-    }
-  }
-  if (phase_ == Phase::stopping) ramp_.sample(now_s - phase_start_, target_);
-  if (phase_ == Phase::idle || phase_ == Phase::finished) return Status::ok;
-  lap(Stage::sample, mark);
+  last_now_ = now_s;
+  if (phase_ == Phase::disabled || (phase_ == Phase::faulted && !drive_in_fault_)) return Status::ok;
 
-  if (limiter_.apply(target_, commanded_) != Status::ok && fault_.cause == FaultCause::none) {
-    // The limiter held the offending channels at their last value; ease everything to rest.
-    fault_ = {FaultCause::non_finite_command, Status::not_finite, 0, now_s};
-    for (std::size_t i = 0; i < target_.size(); ++i)
-      if (!std::isfinite(target_[i])) {
-        fault_.index = i;
+  // Feedback from the last tick against the command it answered.
+  for (std::size_t c = 0; c < measured_known_.size(); ++c) {
+    if (!measured_known_[c]) continue;
+    measured_known_[c] = 0;
+    const double tolerance = rig_.channels[c].tracking_tolerance;
+    const double error = std::abs(commanded_[c] - measured_[c]);
+    if (tolerance > 0 && error > tolerance) fault(FaultCause::tracking_error, c, error, now_s);
+  }
+
+  switch (phase_) {
+    case Phase::homing:
+      if (now_s - phase_start_ >= ramp_.duration()) {
+        phase_ = Phase::running;
+        show_start_ = now_s;
+      } else {
+        ramp_.sample(now_s - phase_start_, target_);
         break;
       }
-    if (phase_ != Phase::stopping) start_stopping(now_s);
+      [[fallthrough]];
+    case Phase::running:
+      show_time_ = now_s - show_start_;
+      if (!show_over(show_time_)) {
+        sampler_.sample(show_time_, target_);
+        break;
+      }
+      ease_to(rest_, now_s);
+      phase_ = Phase::stopping;
+      [[fallthrough]];
+    case Phase::stopping:
+    case Phase::faulted: ramp_.sample(now_s - phase_start_, target_); break;
+    case Phase::disabled: break;
   }
+  lap(Stage::sample, mark);
 
+  if (limiter_.apply(target_, commanded_) != Status::ok) {
+    std::size_t bad = 0;
+    while (bad + 1 < target_.size() && std::isfinite(target_[bad])) ++bad;
+    fault(FaultCause::non_finite, bad, 0, now_s, Status::not_finite);
+  }
   lap(Stage::limit, mark);
 
   Status result = Status::ok;
-  bool any_alive = false;
   for (std::size_t i = 0; i < links_.size(); ++i) {
     if (link_dead_[i]) continue;
     const Status s = links_[i]->send(commanded_);
-    if (s == Status::ok) {
-      any_alive = true;
-      continue;
-    }
-    // Nothing more can be sent over this link: its actuators keep their last command (or
-    // their own fail-safe). The other links ease to rest.
+    if (s == Status::ok) continue;
+    // Nothing more can be sent over this link: its actuators keep their last command (or the
+    // device's own fail-safe). The other links do their fail-safe actions.
     link_dead_[i] = 1;
     result = s;
-    if (fault_.cause == FaultCause::none) fault_ = {FaultCause::link_failure, s, i, now_s};
-    if (phase_ != Phase::stopping) start_stopping(now_s);
+    fault(s == Status::timeout ? FaultCause::link_watchdog : FaultCause::link_failure, i, 0, now_s, s);
   }
   lap(Stage::send, mark);
-  if (!any_alive) {
-    phase_ = Phase::finished;
-    return result;
-  }
-  if (phase_ == Phase::stopping && now_s - phase_start_ >= ramp_.duration() && limiter_.settled()) phase_ = Phase::finished;
+
+  if (phase_ == Phase::stopping && ramp_done(now_s)) phase_ = Phase::disabled;
   return result;
 }
 

@@ -2,6 +2,15 @@
 
 namespace avar::control {
 
+const char* to_string(Failsafe f) noexcept {
+  switch (f) {
+    case Failsafe::hold: return "hold";
+    case Failsafe::rest: return "rest";
+    case Failsafe::release: return "release";
+  }
+  return "unknown";
+}
+
 std::optional<std::size_t> Rig::find_channel(std::string_view wanted) const {
   for (std::size_t i = 0; i < channels.size(); ++i)
     if (channels[i].name == wanted) return i;

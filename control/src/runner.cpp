@@ -46,7 +46,7 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
   int seen_interrupts = 0;
   double lateness = 0;
 
-  for (std::uint64_t k = 0; controller.phase() != Phase::finished; ++k) {
+  for (std::uint64_t k = 0; controller.active(); ++k) {
     // Tick times are nominal (k * dt) in both modes, so a run's curve samples do not depend on
     // scheduling jitter; lateness is measured and reported instead.
     const double now = static_cast<double>(k) * dt;
@@ -61,6 +61,9 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
       }
       controller.request_stop(now);
     }
+    if (options.estop && options.estop->load(std::memory_order_relaxed)) controller.fault(FaultCause::estop, 0, 0, now);
+    if (result.deadline_misses > options.deadline_miss_budget)
+      controller.fault(FaultCause::deadline_budget, 0, static_cast<double>(result.deadline_misses), now);
 
     controller.tick(now);
     ++result.ticks;

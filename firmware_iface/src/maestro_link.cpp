@@ -35,6 +35,7 @@ MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
       runs_.push_back({static_cast<std::uint8_t>(ch), s, 1});
   }
   targets_.resize(n);
+  released_ = std::make_unique<std::atomic<bool>[]>(n);
   packet_.resize(runs_.size() * maestro::kMaxPacketSize);
   description_ = "Maestro (" + std::to_string(config_.channel_count) + " channels) on " + transport_.name();
 }
@@ -96,7 +97,8 @@ Status MaestroLink::send(std::span<const double> frame) noexcept {
     bool clamped = false;
     const double us = a.calibration.to_pulse_us(frame[a.channel], &clamped);
     if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
-    targets_[s] = maestro::quarter_us_from_us(us);
+    // Target 0 stops the pulses of a released actuator.
+    targets_[s] = released_[s].load(std::memory_order_relaxed) ? std::uint16_t{0} : maestro::quarter_us_from_us(us);
   }
   return write_targets();
 }
@@ -115,6 +117,11 @@ Status MaestroLink::write_targets() noexcept {
   }
   last_send_size_ = size;
   return transport_.write(out.first(size));
+}
+
+void MaestroLink::release_channel(std::size_t channel) noexcept {
+  for (std::size_t s = 0; s < slots_.size(); ++s)
+    if (config_.actuators[slots_[s]].channel == channel) released_[s].store(true, std::memory_order_relaxed);
 }
 
 Status MaestroLink::release() noexcept {

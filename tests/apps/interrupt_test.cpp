@@ -39,7 +39,7 @@ TEST(Interrupt, FirstCtrlCEasesToRestAndExits130) {
   EXPECT_NE(play.err().find("stopped: eased to rest after an interrupt"), std::string::npos) << play.err();
   const auto cells = last_row(trace);
   ASSERT_EQ(cells.size(), 3u + 8u * 3u);
-  EXPECT_EQ(cells[1], "finished");
+  EXPECT_EQ(cells[1], "disabled");
   EXPECT_DOUBLE_EQ(std::stod(cells[4]), 0.0);               // jaw commanded at rest
   EXPECT_DOUBLE_EQ(std::stod(cells[3 + 6 * 3 + 1]), 20.0);  // lid_left at rest
 }
@@ -54,6 +54,20 @@ TEST(Interrupt, SecondCtrlCReleasesAtOnce) {
   play.signal(SIGINT);
   EXPECT_EQ(play.wait(), 130) << play.err();
   EXPECT_NE(play.err().find("released: every actuator was let go at once"), std::string::npos) << play.err();
+}
+
+TEST(Interrupt, CtrlBackslashIsAnEstopFault) {
+  const std::string trace = testing::temp_path("trace.csv");
+  testing::ChildProcess play(play_args(trace));
+  ASSERT_TRUE(play.started());
+  play.read_err_until("Ctrl-C eases to rest");
+  play.signal(SIGQUIT);
+  EXPECT_EQ(play.wait(), 3) << play.err();
+  EXPECT_NE(play.err().find(": e-stop; actuators took their fail-safe actions"), std::string::npos) << play.err();
+  const auto cells = last_row(trace);
+  ASSERT_EQ(cells.size(), 3u + 8u * 3u);
+  EXPECT_EQ(cells[1], "faulted");
+  EXPECT_DOUBLE_EQ(std::stod(cells[4]), 0.0);  // jaw: fail-safe "rest" (the default)
 }
 
 }  // namespace

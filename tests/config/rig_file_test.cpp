@@ -101,6 +101,8 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
             ":3:48: expected watchdog_ms of link 'head' from 1 to 60000 milliseconds, found '0'");
   EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 0, soft_margin: 20")),
             ":5:59: expected soft_margin of channel 'jaw' from 0 to less than half the range (15), found '20'");
+  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3,", "device_channel: 3, failsafe: drop,")),
+            ":9:80: unknown fail-safe action 'drop'; expected one of: hold, rest, release");
   EXPECT_EQ(error_of(replace(kGoodRig, "model: mini12", "model: mega")),
             ":3:52: unknown Maestro model 'mega'; expected one of: micro6, mini12, mini18, mini24");
   EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: thirty, rest: 0")),

@@ -66,7 +66,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   const long before = testing::allocations.load();
   int k = 0;
   bool stopped = false;
-  for (; controller.phase() != Phase::finished && k < 100000; ++k) {
+  for (; controller.active() && k < 100000; ++k) {
     if (!stopped && controller.show_time() > 3.0) {
       controller.request_stop(k * 0.001);
       stopped = true;

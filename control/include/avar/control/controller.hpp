@@ -1,14 +1,21 @@
 #pragma once
-// The control loop's tick: sample the show -> limit -> finite check -> hand the frame to the
-// links, inside a small state machine that eases in from the present pose (homing), plays
-// (running), eases out to rest (stopping) and ends (finished), with one path to the safe state
-// on any fault. Construction allocates; tick() is real-time safe: no allocation, exception,
-// lock, string lookup or logging. One thread calls tick(); request_stop() may come from the
-// same thread (the runner polls the signal flag and forwards it).
+// The control loop's tick and its supervisor. Every tick: sample the show -> limit -> finite
+// check -> hand the frame to the links. Around it, one state machine:
+//
+//   disabled --begin--> homing --soft start done--> running --show over / stop--> stopping
+//   stopping --at rest--> disabled;  any state --fault--> faulted --reset--> disabled
+//
+// Homing eases from the present pose to the show's first frame, stopping eases to rest. A fault
+// (e-stop, link watchdog or failure, tracking error, non-finite command, device over-temperature
+// or overload, deadline misses beyond the budget) is latched with its cause, where and when,
+// and takes the single path to the safe state: every actuator does its fail-safe action from
+// the rig (hold, ease to rest, or release) until reset() clears the fault.
+//
+// Construction allocates; tick() and the fault/stop entry points are real-time safe: no
+// allocation, exception, lock, string lookup or logging. One thread drives the controller.
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -22,20 +29,30 @@
 
 namespace avar::control {
 
-enum class Phase { idle, homing, running, stopping, finished };
-
+enum class Phase { disabled, homing, running, stopping, faulted };
 const char* to_string(Phase p) noexcept;
 
-/// Why the loop left the normal path. Latched until the controller is rebuilt.
-enum class FaultCause { none, non_finite_command, link_failure };
-
+enum class FaultCause {
+  none,
+  estop,             ///< the e-stop input
+  link_watchdog,     ///< a link completed no send within its watchdog time
+  link_failure,      ///< a link reported an I/O error
+  tracking_error,    ///< measured position too far from the command (channel)
+  non_finite,        ///< a NaN or infinity reached the limiter (channel)
+  device_overheat,   ///< a device reported over-temperature (channel)
+  device_overload,   ///< a device reported overload (channel)
+  deadline_budget,   ///< more deadline misses than allowed
+};
 const char* to_string(FaultCause c) noexcept;
 
+/// The first fault, latched until reset().
 struct Fault {
   FaultCause cause = FaultCause::none;
   Status status = Status::ok;
-  std::size_t index = 0;  ///< channel (non-finite) or link (link failure)
+  std::size_t index = 0;  ///< channel or link, by cause
+  double value = 0;       ///< the offending measurement where there is one (error, misses)
   double time_s = 0;      ///< loop time at which it was detected
+  Phase from = Phase::disabled;  ///< the state the fault interrupted
 };
 
 /// The stages of a tick whose cost is measured.
@@ -68,26 +85,44 @@ class Controller {
  public:
   /// Binds the show's tracks to the rig's channels (names resolved here, once). The show must
   /// already be validated against the rig (config::check_show_against_rig); a track whose
-  /// channel is missing throws std::invalid_argument. Links are borrowed and must outlive this.
+  /// channel is missing throws std::invalid_argument. links[i] serves rig.links[i]; links are
+  /// borrowed and must outlive the controller.
   Controller(const Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
              ControllerOptions options = {});
 
-  /// Starts the soft start at loop time now_s from start_pose (where the figure is: the
-  /// devices' reported positions, or the rest pose where unknown).
+  /// disabled -> homing at loop time now_s, from start_pose (the devices' reported positions,
+  /// or the rest pose where unknown). Ignored in any other state.
   void begin(double now_s, std::span<const double> start_pose) noexcept;
 
-  /// One tick at loop time now_s. Its period must be options.tick_period_s. Returns the status
-  /// of this tick's sends.
+  /// One tick at loop time now_s (period: options.tick_period_s). Returns the status of this
+  /// tick's sends.
   Status tick(double now_s) noexcept;
 
-  /// Eases to rest from wherever the figure is, then finishes. Idempotent.
+  /// homing/running -> stopping: ease to rest from wherever the figure is heading. Idempotent.
   void request_stop(double now_s) noexcept;
 
-  /// Releases every actuator at once (second Ctrl-C) and finishes.
+  /// Latches a fault (the first one wins; later ones are counted) and starts the fail-safe
+  /// actions. Works from every state, disabled included (an e-stop while idle still latches).
+  void fault(FaultCause cause, std::size_t index, double value, double now_s, Status status = Status::ok) noexcept;
+
+  /// Position feedback for the tracking check: measured[channel] where known[channel].
+  /// Checked against the last command on the next tick. Real-time safe.
+  void feed_back(std::span<const double> measured, std::span<const bool> known) noexcept;
+
+  /// faulted -> disabled, clearing the latched fault, once the fail-safe motions are over.
+  /// Returns false (and changes nothing) otherwise.
+  bool reset() noexcept;
+
+  /// Releases every actuator at once (second Ctrl-C) and disables the controller.
   void release_now() noexcept;
 
+  /// True while the controller needs ticks: homing, running, stopping, or faulted with fail-safe
+  /// motions still under way.
+  bool active() const noexcept;
+
   Phase phase() const noexcept { return phase_; }
-  const Fault& fault() const noexcept { return fault_; }
+  const Fault& latched_fault() const noexcept { return fault_; }
+  std::uint64_t faults_seen() const noexcept { return faults_seen_; }
   bool stop_requested() const noexcept { return stop_requested_; }
   /// Show time of the last running tick (seconds into the show, growing across loops).
   double show_time() const noexcept { return show_time_; }
@@ -104,10 +139,10 @@ class Controller {
   double tick_period() const noexcept { return options_.tick_period_s; }
 
  private:
-  void start_stopping(double now_s) noexcept;
-  /// Closes the stage that began at *mark and opens the next one at the same instant.
-  void lap(Stage s, std::int64_t& mark) noexcept;
+  void ease_to(std::span<const double> goal, double now_s) noexcept;
+  bool ramp_done(double now_s) const noexcept;
   bool show_over(double show_time_s) const noexcept;
+  void lap(Stage s, std::int64_t& mark) noexcept;
 
   const Rig& rig_;
   const playback::Show& show_;
@@ -117,15 +152,23 @@ class Controller {
   Limiter limiter_;
   Ramp ramp_;
   std::vector<double> rest_;
+  std::vector<double> failsafe_goal_;  ///< per channel, filled when a fault starts
+  std::vector<char> channel_rests_;    ///< per channel: some actuator's fail-safe is "rest"
   std::vector<double> ramp_velocity_;
   std::vector<double> first_frame_;
   std::vector<double> target_;
   std::vector<double> commanded_;
   std::vector<double> heading_;
+  std::vector<double> measured_;
+  std::vector<char> measured_known_;
   std::vector<char> link_dead_;
   std::array<StageTime, kStageCount> stage_times_{};
-  Phase phase_ = Phase::idle;
+  Phase phase_ = Phase::disabled;
   Fault fault_;
+  std::uint64_t faults_seen_ = 0;
+  bool begun_ = false;
+  bool drive_in_fault_ = false;  ///< the fault interrupted motion: fail-safe actions run
+  double last_now_ = 0;
   bool stop_requested_ = false;
   double phase_start_ = 0;
   double show_start_ = -1;

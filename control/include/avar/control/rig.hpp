@@ -26,6 +26,9 @@ struct ChannelSpec {
   double max_jerk = 0;          ///< limiter: units/s³, > 0
   double soft_margin = 0;       ///< targets stay this far inside [min, max] (units), >= 0
   double ramp_velocity = 0;     ///< peak speed of soft start and soft stop (units/s), > 0
+  /// With position feedback: a commanded-vs-measured difference beyond this is a fault
+  /// (channel units); 0 = not checked.
+  double tracking_tolerance = 0;
   SourceLocation where;
 };
 
@@ -53,6 +56,15 @@ struct LinkSpec {
   bool simulated() const { return port == "sim"; }
 };
 
+/// What an actuator does when the controller faults.
+enum class Failsafe {
+  hold,     ///< keep the last command
+  rest,     ///< ease to the channel's rest pose (within the limits)
+  release,  ///< stop driving it (hobby servo: no pulses; smart servo: torque off)
+};
+
+const char* to_string(Failsafe f) noexcept;
+
 /// One motor or servo, driving one channel, on one link.
 struct ActuatorSpec {
   std::size_t channel = 0;  ///< index into Rig::channels
@@ -61,6 +73,7 @@ struct ActuatorSpec {
   firmware_iface::PulseCalibration calibration;
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
+  Failsafe failsafe = Failsafe::rest;
   SourceLocation where;
 };
 

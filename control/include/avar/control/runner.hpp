@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct RunOptions {
   double rate_hz = 50;  ///< ticks per second
   ClockMode clock = ClockMode::realtime;
   RealtimeRequest realtime;  ///< scheduling for the loop thread (real-time clock only)
+  /// More deadline misses than this in one run is a fault.
+  std::uint64_t deadline_miss_budget = UINT64_MAX;
+  /// The e-stop input: when it reads true the controller faults (nullptr: none).
+  const std::atomic<bool>* estop = nullptr;
 };
 
 /// Called after every tick, on the loop thread (for the simulated plant, statistics, traces,
@@ -28,7 +33,8 @@ class TickObserver {
  public:
   virtual ~TickObserver() = default;
   /// lateness_s: how late this tick's wake-up came after its deadline (0 on the stepped clock).
-  virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, const Controller& controller) = 0;
+  /// The observer may hand position feedback to the controller (Controller::feed_back).
+  virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, Controller& controller) = 0;
 };
 
 struct RunResult {
@@ -41,7 +47,8 @@ struct RunResult {
 };
 
 /// Ticks `controller` (which must have been begun at time 0, with a tick period of 1/rate_hz:
-/// std::invalid_argument otherwise) until it finishes. `interrupts`
+/// std::invalid_argument otherwise) while it is active: to the end of the show and the soft
+/// stop, or through the fail-safe actions of a fault. `interrupts`
 /// counts Ctrl-C / SIGTERM: the first asks for a soft stop to rest, the second releases at once.
 RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
                    const std::atomic<int>& interrupts);

@@ -38,6 +38,8 @@ class ThreadedLink final : public firmware_iface::ActuatorLink {
   /// nothing more. Real-time safe.
   Status release() noexcept override;
 
+  /// Forwarded at once: the inner link's flag is read by the I/O thread's next send.
+  void release_channel(std::size_t channel) noexcept override { inner_.release_channel(channel); }
   std::uint64_t saturated_pulses() const noexcept override { return inner_.saturated_pulses(); }
   const std::string& describe() const noexcept override { return inner_.describe(); }
 

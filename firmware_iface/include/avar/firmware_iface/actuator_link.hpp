@@ -34,6 +34,11 @@ class ActuatorLink {
   /// Real-time safe.
   virtual Status release() noexcept = 0;
 
+  /// From the next send on, stops driving this link's actuators of one channel (a fail-safe
+  /// "release"); channels the link does not drive are ignored. Real-time safe; may be called
+  /// from the loop thread while another thread sends.
+  virtual void release_channel(std::size_t channel) noexcept = 0;
+
   /// Pulses saturated to an actuator's window since start (a show asked for more than the
   /// calibration allows).
   virtual std::uint64_t saturated_pulses() const noexcept = 0;

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -48,6 +49,7 @@ class MaestroLink final : public ActuatorLink {
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
   Status send(std::span<const double> frame) noexcept override;
   Status release() noexcept override;
+  void release_channel(std::size_t channel) noexcept override;
   std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
 
@@ -71,6 +73,7 @@ class MaestroLink final : public ActuatorLink {
   std::vector<std::size_t> slots_;        ///< actuator indices sorted by device channel
   std::vector<Run> runs_;
   std::vector<std::uint16_t> targets_;    ///< quarter-µs per slot, rebuilt each send
+  std::unique_ptr<std::atomic<bool>[]> released_;  ///< per slot: send no pulses
   std::vector<std::uint8_t> packet_;      ///< the whole tick's bytes
   std::atomic<std::uint64_t> saturated_{0};  ///< counted on the sending thread, read anywhere
   std::size_t last_send_size_ = 0;
