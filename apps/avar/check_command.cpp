@@ -2,6 +2,7 @@
 
 #include <ostream>
 
+#include "avar/config/feasibility.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
@@ -9,7 +10,8 @@
 
 namespace avar::app {
 
-int run_check(const std::string& show_path, const std::string& rig_path, std::ostream& out, std::ostream& err) {
+int run_check(const std::string& show_path, const std::string& rig_path, const std::string& retime_path, std::ostream& out,
+              std::ostream& err) {
   try {
     const control::Rig rig = config::load_rig_file(rig_path);
     const playback::Show show = config::load_show_file(show_path);
@@ -27,6 +29,21 @@ int run_check(const std::string& show_path, const std::string& rig_path, std::os
         << " channels, " << rig.actuators.size() << " actuators, " << rig.links.size() << " link(s))";
     if (!check.warnings.empty()) out << " with " << check.warnings.size() << " warning(s)";
     out << '\n';
+    const std::vector<config::Infeasible> infeasible = config::check_feasibility(show, rig);
+    std::size_t jumps = 0;
+    for (const auto& f : infeasible) {
+      const bool jump = f.kind == config::Infeasible::Kind::jump;
+      jumps += jump ? 1 : 0;
+      out << (jump ? "step: " : "infeasible: ") << f.to_string() << '\n';
+    }
+    out << infeasible.size() - jumps << " segment(s) ask more speed, acceleration or range than the rig allows"
+        << (infeasible.size() > jumps ? "; the limiter will slow or clamp them, --retime writes a show that does not" : "")
+        << "; " << jumps << " step jump(s), shaped by the limiter\n";
+    if (!retime_path.empty()) {
+      const playback::Show retimed = config::retime(show, rig);
+      config::write_show_file(retime_path, retimed);
+      out << "retimed show: " << retime_path << " (" << retimed.duration << " s, was " << show.duration << " s)\n";
+    }
     return kExitOk;
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';

@@ -21,8 +21,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      play on the simulator on a simulated clock and plot commanded vs simulated positions\n"
       "  avar play SHOW --rig RIG --port /dev/ttyACM0\n"
       "      drive a real Maestro (its USB command port) instead of the rig's port\n"
-      "  avar check SHOW --rig RIG\n"
-      "      validate both files without moving anything\n"
+      "  avar check SHOW --rig RIG [--retime OUT.yaml]\n"
+      "      validate both files and list what the rig cannot do, without moving anything\n"
       "  avar sim maestro --pty\n"
       "      run a simulated Maestro and print the serial port other programs can open\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
@@ -64,6 +64,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* check_cmd = app.add_subcommand("check", "Validate a show against a rig and report every problem, moving nothing");
   check_cmd->add_option("show", check_show, "Show file")->required();
   check_cmd->add_option("--rig", check_rig, "Rig file")->required();
+  std::string retime;
+  check_cmd->add_option("--retime", retime,
+                        "Write a version of the show whose too-fast segments are stretched just enough (OUT.yaml)");
 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
@@ -98,7 +101,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     play.realtime.lock_memory = !no_lock;
     return run_play(play, out, err);
   }
-  if (*check_cmd) return run_check(check_show, check_rig, out, err);
+  if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   return kExitBadInput;
 }

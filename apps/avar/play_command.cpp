@@ -85,6 +85,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
         << (run.realtime.fifo ? "SCHED_FIFO" : "normal") << (run.realtime.memory_locked ? ", memory locked" : "")
         << (run.realtime.pinned ? ", pinned" : "") << '\n';
   }
+  if (!realtime) return;
   out << "tick stages (µs, last / worst):";
   for (std::size_t i = 0; i < control::kStageCount; ++i) {
     const auto stage = static_cast<control::Stage>(i);
@@ -97,12 +98,17 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
 void write_trace(const std::string& path, const control::Rig& rig, const PlayRecorder& r) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
-  csv << "seconds,phase,wake_late_us";
+  csv << "seconds,phase,wake_late_us,sample_us,limit_us,send_us";
   for (const auto& c : rig.channels) csv << ',' << c.name << ".target," << c.name << ".command," << c.name << ".measured";
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();
   for (std::size_t k = 0; k < r.seconds().size(); ++k) {
     csv << r.seconds()[k] << ',' << control::to_string(r.phase_per_tick()[k]) << ',' << r.lateness()[k] * 1e6;
+    for (std::size_t s = 0; s < control::kStageCount; ++s) {
+      const std::int64_t ns = r.stage_ns()[k * control::kStageCount + s];
+      csv << ',';
+      if (ns > 0) csv << static_cast<double>(ns) / 1e3;  // empty when not timed (--fast)
+    }
     for (std::size_t i = 0; i < n; ++i) {
       csv << ',' << r.targets()[k * n + i] << ',' << r.commands()[k * n + i] << ',';
       const double m = r.measured()[k * n + i];
@@ -177,6 +183,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
 
   control::ControllerOptions controller_options;
   controller_options.tick_period_s = 1.0 / rate;
+  // On the simulated clock a run is deterministic, trace included: stages are not timed.
+  if (options.fast) controller_options.stage_clock = nullptr;
   if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
   control::Controller controller(rig, loaded->show, links, controller_options);
   controller.begin(0.0, start_pose);

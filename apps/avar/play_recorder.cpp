@@ -23,6 +23,7 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
   if (keep_samples_) {
     seconds_.reserve(expected_ticks);
     lateness_rows_.reserve(expected_ticks);
+    stage_rows_.reserve(expected_ticks * control::kStageCount);
     phase_rows_.reserve(expected_ticks);
     targets_.reserve(expected_ticks * channels);
     commands_.reserve(expected_ticks * channels);
@@ -48,6 +49,8 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double l
   if (keep_samples_) {
     seconds_.push_back(now_s);
     lateness_rows_.push_back(lateness_s);
+    for (std::size_t s = 0; s < control::kStageCount; ++s)
+      stage_rows_.push_back(controller.stage_time(static_cast<control::Stage>(s)).last_ns);
     phase_rows_.push_back(controller.phase());
     const auto target = controller.target();
     const auto command = controller.commanded();

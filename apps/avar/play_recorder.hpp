@@ -42,6 +42,8 @@ class PlayRecorder final : public control::TickObserver {
   const std::vector<double>& measured() const { return measured_rows_; }  ///< NaN when unknown
   const std::vector<control::Phase>& phase_per_tick() const { return phase_rows_; }
   const std::vector<double>& lateness() const { return lateness_rows_; }  ///< seconds, per tick
+  /// Stage costs per tick, kStageCount values a tick, nanoseconds.
+  const std::vector<std::int64_t>& stage_ns() const { return stage_rows_; }
 
  private:
   void draw_progress(double now_s, const control::Controller& controller);
@@ -61,6 +63,7 @@ class PlayRecorder final : public control::TickObserver {
   double next_progress_s_ = 0;
   std::vector<double> seconds_, targets_, commands_, measured_rows_, lateness_rows_;
   std::vector<control::Phase> phase_rows_;
+  std::vector<std::int64_t> stage_rows_;
 };
 
 }  // namespace avar::app

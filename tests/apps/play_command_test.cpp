@@ -68,7 +68,7 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::ifstream csv(trace);
   std::string header, line, last;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
   int rows = 0;
   while (std::getline(csv, line)) {
     last = line;
@@ -78,10 +78,10 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::vector<std::string> cells;
   std::stringstream cells_in(last);
   for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
-  ASSERT_EQ(cells.size(), 3u + 8u * 3u);
-  EXPECT_DOUBLE_EQ(std::stod(cells[4]), 0.0);               // jaw command = rest
-  EXPECT_NEAR(std::stod(cells[5]), 0.0, 0.5);               // jaw simulated position
-  EXPECT_DOUBLE_EQ(std::stod(cells[3 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
+  ASSERT_EQ(cells.size(), 6u + 8u * 3u);
+  EXPECT_DOUBLE_EQ(std::stod(cells[7]), 0.0);               // jaw command = rest
+  EXPECT_NEAR(std::stod(cells[8]), 0.0, 0.5);               // jaw simulated position
+  EXPECT_DOUBLE_EQ(std::stod(cells[6 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
   EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
 }
 
@@ -91,6 +91,20 @@ TEST(PlayCommand, FastRunsAreDeterministic) {
   ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", a}).code, kExitOk);
   ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", b}).code, kExitOk);
   EXPECT_EQ(read_file(a), read_file(b));
+}
+
+TEST(CheckCommand, ListsWhatTheRigCannotDoAndRetimes) {
+  const std::string fast_show = write_temp("fast.yaml", "duration: 4\ntracks:\n  jaw:\n    - {time: 0, value: 0}\n"
+                                                         "    - {time: 0.05, value: 30}\n    - {time: 4, value: 0}\n");
+  const std::string out = testing::temp_path("retimed.yaml");
+  const Result r = avar({"check", fast_show, "--rig", kRig, "--retime", out});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("infeasible: " + fast_show + ":4:7: jaw 0-0.05 s: speed 600 deg/s, allowed 300 deg/s"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("retimed show: " + out), std::string::npos) << r.out;
+  const Result again = avar({"check", out, "--rig", kRig});
+  EXPECT_EQ(again.code, kExitOk);
+  EXPECT_NE(again.out.find("0 segment(s) ask more"), std::string::npos) << again.out;
 }
 
 TEST(CheckCommand, AcceptsTheBundledShow) {
