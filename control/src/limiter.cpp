@@ -46,11 +46,13 @@ Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), 
       throw std::invalid_argument("channel limits must be positive, with max > min");
     Channel c;
     c.limits = l;
-    // Acceleration of the first average is at most the change of the rate-limited velocity
-    // over N1 ticks (at most 2V, a reversal) divided by N1 dt; likewise for the jerk.
-    const std::size_t n1 = ticks_at_least(2 * l.max_velocity / l.max_acceleration, dt_s);
-    const double a_bound = 2 * l.max_velocity / (static_cast<double>(n1) * dt_s);
+    // The first average's acceleration is the rate-limited velocity's change over N1 ticks (kept
+    // within V) divided by N1 dt; the second's jerk is the acceleration's change over N2 ticks
+    // (at most 2A, a reversal) divided by N2 dt.
+    const std::size_t n1 = ticks_at_least(l.max_velocity / l.max_acceleration, dt_s);
+    const double a_bound = l.max_velocity / (static_cast<double>(n1) * dt_s);
     const std::size_t n2 = ticks_at_least(2 * std::min(a_bound, l.max_acceleration) / l.max_jerk, dt_s);
+    c.past_velocity.ring.assign(n1, 0.0);
     c.acceleration_stage.ring.assign(n1, 0.0);
     c.jerk_stage.ring.assign(n2, 0.0);
     c.settle_ticks = n1 + n2;
@@ -84,6 +86,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.acceleration_stage.fill(p);
     c.jerk_stage.fill(p);
     c.padding.fill(p);
+    c.past_velocity.fill(0.0);
     c.goal_delay.fill(p);
     c.steady_ticks = c.settle_ticks;
   }
@@ -109,8 +112,13 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     } else {
       status = Status::not_finite;
     }
-    const double step = l.max_velocity * dt_s_;
-    const double moved = std::clamp(c.goal, c.rate_limited - step, c.rate_limited + step);
+    // The velocity window always holds 0 (the past velocity is within [-V, V]), so the channel
+    // can always stop: it never has to pass its goal.
+    const double v_past = c.past_velocity.ring[c.past_velocity.next];
+    const double v_lo = std::max(-l.max_velocity, v_past - l.max_velocity);
+    const double v_hi = std::min(l.max_velocity, v_past + l.max_velocity);
+    const double moved = std::clamp(c.goal, c.rate_limited + v_lo * dt_s_, c.rate_limited + v_hi * dt_s_);
+    c.past_velocity.push((moved - c.rate_limited) / dt_s_);
     c.steady_ticks = moved == c.rate_limited ? c.steady_ticks + 1 : 0;
     c.rate_limited = moved;
     double command = c.padding.push(c.jerk_stage.push(c.acceleration_stage.push(moved)));

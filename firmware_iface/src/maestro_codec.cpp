@@ -61,7 +61,7 @@ std::size_t encode_set_speed(std::span<std::uint8_t> out, const Framing& f, std:
 std::size_t encode_set_acceleration(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel,
                                     std::uint16_t acceleration) noexcept {
   if (!valid_channel(channel)) return 0;
-  const std::uint16_t v[1] = {std::min<std::uint16_t>(acceleration, 255)};
+  const std::uint16_t v[1] = {std::min(acceleration, kMaxAcceleration)};
   return frame(out, f, kSetAcceleration, {channel}, v);
 }
 
@@ -116,8 +116,11 @@ std::string describe_errors(std::uint16_t errors) {
 
 std::uint16_t quarter_us_from_us(double us) noexcept {
   if (!(us > 0)) return 0;
-  return static_cast<std::uint16_t>(std::min(std::lround(us * 4.0), static_cast<long>(kMaxValue)));
+  // Clamp before rounding: lround of a value beyond `long` (or of infinity) is undefined.
+  return static_cast<std::uint16_t>(std::lround(std::min(us * 4.0, static_cast<double>(kMaxValue))));
 }
+
+double us_from_quarter_us(std::uint16_t quarter_us) noexcept { return quarter_us / 4.0; }
 
 std::uint16_t speed_units_from_us_per_s(double us_per_s) noexcept {
   // 1 unit = 0.25 µs per 10 ms = 25 µs/s; round down so the device is never faster than asked,
@@ -128,7 +131,7 @@ std::uint16_t speed_units_from_us_per_s(double us_per_s) noexcept {
 
 std::uint16_t acceleration_units_from_us_per_s2(double us_per_s2) noexcept {
   if (!(us_per_s2 > 0)) return 1;
-  return static_cast<std::uint16_t>(std::clamp(std::floor(us_per_s2 / 312.5), 1.0, 255.0));
+  return static_cast<std::uint16_t>(std::clamp(std::floor(us_per_s2 / 312.5), 1.0, static_cast<double>(kMaxAcceleration)));
 }
 
 double us_per_s_from_speed_units(std::uint16_t speed) noexcept { return 25.0 * speed; }

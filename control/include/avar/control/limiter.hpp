@@ -1,12 +1,14 @@
 #pragma once
 // Per-channel motion limits applied to every command before it reaches a link.
 //
-// Each channel's target is clamped into its range less the soft margins, rate-limited to the
-// velocity limit, then smoothed by two moving averages, of N1 and N2 ticks. A moving average of
-// a signal never leaves the signal's range, so no command passes the clamped target or the
-// range; the first average bounds the acceleration by 2V/(N1 dt) and the second the jerk by
-// 2A/(N2 dt) (a factor 2 for a full reversal), so N1 and N2 are the smallest that keep A and J.
-// A held target is reached exactly, at rest, after the travel at V plus N1 + N2 ticks.
+// Each channel's target is clamped into its range less the soft margins and rate-limited: the
+// velocity stays within [-V, V] and within V of its value N1 ticks earlier (so it can always
+// stop, and never has to pass its goal). Two moving averages, of N1 and N2 ticks, then smooth it.
+// A moving average never leaves the range of what it averages, so no command passes the clamped
+// target or the range. The first average's acceleration is the velocity change over N1 ticks
+// divided by N1 dt, at most V/(N1 dt) = A; the second's jerk is the acceleration change over N2
+// ticks, at most 2A/(N2 dt) = J. A rest-to-rest move takes d/V + V/A + 2A/J: the time-optimal
+// jerk-limited profile's d/V + V/A + A/J plus one jerk phase. A held target is reached exactly.
 // The averages delay the motion by a fixed time; every channel is padded to the same delay,
 // delay(), so channels that move together in the show stay together on the figure.
 // Sized once for a tick period; apply() is real-time safe (no allocation, exception or lock).
@@ -83,6 +85,7 @@ class Limiter {
     ChannelLimits limits;
     double goal = 0;          ///< clamped target
     double rate_limited = 0;  ///< after the velocity limit
+    DelayLine past_velocity;  ///< the rate-limited velocity N1 ticks ago
     MovingAverage acceleration_stage;
     MovingAverage jerk_stage;
     DelayLine padding;        ///< up to the common delay

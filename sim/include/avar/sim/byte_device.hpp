@@ -14,7 +14,7 @@ class ByteDevice {
   virtual ~ByteDevice() = default;
   /// Bytes arriving from the host's side of the wire, in order.
   virtual void receive(std::span<const std::uint8_t> bytes) = 0;
-  /// Moves pending reply bytes into `out`; returns how many.
+  /// Moves up to out.size() pending reply bytes into `out`, oldest first; returns how many.
   virtual std::size_t take_replies(std::span<std::uint8_t> out) = 0;
   /// Advances the device's simulated time by dt_s seconds (servo motion, timers).
   virtual void advance(double dt_s) = 0;

@@ -1,8 +1,19 @@
 #pragma once
 // Serves a simulated device on the master side of a pseudo-terminal, in a background thread,
-// so that a real serial driver can open the slave side (/dev/pts/N) exactly as it opens
-// /dev/ttyACM0. The pty is raw: no echo, no line editing, no CR/LF translation.
+// so that a real serial driver opens the slave side (/dev/pts/N) exactly as it opens
+// /dev/ttyACM0. The pty is raw: no echo, no line editing, no output processing.
+//
+// The host keeps its own descriptor of the slave open for its whole life, so clients may open
+// and close the slave freely: the master never sees a hang-up (Linux reports EIO/POLLHUP on the
+// master while no slave descriptor is open) and the raw settings persist between clients.
+// Replies that nobody reads stay queued on the slave until a client reads or flushes them
+// (avar's SerialTransport flushes on open); when that queue is full further replies are
+// dropped, as bytes sent down a wire nobody listens to are lost.
+//
+// Thread safety: every member may be called from any thread; the device is only touched under
+// the host's mutex (by the host thread, with_device() and wait_consumed()).
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -17,42 +28,53 @@ namespace avar::sim {
 class PtyDeviceHost {
  public:
   /// stepped: the device's time moves only when the owner calls advance() through
-  /// with_device() (deterministic runs). wall: the host thread advances it every 10 ms of
-  /// monotonic time (a stand-alone simulator).
+  /// with_device() (deterministic runs). wall: the host thread also advances it by the elapsed
+  /// monotonic time every 10 ms (a stand-alone simulator such as `avar sim maestro --pty`).
   enum class Clock { stepped, wall };
 
   /// Opens the pseudo-terminal and starts serving. Throws std::runtime_error when no pty can
   /// be had. The device is borrowed and must outlive the host.
   PtyDeviceHost(ByteDevice& device, Clock clock);
+  /// Stops the host thread, then closes both sides of the pty (a client still holding the
+  /// slave open then reads end of file / EIO).
   ~PtyDeviceHost();
   PtyDeviceHost(const PtyDeviceHost&) = delete;
   PtyDeviceHost& operator=(const PtyDeviceHost&) = delete;
 
-  /// The path a serial driver opens.
+  /// The path a serial driver opens, e.g. /dev/pts/3.
   const std::string& slave_path() const { return slave_path_; }
 
-  /// Blocks until the device has taken in `total_bytes` bytes since the start, or the timeout
-  /// passes (returns false). The sync point of stepped simulated time.
+  /// Blocks until the device has taken in `total_bytes` bytes since it was made (its
+  /// bytes_received()), or the timeout passes (returns false). The sync point of stepped
+  /// simulated time: after a client wrote N bytes in total, wait_consumed(N) then advance().
   bool wait_consumed(std::uint64_t total_bytes, std::chrono::milliseconds timeout);
 
-  /// Runs f(device) while the host thread is kept away from the device.
+  /// Runs f(ByteDevice&) while the host thread is kept away from the device; returns what f
+  /// returns. f must not call back into this host.
   template <class F>
   auto with_device(F&& f) {
     std::lock_guard lock(mutex_);
     return f(device_);
   }
 
+  /// How many times the host thread has woken from poll(): once per burst of bytes from the
+  /// client, plus once per 10 ms in wall mode. An idle stepped host does not wake, whether or
+  /// not a client holds the slave open (diagnostics; the proof that it does not spin).
+  std::uint64_t serve_wakeups() const { return wakeups_.load(std::memory_order_relaxed); }
+
  private:
   void serve();
+  void close_all() noexcept;
 
   ByteDevice& device_;
   Clock clock_;
   int master_ = -1;
-  int slave_ = -1;      ///< kept open so the master never sees a hang-up between clients
+  int slave_ = -1;  ///< held open so the master never sees a hang-up between clients
   int wake_[2] = {-1, -1};
   std::string slave_path_;
   std::mutex mutex_;
   std::condition_variable consumed_cv_;
+  std::atomic<std::uint64_t> wakeups_{0};
   std::thread thread_;
 };
 

@@ -1,25 +1,36 @@
 #pragma once
-// A hobby servo following its pulse width: first-order lag toward the commanded pulse, a top
-// speed, and a deadband around the target. Positions are in pulse-width microseconds (the
-// servo's own frame). Real-time safe.
+// A hobby servo following its pulse width: a first-order lag toward the commanded pulse, capped
+// by the motor's top speed, with a deadband around the target. Positions are in microseconds of
+// pulse width (the servo's own frame: where the horn is, expressed as the pulse that would hold
+// it there); times in seconds. Real-time safe: no allocation, no locks, no exceptions.
+// Not thread-safe (one owner steps it).
 
 namespace avar::sim {
 
 struct ServoParams {
-  double max_speed_us_per_s = 2400;  ///< ~60° in 0.12 s at ~11 µs/° (a standard analogue servo)
-  double time_constant_s = 0.03;     ///< lag of the servo's position loop
-  double deadband_us = 2;            ///< errors smaller than this do not move the horn
+  /// Top speed of the horn in µs of pulse width per second. 2200 µs/s is a standard servo's
+  /// 60° in 0.15 s (400°/s) where 1000 µs of pulse spans about 180° of travel (5.6 µs/°).
+  double max_speed_us_per_s = 2200;
+  /// Time constant of the servo's position loop, seconds (0 = no lag, only the top speed).
+  double time_constant_s = 0.03;
+  /// The horn does not move while |pulse - position| is at most this, µs.
+  double deadband_us = 2;
 };
 
 class ServoModel {
  public:
   ServoModel() = default;
-  ServoModel(ServoParams params, double initial_position_us) : params_(params), position_(initial_position_us) {}
+  /// params: max_speed_us_per_s > 0, time_constant_s >= 0, deadband_us >= 0 (the caller checks).
+  ServoModel(ServoParams params, double initial_position_us) noexcept : params_(params), position_(initial_position_us) {}
 
-  /// Advances dt_s seconds toward pulse_us. pulse_us <= 0 means no pulses: an unpowered hobby
-  /// servo stays where it is.
+  /// Advances dt_s seconds toward pulse_us. Over one step the position moves by
+  /// (pulse - position) * (1 - exp(-dt / time_constant)), at most max_speed * dt, and not at all
+  /// when the error is within the deadband; it never passes the pulse. pulse_us <= 0 means no
+  /// pulses: an unpowered hobby servo stays where it is. dt_s <= 0 does nothing.
   void step(double dt_s, double pulse_us) noexcept;
+  /// Where the horn is, µs of pulse width.
   double position_us() const noexcept { return position_; }
+  const ServoParams& params() const noexcept { return params_; }
 
  private:
   ServoParams params_;

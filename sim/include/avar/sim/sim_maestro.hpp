@@ -1,14 +1,27 @@
 #pragma once
-// A simulated Pololu Mini/Micro Maestro (../shared/protocols/pololu-maestro.md): decodes the
-// compact, Pololu and Mini SSC forms byte by byte, with optional CRC-7, answers the queries
-// with the exact reply bytes, keeps the error register, moves each channel's output pulse
-// under its speed and acceleration limits, and drives a ServoModel per channel.
-// Not thread-safe: a host (PtyDeviceHost) serialises calls.
+// A simulated Pololu Micro/Mini Maestro (shared/protocols/pololu-maestro.md). It decodes, byte by
+// byte, exactly what the device accepts: the compact, Pololu and Mini SSC forms mixed freely,
+// with the optional CRC-7 byte; it answers the queries with the exact reply bytes, keeps the
+// error register, moves each channel's output pulse under its speed and acceleration limits
+// (the 20 ms-period units), and drives one ServoModel per channel from that output pulse.
+//
+// Behaviour the protocol notes leave open, as modelled here:
+//  - A Pololu packet for another device number is skipped unread: neither its CRC nor its
+//    command is checked, and a command byte cutting it short is no error.
+//  - Targets are clamped to the channel's [min_us, max_us]; a target for a channel the device
+//    does not have is ignored, and Get Position of such a channel answers 0.
+//  - Speed values above 10000 count as 10000, accelerations above 255 as 255.
+//  - The output pulse moves continuously in simulated time (not in 10 ms jumps): without an
+//    acceleration limit at the speed limit, with one along a trapezoid (speed up at the limit,
+//    cruise at the speed limit, slow down to stop on the target).
+//  - Any error sets its bit and sends every channel to its home position, as the device does.
+//
+// Units: targets and output pulses in quarter-µs (0 = no pulses), configuration in µs, time in
+// seconds. Not thread-safe: a host (PtyDeviceHost) serialises every call.
 
 #include <array>
 #include <cstdint>
 #include <deque>
-#include <initializer_list>
 #include <vector>
 
 #include "avar/sim/byte_device.hpp"
@@ -16,49 +29,75 @@
 
 namespace avar::sim {
 
+/// One channel's device settings ("Channel Settings" in the Maestro's configuration).
 struct SimMaestroChannel {
-  double min_us = 992;               ///< targets are clamped to [min_us, max_us] (device setting)
+  double min_us = 992;                ///< targets are clamped to [min_us, max_us]
   double max_us = 2000;
-  double home_us = 0;                ///< Go Home and errors: 0 = "off" (stop pulses)
-  double initial_position_us = 1500; ///< where the servo horn is at power-up
+  double home_us = 0;                 ///< Go Home and errors go here; 0 = "Off" (stop pulses)
+  bool home_ignore = false;           ///< home mode "Ignore": Go Home and errors leave the channel alone
+  double neutral_us = 1500;           ///< Mini SSC target8 127
+  double range_us = 476.25;           ///< Mini SSC target8 0 and 254 are neutral -/+ this
+  double initial_position_us = 1500;  ///< where the servo horn is at power-up
 };
 
 struct SimMaestroConfig {
-  int channel_count = 24;            ///< 6 (Micro: no Set Multiple Targets), 12, 18 or 24
-  std::uint8_t device_number = 12;
-  std::uint8_t mini_ssc_offset = 0;
-  bool crc = false;                  ///< expect a CRC-7 byte after every command
-  bool baud_detect = false;          ///< a lone leading 0xAA is the baud-detection byte
-  std::size_t log_limit = 0;         ///< keep up to this many decoded commands for inspection
+  int channel_count = 24;            ///< 6 (Micro: no Set Multiple Targets, no Set PWM), 12, 18 or 24
+  std::uint8_t device_number = 12;   ///< 0..127, for the Pololu form
+  std::uint8_t mini_ssc_offset = 0;  ///< Mini SSC address of channel 0, 0..254
+  bool crc = false;                  ///< expect a CRC-7 byte after every command but Mini SSC
+  bool baud_detect = false;          ///< "UART, detect baud rate": bytes before the first 0xAA are
+                                     ///< line noise; that 0xAA may stand alone or begin a Pololu packet
+  std::size_t log_limit = 0;         ///< keep up to this many decoded commands in log() (0 = none)
   ServoParams servo;
-  std::array<SimMaestroChannel, 24> channels{};
+  std::array<SimMaestroChannel, 24> channels{};  ///< only the first channel_count are used
 };
 
 /// One decoded command, as the device understood it.
 struct MaestroCommand {
-  std::uint8_t command = 0;          ///< compact command byte (0x84...), or 0xFF for Mini SSC
-  std::uint8_t channel = 0;          ///< first channel it addresses (0 when none)
-  std::vector<std::uint16_t> values; ///< targets (quarter-µs), speed, acceleration... as sent
+  enum class Form : std::uint8_t { compact, pololu, mini_ssc };
+  std::uint8_t command = 0;           ///< compact command byte (0x84...), 0xFF for Mini SSC
+  std::uint8_t channel = 0;           ///< the (first) channel it addresses; 0 when none
+  std::vector<std::uint16_t> values;  ///< as sent: targets (quarter-µs), speed, acceleration,
+                                      ///< Set PWM on-time and period, subroutine (and parameter),
+                                      ///< Mini SSC target8
+  Form form = Form::compact;
 };
 
 class SimMaestro final : public ByteDevice {
  public:
+  /// Throws std::invalid_argument for a channel count other than 6/12/18/24, a device number
+  /// above 127, a Mini SSC offset above 254, a used channel whose range is not
+  /// 0 < min_us <= max_us <= 4095.75 or whose home is outside it (other than 0 = off), or servo
+  /// parameters that are not positive (speed) or not non-negative (lag, deadband).
   explicit SimMaestro(SimMaestroConfig config);
 
+  /// Parses bytes in order; replies go to the outbox. Allocates only for the log.
   void receive(std::span<const std::uint8_t> bytes) override;
+  /// Moves up to out.size() pending reply bytes into out, oldest first; returns how many.
   std::size_t take_replies(std::span<std::uint8_t> out) override;
+  /// Moves every output pulse toward its target for dt_s seconds and lets each servo follow it
+  /// (in sub-steps of at most 1 ms). dt_s <= 0 does nothing.
   void advance(double dt_s) override;
   std::uint64_t bytes_received() const override { return bytes_received_; }
 
-  /// Target and current output pulse of a channel in quarter-µs (0 = no pulses).
+  // Inspection. Precondition: 0 <= channel < channel_count.
+  /// Target in quarter-µs after clamping (0 = no pulses).
   std::uint16_t target(int channel) const { return channels_[channel].target_q; }
+  /// Pulse being output now, quarter-µs (0 = none); Get Position answers it rounded.
   double output_pulse(int channel) const { return channels_[channel].output_q; }
-  /// Where the simulated servo horn is, in µs of pulse width.
+  /// Where the simulated servo horn is, µs of pulse width.
   double servo_position_us(int channel) const { return channels_[channel].servo.position_us(); }
+  /// Speed limit in device units of 25 µs/s (0 = unlimited).
   std::uint16_t speed(int channel) const { return channels_[channel].speed; }
+  /// Acceleration limit in device units of 312.5 µs/s² (0 = unlimited).
   std::uint16_t acceleration(int channel) const { return channels_[channel].acceleration; }
+  /// True while some channel's output pulse has not reached its target (Get Moving State).
+  bool moving() const;
   /// The error register without clearing it (Get Errors clears it).
   std::uint16_t errors() const { return errors_; }
+  /// Reply bytes not yet taken.
+  std::size_t pending_replies() const { return replies_.size(); }
+  /// The last log_limit decoded commands, oldest first.
   const std::deque<MaestroCommand>& log() const { return log_; }
   const SimMaestroConfig& config() const { return config_; }
 
@@ -66,21 +105,28 @@ class SimMaestro final : public ByteDevice {
   struct Channel {
     std::uint16_t target_q = 0;
     double output_q = 0;
-    double velocity_q = 0;  ///< quarter-µs per second, for acceleration limiting
+    double velocity_q = 0;  ///< quarter-µs per second, signed; carried between steps for acceleration
     std::uint16_t speed = 0;
     std::uint16_t acceleration = 0;
     ServoModel servo;
   };
-  enum class State { idle, pololu_device, pololu_command, payload, mini_ssc };
+  enum class State { idle, skip, pololu_device, pololu_command, payload, mini_ssc };
 
+  void take(std::uint8_t b);
+  void begin_packet(std::uint8_t first_byte);
   void start_command(std::uint8_t command_byte);
   std::size_t payload_size() const;
+  void take_payload(std::uint8_t b);
+  void take_mini_ssc(std::uint8_t b);
   void finish_packet();
   void execute();
+  void record(MaestroCommand command);
   void set_target(int channel, std::uint16_t quarter_us);
+  void go_home();
   void raise(std::uint16_t error_bits);
-  void reply(std::initializer_list<std::uint8_t> bytes);
+  void reply(std::uint8_t byte) { replies_.push_back(byte); }
   std::uint16_t value14(std::size_t at) const;
+  static void move_output(Channel& c, double dt_s);
 
   SimMaestroConfig config_;
   std::vector<Channel> channels_;
@@ -90,12 +136,13 @@ class SimMaestro final : public ByteDevice {
   std::deque<std::uint8_t> replies_;
   std::deque<MaestroCommand> log_;
 
-  // Parser state for the packet under way.
+  // The packet under way.
   State state_ = State::idle;
+  MaestroCommand::Form form_ = MaestroCommand::Form::compact;
+  bool lone_baud_byte_ = false;        ///< the packet so far is the baud-detection 0xAA
   std::vector<std::uint8_t> packet_;   ///< every byte of the packet so far (for the CRC)
   std::vector<std::uint8_t> payload_;  ///< data bytes after the command byte
   std::uint8_t command_ = 0;           ///< compact form of the command
-  bool for_us_ = true;                 ///< false: a Pololu packet for another device number
 };
 
 }  // namespace avar::sim
