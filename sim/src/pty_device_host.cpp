@@ -74,8 +74,7 @@ void PtyDeviceHost::close_all() noexcept {
 }
 
 bool PtyDeviceHost::wait_consumed(std::uint64_t total_bytes, std::chrono::milliseconds timeout) {
-  std::unique_lock lock(mutex_);
-  return consumed_cv_.wait_for(lock, timeout, [&] { return device_.bytes_received() >= total_bytes; });
+  return wait_until([&](const ByteDevice& d) { return d.bytes_received() >= total_bytes; }, timeout);
 }
 
 void PtyDeviceHost::serve() {
@@ -106,7 +105,7 @@ void PtyDeviceHost::serve() {
           device_.receive(std::span(in.data(), static_cast<std::size_t>(n)));
           reply = device_.take_replies(out);
         }
-        consumed_cv_.notify_all();
+        changed_cv_.notify_all();
         // Replies can outgrow the buffer (1-byte queries with 2-byte answers): send them all.
         while (reply > 0) {
           write_or_drop(master_, out.data(), reply);
@@ -118,9 +117,12 @@ void PtyDeviceHost::serve() {
     if (clock_ == Clock::wall) {
       const auto now = clock::now();
       if (now - last_advance >= kWallStep) {
-        std::lock_guard lock(mutex_);
-        device_.advance(std::chrono::duration<double>(now - last_advance).count());
+        {
+          std::lock_guard lock(mutex_);
+          device_.advance(std::chrono::duration<double>(now - last_advance).count());
+        }
         last_advance = now;
+        changed_cv_.notify_all();
       }
     }
   }

@@ -49,10 +49,23 @@ class PtyDeviceHost {
   /// simulated time: after a client wrote N bytes in total, wait_consumed(N) then advance().
   bool wait_consumed(std::uint64_t total_bytes, std::chrono::milliseconds timeout);
 
+  /// Blocks until pred(ByteDevice&) holds or the timeout passes (returns false). pred runs
+  /// under the lock, now and after every change: each burst of bytes the device takes, each
+  /// wall-clock step, each with_device() call. pred must not call back into this host.
+  template <class Pred>
+  bool wait_until(Pred&& pred, std::chrono::milliseconds timeout) {
+    std::unique_lock lock(mutex_);
+    return changed_cv_.wait_for(lock, timeout, [&] { return pred(device_); });
+  }
+
   /// Runs f(ByteDevice&) while the host thread is kept away from the device; returns what f
-  /// returns. f must not call back into this host.
+  /// returns, then wakes wait_until(). f must not call back into this host.
   template <class F>
   auto with_device(F&& f) {
+    struct NotifyAfterUnlock {
+      std::condition_variable& cv;
+      ~NotifyAfterUnlock() { cv.notify_all(); }
+    } notify{changed_cv_};
     std::lock_guard lock(mutex_);
     return f(device_);
   }
@@ -73,7 +86,7 @@ class PtyDeviceHost {
   int wake_[2] = {-1, -1};
   std::string slave_path_;
   std::mutex mutex_;
-  std::condition_variable consumed_cv_;
+  std::condition_variable changed_cv_;
   std::atomic<std::uint64_t> wakeups_{0};
   std::thread thread_;
 };
