@@ -115,7 +115,7 @@ std::size_t encode_sync_write_u32(std::span<std::uint8_t> out, std::uint16_t add
   return encode_instruction(out, kBroadcastId, kSyncWrite, std::span(p.data(), n));
 }
 
-DecodeResult decode_status(std::span<const std::uint8_t> in, std::span<std::uint8_t> scratch, Status* status,
+DecodeResult decode_packet(std::span<const std::uint8_t> in, std::span<std::uint8_t> scratch, Packet* packet,
                            std::size_t* consumed) noexcept {
   *consumed = 0;
   // Find a header FF FF FD 00 (a stuffed FF FF FD FD inside a packet is not one).
@@ -151,19 +151,31 @@ DecodeResult decode_status(std::span<const std::uint8_t> in, std::span<std::uint
   *consumed = total;
   const std::uint16_t crc = read_u16(in.subspan(total - 2, 2));
   if (crc != crc16(in.first(total - 2))) return DecodeResult::bad_crc;
-  if (in[kHeaderSize] != kStatus || length < 4) return DecodeResult::not_status;
-  // Unstuff the parameters (after instruction and error byte) into scratch.
+  // Unstuff the parameters (after the instruction byte) into scratch: the stuffed region starts
+  // at the instruction, so an FD following FF FF FD inside it is a stuffing byte.
   std::size_t n = 0;
-  const std::size_t first = kHeaderSize + 2, end = total - 2;
+  const std::size_t first = kHeaderSize + 1, end = total - 2;
   for (std::size_t i = first; i < end; ++i) {
     if (n >= scratch.size()) return DecodeResult::bad_framing;
     scratch[n++] = in[i];
     if (in[i] == 0xFD && i + 1 < end && in[i + 1] == 0xFD && i >= kHeaderSize + 2 && in[i - 1] == 0xFF && in[i - 2] == 0xFF)
-      ++i;  // drop the stuffing byte
+      ++i;
   }
-  status->id = in[4];
-  status->error = in[kHeaderSize + 1];
-  status->params = scratch.first(n);
+  packet->id = in[4];
+  packet->instruction = in[kHeaderSize];
+  packet->params = scratch.first(n);
+  return DecodeResult::ok;
+}
+
+DecodeResult decode_status(std::span<const std::uint8_t> in, std::span<std::uint8_t> scratch, Status* status,
+                           std::size_t* consumed) noexcept {
+  Packet packet;
+  const DecodeResult r = decode_packet(in, scratch, &packet, consumed);
+  if (r != DecodeResult::ok) return r;
+  if (packet.instruction != kStatus || packet.params.empty()) return DecodeResult::not_status;
+  status->id = packet.id;
+  status->error = packet.params[0];
+  status->params = packet.params.subspan(1);
   return DecodeResult::ok;
 }
 

@@ -90,6 +90,19 @@ enum class DecodeResult {
   not_status,    ///< a well-formed packet that is not a status packet
 };
 
+/// Any packet, decoded: instruction packets as a device receives them, status packets as the
+/// host does. For a status packet, params start with the error byte.
+struct Packet {
+  std::uint8_t id = 0;
+  std::uint8_t instruction = 0;
+  std::span<const std::uint8_t> params;  ///< unstuffed, pointing into the caller's scratch buffer
+};
+
+/// Looks for one packet at the start of `in`; the same results and consumption rules as
+/// decode_status, without the status check (never returns not_status).
+DecodeResult decode_packet(std::span<const std::uint8_t> in, std::span<std::uint8_t> scratch, Packet* packet,
+                           std::size_t* consumed) noexcept;
+
 /// Looks for one status packet at the start of `in` (after skipping anything before the first
 /// header, reported in *consumed). On ok, bad_crc and not_status, *consumed covers the whole
 /// packet. Parameters are unstuffed into `scratch` (which must be at least as large as the
