@@ -23,8 +23,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      drive a real Maestro (its USB command port) instead of the rig's port\n"
       "  avar check SHOW --rig RIG [--retime OUT.yaml]\n"
       "      validate both files and list what the rig cannot do, without moving anything\n"
-      "  avar sim maestro --pty\n"
-      "      run a simulated Maestro and print the serial port other programs can open\n"
+      "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3\n"
+      "      run a simulated device and print the serial port other programs can open\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
   app.require_subcommand(1);
 
@@ -79,6 +79,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   sim_maestro_cmd->add_option("--device-number", sim_maestro.device_number, "Device number for the Pololu protocol, 0 to 127")
       ->check(CLI::Range(0, 127));
   sim_maestro_cmd->add_flag("--crc", sim_maestro.crc, "Expect a CRC-7 byte after every command");
+  SimDynamixelOptions sim_dynamixel;
+  CLI::App* sim_dynamixel_cmd = sim_cmd->add_subcommand(
+      "dynamixel", "Simulated DYNAMIXEL X-series servos on one Protocol 2.0 bus; prints the port path, serves until Ctrl-C");
+  sim_dynamixel_cmd->add_flag("--pty", sim_dynamixel.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
+  sim_dynamixel_cmd->add_option("--ids", sim_dynamixel.ids, "Servo IDs on the bus, comma-separated (default 1)")
+      ->delimiter(',');
 
   try {
     app.parse(argc, argv);
@@ -103,6 +109,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   }
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
+  if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   return kExitBadInput;
 }
 
