@@ -355,45 +355,53 @@ void SimMaestro::move_output(Channel& c, double dt_s) {
   constexpr double kSnap = 1e-9;  // quarter-µs: closer than this is on the target
   double t = dt_s;
   bool at_braking_point = false;  // the previous phase ended where braking must begin
-  // Each phase ends at an event that moves on to a later kind of phase, so four suffice; the
-  // bound only guards against a floating-point stall.
+  // Each phase ends at an event that leads to a later kind of phase, so four suffice; the
+  // bound only guards against a floating-point stall. Phase ends set the velocity exactly (0,
+  // v_max) so that rounding cannot leave a sliver of a phase for the next step.
   for (int phase = 0; phase < 8 && t > 0; ++phase) {
     const double offset = c.target_q - c.output_q;
     const double s = offset > 0 ? 1.0 : -1.0;
     const double d = std::abs(offset);
-    double u = std::min(c.velocity_q * s, v_max);  // a lowered speed limit applies at once
+    const double u = std::min(c.velocity_q * s, v_max);  // a lowered speed limit applies at once
     double accel = 0;
     double duration = t;
-    bool lands = false;
+    double u_end = 0;
     if (u < 0) {
+      const double to_rest = -u / a;
       accel = a;
-      duration = std::min(t, -u / a);
+      duration = std::min(t, to_rest);
+      u_end = duration == to_rest ? 0.0 : u + a * duration;
     } else if (u > 0 && (at_braking_point || u * u >= 2 * a * d)) {
       const double stop_time = 2 * d / u;
+      if (stop_time <= t) {
+        c.output_q = c.target_q;
+        c.velocity_q = 0;
+        return;
+      }
       accel = -u / stop_time;
-      lands = stop_time <= t;
-      duration = std::min(t, stop_time);
+      u_end = u + accel * t;
     } else if (u < v_max) {
-      accel = a;
       const double to_v_max = (v_max - u) / a;
       const double to_braking = (std::sqrt(a * d + u * u / 2) - u) / a;
+      accel = a;
       duration = std::min({t, to_v_max, to_braking});
       at_braking_point = duration == to_braking;
+      u_end = duration == to_v_max ? v_max : u + a * duration;
     } else {
-      const double to_braking = (d - u * u / (2 * a)) / u;
+      const double to_braking = std::max(0.0, (d - u * u / (2 * a)) / u);
       duration = std::min(t, to_braking);
       at_braking_point = duration == to_braking;
+      u_end = u;
     }
     const double moved = u * duration + accel * duration * duration / 2;
-    u += accel * duration;
     t -= duration;
-    if (lands || std::abs(d - moved) < kSnap) {
+    if (std::abs(d - moved) < kSnap) {
       c.output_q = c.target_q;
       c.velocity_q = 0;
       return;
     }
     c.output_q += s * moved;
-    c.velocity_q = s * u;
+    c.velocity_q = s * u_end;
   }
 }
 
