@@ -1,88 +1,68 @@
 #include "avar/kinematics/denavit_hartenberg.hpp"
 
-#include <fstream>
-#include <sstream>
+#include <cmath>
+#include <string>
+
+#include "avar/core/format.hpp"
+#include "avar/kinematics/model_builder.hpp"
 
 namespace avar::kinematics {
 namespace {
 
-Eigen::Isometry3d rot_z(double a) { return Eigen::Isometry3d(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ())); }
-Eigen::Isometry3d rot_x(double a) { return Eigen::Isometry3d(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX())); }
-Eigen::Isometry3d move(double x, double y, double z) { return Eigen::Isometry3d(Eigen::Translation3d(x, y, z)); }
+Eigen::Isometry3d rot_z(double angle) { return Eigen::Isometry3d(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())); }
+Eigen::Isometry3d rot_x(double angle) { return Eigen::Isometry3d(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX())); }
+Eigen::Isometry3d trans_z(double d) { return Eigen::Isometry3d(Eigen::Translation3d(0, 0, d)); }
+Eigen::Isometry3d trans_x(double a) { return Eigen::Isometry3d(Eigen::Translation3d(a, 0, 0)); }
 
-Joint revolute(std::size_t i, int parent, const Eigen::Isometry3d& origin, const DhRow& r) {
-  Joint j;
-  j.name = "joint" + std::to_string(i + 1);
-  j.type = JointType::revolute;
-  j.parent = parent;
-  j.origin = origin;
-  j.axis = Eigen::Vector3d::UnitZ();
-  j.lower = r.lower;
-  j.upper = r.upper;
-  return j;
+std::string joint_name(std::size_t i) { return "joint" + std::to_string(i + 1); }
+
+/// Row i's link parameters; the standard convention places them in the next joint's origin, so
+/// they are checked here, where the error can name their own row.
+void require_finite_parameters(std::size_t i, const DhRow& row) {
+  if (!std::isfinite(row.a) || !std::isfinite(row.alpha) || !std::isfinite(row.d) || !std::isfinite(row.theta))
+    throw InputError(row.where, "joint '" + joint_name(i) + "': expected finite DH parameters, found a " + format_number(row.a) +
+                                    ", alpha " + format_number(row.alpha) + ", d " + format_number(row.d) + ", theta " +
+                                    format_number(row.theta));
+}
+
+JointSpec revolute(std::size_t i, const Eigen::Isometry3d& origin, const DhRow& row) {
+  require_finite_parameters(i, row);
+  return {joint_name(i), JointType::revolute, i == 0 ? std::string() : joint_name(i - 1), origin,
+          Eigen::Vector3d::UnitZ(), row.lower, row.upper};
+}
+
+void require_rows(std::span<const DhRow> rows) {
+  if (rows.empty()) throw InputError({}, "expected at least one DH row, found none");
 }
 
 }  // namespace
 
-Model chain_from_standard_dh(std::span<const DhRow> rows) {
-  // The joint rotates first (about z of the previous DH frame); the rest of row i is a fixed
-  // offset that becomes the origin of joint i+1, and the last one the tip's tool transform.
+Model chain_from_standard_dh(std::span<const DhRow> rows, const Eigen::Isometry3d& tool) {
+  require_rows(rows);
+  // The joint turns first, about z of DH frame i-1; the rest of row i is fixed and becomes the
+  // origin of joint i+1 (or, after the last row, part of the tip's tool transform).
   ModelBuilder builder;
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const DhRow& r = rows[i];
-    builder.add_joint(revolute(i, static_cast<int>(i) - 1, origin, r));
-    origin = rot_z(r.theta) * move(0, 0, r.d) * move(r.a, 0, 0) * rot_x(r.alpha);
+    const DhRow& row = rows[i];
+    builder.add_joint(revolute(i, origin, row), row.where);
+    origin = rot_z(row.theta) * trans_z(row.d) * trans_x(row.a) * rot_x(row.alpha);
   }
-  if (!rows.empty()) builder.add_effector({"tip", rows.size() - 1, origin});
+  builder.add_effector({"tip", joint_name(rows.size() - 1), origin * tool});
   return builder.build();
 }
 
-Model chain_from_modified_dh(std::span<const DhRow> rows) {
-  // RotZ(theta + q) TransZ(d) = RotZ(theta) TransZ(d) RotZ(q): the whole row but the joint
-  // rotation is the joint's fixed origin.
+Model chain_from_modified_dh(std::span<const DhRow> rows, const Eigen::Isometry3d& tool) {
+  require_rows(rows);
+  // RotZ(theta + q) TransZ(d) = RotZ(theta) TransZ(d) RotZ(q): everything in row i but the joint
+  // rotation is joint i's fixed origin, and the joint frame is DH frame i itself.
   ModelBuilder builder;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const DhRow& r = rows[i];
-    builder.add_joint(revolute(i, static_cast<int>(i) - 1, rot_x(r.alpha) * move(r.a, 0, 0) * rot_z(r.theta) * move(0, 0, r.d), r));
+    const DhRow& row = rows[i];
+    builder.add_joint(revolute(i, rot_x(row.alpha) * trans_x(row.a) * rot_z(row.theta) * trans_z(row.d), row), row.where);
   }
-  if (!rows.empty()) builder.add_effector({"tip", rows.size() - 1, Eigen::Isometry3d::Identity()});
+  builder.add_effector({"tip", joint_name(rows.size() - 1), tool});
   return builder.build();
-}
-
-std::vector<NamedDhChain> read_dh_chains(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError({path, 0, 0}, "cannot read file");
-  std::vector<NamedDhChain> chains;
-  std::size_t expected_rows = 0;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    line = line.substr(0, line.find('#'));
-    std::istringstream words(line);
-    std::string first;
-    if (!(words >> first)) continue;
-    if (first == "chain") {
-      if (expected_rows != 0)
-        throw InputError({path, number, 1}, "chain '" + chains.back().name + "' still expects " + std::to_string(expected_rows) + " rows");
-      NamedDhChain chain;
-      long long dof = 0;
-      if (!(words >> chain.name >> dof) || dof <= 0)
-        throw InputError({path, number, 1}, "expected 'chain <name> <dof>' with dof > 0");
-      expected_rows = static_cast<std::size_t>(dof);
-      chains.push_back(std::move(chain));
-      continue;
-    }
-    if (expected_rows == 0) throw InputError({path, number, 1}, "expected 'chain <name> <dof>' before DH rows");
-    std::istringstream row(line);
-    DhRow r;
-    std::string extra;
-    if (!(row >> r.a >> r.alpha >> r.d >> r.theta >> r.lower >> r.upper) || (row >> extra))
-      throw InputError({path, number, 1}, "expected six numbers: a alpha d theta lower upper");
-    chains.back().rows.push_back(r);
-    --expected_rows;
-  }
-  if (expected_rows != 0) throw InputError({path, 0, 0}, "chain '" + chains.back().name + "' ends early");
-  return chains;
 }
 
 }  // namespace avar::kinematics

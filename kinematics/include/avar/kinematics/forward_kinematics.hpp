@@ -1,35 +1,29 @@
 #pragma once
-// Forward kinematics and the geometric Jacobian. All functions here are real-time safe once the
-// Workspace exists: no allocation, no exception. One Workspace per thread.
+// Forward kinematics of a joint tree (Parent, Computer Animation, ch. 5: each joint's frame is
+// its parent's frame composed with the joint's fixed origin and its motion). Real-time safe:
+// no allocation, no exception, no lock; one Workspace per thread, the Model shared read-only.
 
-#include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cstddef>
 #include <span>
-#include <vector>
 
+#include "avar/core/status.hpp"
 #include "avar/kinematics/model.hpp"
+#include "avar/kinematics/workspace.hpp"
 
 namespace avar::kinematics {
 
-/// Per-loop scratch sized once for a model: the world pose of every joint frame.
-struct Workspace {
-  explicit Workspace(const Model& model);
-  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> world;
-};
+/// Computes the world pose of every joint frame into `ws` for the joint vector q (entry
+/// joint.q_index per movable joint: rad for revolute, m for prismatic joints; limits are not
+/// applied). Joint i's frame is parent frame * origin * motion(q), the motion being a rotation
+/// about, or a translation along, the joint's axis; joints on the base take the world frame as
+/// parent. Returns Status::not_finite, leaving `ws` untouched, when q holds a NaN or infinity.
+/// Preconditions (asserted): q.size() == model.dof(), `ws` was made for `model`.
+Status forward_kinematics(const Model& model, std::span<const double> q, Workspace& ws) noexcept;
 
-/// World poses of every joint frame for joint vector q (size model.dof(); radians or metres).
-/// Joint i's frame is parent frame * origin * motion(q), motion being a rotation about (or a
-/// translation along) the joint's axis.
-void forward_kinematics(const Model& model, std::span<const double> q, Workspace& ws) noexcept;
-
-/// World pose of an effector after forward_kinematics().
+/// World pose of an effector (effector frame -> world) from the last forward_kinematics().
+/// Precondition (asserted): effector < model.effector_count(), `ws` was made for `model`.
 Eigen::Isometry3d effector_pose(const Model& model, const Workspace& ws, std::size_t effector) noexcept;
-
-/// Geometric Jacobian of an effector in the world frame after forward_kinematics(): rows 0-2
-/// linear velocity of the effector origin, rows 3-5 angular velocity, one column per entry of
-/// q; columns of joints not between the effector and the base are zero. J must be 6 x dof.
-void geometric_jacobian(const Model& model, const Workspace& ws, std::size_t effector,
-                        Eigen::Ref<Eigen::Matrix<double, 6, Eigen::Dynamic>> J) noexcept;
 
 }  // namespace avar::kinematics
