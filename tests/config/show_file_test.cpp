@@ -62,7 +62,7 @@ TEST(ShowFile, RejectsEachBadInputWithWhereAndWhat) {
   EXPECT_EQ(error_of(head + "    - {time: 4, value: 1}\n"), ":4:14: key time 4 s is outside the show, which runs from 0 to 3 s");
   EXPECT_EQ(error_of(head + "    - {time: 0, value: .nan}\n"), ":4:24: expected the key value to be a finite number, found '.nan'");
   EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: bezier}\n    - {time: 1, value: 2}\n"),
-            ":4:7: the key at 0 s starts a bezier segment and needs a right handle: right: [time, value]");
+            ":4:7: the key at 0 s starts a bezier segment but has no right handle; expected right: [time, value]");
   EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, right: [1, 2, 3]}\n"),
             ":4:34: expected the right handle to be [time, value], found a list");
   EXPECT_EQ(error_of(head + "    - {value: 1}\n"), ":4:7: missing field 'time' in a key of track 'jaw'");

@@ -1,7 +1,12 @@
 #pragma once
-// Samples a show into frames of channel values. Track-to-channel binding is resolved once by
-// the caller; sample() then costs O(1) per track for sequential times (cached cursors).
-// One thread at a time; sample() is real-time safe (no allocation, exception or lock).
+// Samples a show into frames of channel values, tick by tick. The caller resolves which frame
+// slot each track drives once, at load time; sample() then costs O(1) per track for sequential
+// times (one cached cursor per track, allocated at construction).
+//
+// Thread and real-time safety: construction allocates and may throw (load time). sample() is
+// real-time safe: no allocation, exception, lock, I/O or logging. A Sampler keeps its cursors,
+// so one Sampler is used by one thread at a time; several Samplers (one per thread) may share
+// one Show, which is only read.
 
 #include <cstddef>
 #include <span>
@@ -14,13 +19,18 @@ namespace avar::playback {
 
 class Sampler {
  public:
-  /// channel_of_track[i]: the frame index track i writes (< defaults.size()). defaults: the
-  /// value of every channel no track drives; its size is the frame size. The show is borrowed
-  /// and must outlive the sampler.
-  Sampler(const Show& show, std::vector<std::size_t> channel_of_track, std::vector<double> defaults);
+  /// channel_of_track[i]: the frame index that show.tracks[i] writes. defaults: the value of
+  /// every channel that no track drives (channel units); its size is the frame size. Both are
+  /// copied. The show is borrowed: it must outlive the sampler and stay unchanged. Throws
+  /// std::invalid_argument when there is not exactly one index per track, an index is outside
+  /// the frame, two tracks share an index, or a default is not finite.
+  Sampler(const Show& show, std::span<const std::size_t> channel_of_track, std::span<const double> defaults);
 
-  /// Writes the whole frame for show time t (seconds). A looping show wraps t modulo its
-  /// duration. frame.size() must equal the frame size.
+  /// Writes every channel of `frame` for show time `show_time_s` (seconds): the driven channels
+  /// from their tracks, the others from the defaults. A looping show wraps the time modulo its
+  /// duration (negative times included); a show played once holds its first values before 0 and
+  /// its last values after the end. Every value written is finite. Precondition:
+  /// frame.size() == frame_size(); a frame of another size is left untouched. Real-time safe.
   void sample(double show_time_s, std::span<double> frame) noexcept;
 
   std::size_t frame_size() const noexcept { return defaults_.size(); }

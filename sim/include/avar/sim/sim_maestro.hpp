@@ -71,7 +71,8 @@ class SimMaestro final : public ByteDevice {
   /// parameters that are not positive (speed) or not non-negative (lag, deadband).
   explicit SimMaestro(SimMaestroConfig config);
 
-  /// Parses bytes in order; replies go to the outbox. Allocates only for the log.
+  /// Parses bytes in order; replies go to the outbox. Not for a real-time thread: the reply
+  /// queue and the log allocate.
   void receive(std::span<const std::uint8_t> bytes) override;
   /// Moves up to out.size() pending reply bytes into out, oldest first; returns how many.
   std::size_t take_replies(std::span<std::uint8_t> out) override;

@@ -1,0 +1,29 @@
+#pragma once
+// Building keys and curves in playback tests.
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "avar/playback/curve.hpp"
+
+namespace avar::playback::testing {
+
+/// A key placed at "test.yaml:<line>:5", so that errors can be checked for their location.
+inline RawKey key(double t, double v, Interpolation i = Interpolation::linear, std::optional<Handle> left = {},
+                  std::optional<Handle> right = {}, int line = 1) {
+  RawKey k;
+  k.time = t;
+  k.value = v;
+  k.interpolation = i;
+  k.left = left;
+  k.right = right;
+  k.where = {"test.yaml", line, 5};
+  return k;
+}
+
+inline RawCurve raw_curve(std::vector<RawKey> keys) { return RawCurve{std::move(keys), {"test.yaml", 1, 3}}; }
+
+inline Curve build(std::vector<RawKey> keys) { return Curve::build(raw_curve(std::move(keys))); }
+
+}  // namespace avar::playback::testing
