@@ -22,8 +22,8 @@ firmware_iface::MaestroLinkConfig maestro_config(const control::Rig& rig, std::s
     if (a.link != link) continue;
     firmware_iface::MaestroActuator m{a.channel, a.device_channel, a.calibration, {}, {}};
     // Device-side limits are given in channel units; the Maestro counts in pulse width.
-    if (a.speed_limit) m.speed_us_per_s = *a.speed_limit * a.calibration.us_per_unit();
-    if (a.acceleration_limit) m.acceleration_us_per_s2 = *a.acceleration_limit * a.calibration.us_per_unit();
+    if (a.speed_limit) m.speed_us_per_s = *a.speed_limit * a.calibration.device_per_unit();
+    if (a.acceleration_limit) m.acceleration_us_per_s2 = *a.acceleration_limit * a.calibration.device_per_unit();
     config.actuators.push_back(m);
   }
   return config;
@@ -57,9 +57,9 @@ sim::SimMaestroConfig simulated_maestro(const control::Rig& rig, std::size_t lin
   for (const control::ActuatorSpec& a : rig.actuators) {
     if (a.link != link) continue;
     auto& ch = config.channels[static_cast<std::size_t>(a.device_channel)];
-    ch.min_us = a.calibration.pulse_low_us();
-    ch.max_us = a.calibration.pulse_high_us();
-    ch.initial_position_us = a.calibration.to_pulse_us(rig.channels[a.channel].rest);
+    ch.min_us = a.calibration.device_low();
+    ch.max_us = a.calibration.device_high();
+    ch.initial_position_us = a.calibration.to_device(rig.channels[a.channel].rest);
   }
   return config;
 }

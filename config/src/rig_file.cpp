@@ -151,16 +151,16 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     if (us < 64 || us > 4000) n.fail(std::string("expected ") + key + " to be a pulse width from 64 to 4000 µs, found " + n.describe());
     return us;
   };
-  a.calibration.us_at_min = pulse("min_us");
-  a.calibration.us_at_max = pulse("max_us");
-  if (a.calibration.us_at_min == a.calibration.us_at_max)
-    cal.fail("expected min_us and max_us to differ (both are " + format_number(a.calibration.us_at_min) + " µs)");
+  a.calibration.device_at_min = pulse("min_us");
+  a.calibration.device_at_max = pulse("max_us");
+  if (a.calibration.device_at_min == a.calibration.device_at_max)
+    cal.fail("expected min_us and max_us to differ (both are " + format_number(a.calibration.device_at_min) + " µs)");
   if (auto r = cal.find("reverse")) a.calibration.reverse = r->as_bool("reverse");
   if (auto t = cal.find("trim_us")) {
-    a.calibration.trim_us = t->as_double("trim_us");
-    if (a.calibration.pulse_low_us() < 64 || a.calibration.pulse_high_us() > 4000)
-      t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + format_number(a.calibration.pulse_low_us()) +
-              ", " + format_number(a.calibration.pulse_high_us()) + "] µs");
+    a.calibration.trim = t->as_double("trim_us");
+    if (a.calibration.device_low() < 64 || a.calibration.device_high() > 4000)
+      t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + format_number(a.calibration.device_low()) +
+              ", " + format_number(a.calibration.device_high()) + "] µs");
   }
   if (auto f = node.find("failsafe")) {
     const std::string action = f->as_string("the fail-safe action of " + what);

@@ -95,7 +95,7 @@ Status MaestroLink::send(std::span<const double> frame) noexcept {
   for (std::size_t s = 0; s < slots_.size(); ++s) {
     const MaestroActuator& a = config_.actuators[slots_[s]];
     bool clamped = false;
-    const double us = a.calibration.to_pulse_us(frame[a.channel], &clamped);
+    const double us = a.calibration.to_device(frame[a.channel], &clamped);
     if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
     // Target 0 stops the pulses of a released actuator.
     targets_[s] = released_[s].load(std::memory_order_relaxed) ? std::uint16_t{0} : maestro::quarter_us_from_us(us);

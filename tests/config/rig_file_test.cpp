@@ -56,7 +56,7 @@ TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
   EXPECT_EQ(rig.actuators[1].channel, 1u);
   EXPECT_EQ(rig.actuators[1].device_channel, 3);
   EXPECT_TRUE(rig.actuators[1].calibration.reverse);
-  EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.trim_us, 12);
+  EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.trim, 12);
   EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.channel_min, -60);
   EXPECT_DOUBLE_EQ(*rig.actuators[1].speed_limit, 120);
   EXPECT_EQ(rig.channels[1].where.line, 6);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "avar/core/input_error.hpp"
-#include "avar/firmware_iface/pulse_calibration.hpp"
+#include "avar/firmware_iface/linear_calibration.hpp"
 
 namespace avar::control {
 
@@ -70,7 +70,7 @@ struct ActuatorSpec {
   std::size_t channel = 0;  ///< index into Rig::channels
   std::size_t link = 0;     ///< index into Rig::links
   int device_channel = 0;   ///< the device's own channel number
-  firmware_iface::PulseCalibration calibration;
+  firmware_iface::LinearCalibration calibration;
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
   Failsafe failsafe = Failsafe::rest;

@@ -5,12 +5,47 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 
 #include "avar/core/status.hpp"
 
 namespace avar::firmware_iface {
+
+/// Conditions a smart actuator reports about itself (bits of ChannelTelemetry::faults).
+enum DeviceFault : std::uint32_t {
+  kDeviceOverheat = 1u << 0,
+  kDeviceOverload = 1u << 1,
+  kDeviceElectrical = 1u << 2,  ///< electrical shock, over-current
+  kDeviceVoltage = 1u << 3,     ///< input voltage out of range
+  kDeviceEncoder = 1u << 4,     ///< position sensor failure
+  kDeviceOther = 1u << 5,
+};
+
+/// What a device last reported of one channel. NaN for what it does not report.
+struct ChannelTelemetry {
+  static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  double position = kUnknown;       ///< channel units
+  double load = kUnknown;           ///< signed fraction of the actuator's rated torque, -1..1
+  double temperature_c = kUnknown;  ///< degrees Celsius
+  std::uint32_t faults = 0;         ///< DeviceFault bits, as of the last reply
+  std::uint64_t updates = 0;        ///< replies that refreshed this entry since start
+};
+
+/// The health of a link's wire since start(); all counters only grow.
+struct LinkCounters {
+  std::uint64_t exchanges = 0;       ///< send() calls that reached the transport
+  std::uint64_t bytes_sent = 0;
+  std::uint64_t bytes_received = 0;
+  std::uint64_t replies = 0;         ///< well-formed replies taken
+  std::uint64_t crc_errors = 0;      ///< replies with a bad checksum (dropped, sync kept)
+  std::uint64_t framing_errors = 0;  ///< bytes skipped to find the next packet
+  std::uint64_t timeouts = 0;        ///< replies that did not come in time
+  std::uint64_t retries = 0;
+  std::uint64_t device_errors = 0;   ///< replies whose error field was set
+  std::uint64_t reconnects = 0;      ///< transport re-opened after a failure
+};
 
 class ActuatorLink {
  public:
@@ -45,6 +80,16 @@ class ActuatorLink {
 
   /// A name for messages: protocol and port.
   virtual const std::string& describe() const noexcept = 0;
+
+  /// Copies the latest telemetry of this link's channels into out[channel] (out is indexed by
+  /// rig channel); other entries are left untouched. Links to devices that report nothing (hobby
+  /// PWM boards, DMX) leave everything untouched. Call on the thread that calls send().
+  /// Real-time safe.
+  virtual void read_telemetry(std::span<ChannelTelemetry> out) const noexcept { static_cast<void>(out); }
+
+  /// Wire counters since start(). Real-time safe; any thread (counters are relaxed atomics or
+  /// snapshots in implementations).
+  virtual LinkCounters counters() const noexcept { return {}; }
 };
 
 }  // namespace avar::firmware_iface
