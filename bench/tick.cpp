@@ -25,6 +25,7 @@ class DiscardTransport final : public avar::firmware_iface::ByteTransport {
   }
   avar::Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return avar::Status::timeout; }
   void discard_input() noexcept override {}
+  avar::Status reopen() noexcept override { return avar::Status::ok; }
   std::uint64_t bytes_written() const noexcept override { return written_; }
   const std::string& name() const noexcept override { return name_; }
 

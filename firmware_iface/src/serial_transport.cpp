@@ -1,6 +1,7 @@
 #include "avar/firmware_iface/serial_transport.hpp"
 
 #include <fcntl.h>
+#include <pty.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -44,13 +45,19 @@ bool SerialTransport::is_supported_baud(int baud) noexcept {
 }
 
 SerialTransport::SerialTransport(const std::string& path, int baud)
-    : path_(path), port_(std::make_unique<LibSerial::SerialPort>()) {
+    : path_(path), baud_(baud), port_(std::make_unique<LibSerial::SerialPort>()) {
+  if (!is_supported_baud(baud))
+    port_error(path, "baud rate " + std::to_string(baud) + " is not a standard serial rate (e.g. 9600, 57600, 115200, 1000000)");
+  write_buffer_.reserve(max_chunk);
+  read_buffer_.reserve(max_chunk);
+  open_port();
+}
+
+void SerialTransport::open_port() {
   LibSerial::BaudRate code = LibSerial::BaudRate::BAUD_INVALID;
   for (const auto& [rate, c] : kBaudRates)
-    if (rate == baud) code = c;
-  if (code == LibSerial::BaudRate::BAUD_INVALID)
-    port_error(path, "baud rate " + std::to_string(baud) + " is not a standard serial rate (e.g. 9600, 57600, 115200, 1000000)");
-
+    if (rate == baud_) code = c;
+  const std::string& path = path_;
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
     port_error(path, std::string("cannot open serial port: ") + std::strerror(errno) +
@@ -80,15 +87,44 @@ SerialTransport::SerialTransport(const std::string& path, int baud)
     port_->Close();
     port_error(path, std::string("cannot configure serial port: ") + e.what());
   }
-  write_buffer_.reserve(max_chunk);
-  read_buffer_.reserve(max_chunk);
 }
 
-SerialTransport::~SerialTransport() {
+void SerialTransport::close_port() noexcept {
+  int fd = -1;
   try {
-    if (port_->IsOpen()) port_->Close();
+    if (!port_->IsOpen()) return;
+    fd = port_->GetFileDescriptor();
+    port_->Close();
+    return;
   } catch (...) {
-    // Closing a port whose device vanished can throw; nothing useful remains to do.
+    // libserial restores the old terminal settings before closing, which fails once the device
+    // has vanished (EIO), leaving an object that believes it is open and whose destructor would
+    // throw. Put a live terminal (a fresh pseudo-terminal) under the same descriptor number so
+    // that the second Close succeeds and closes it.
+  }
+  int master = -1, slave = -1;
+  if (fd >= 0 && ::openpty(&master, &slave, nullptr, nullptr, nullptr) == 0) {
+    ::dup2(slave, fd);
+    ::close(slave);
+    try {
+      port_->Close();
+    } catch (...) {
+      // Nothing more can be done; the descriptor is closed below at worst.
+    }
+    ::close(master);
+  }
+}
+
+SerialTransport::~SerialTransport() { close_port(); }
+
+Status SerialTransport::reopen() noexcept {
+  close_port();
+  try {
+    port_ = std::make_unique<LibSerial::SerialPort>();
+    open_port();
+    return Status::ok;
+  } catch (...) {
+    return Status::io_error;
   }
 }
 

@@ -25,6 +25,12 @@ class ByteTransport {
   /// Drops whatever has been received and not yet read (stale replies).
   virtual void discard_input() noexcept = 0;
 
+  /// Closes and opens the transport again after an I/O error (a USB adapter unplugged and
+  /// plugged back in, a device that reset). Returns ok once it is usable again, io_error while
+  /// it is still gone. Not real-time: opening allocates and waits; call it from a link's I/O
+  /// thread, never from the tick.
+  virtual Status reopen() noexcept = 0;
+
   /// Total bytes written since the transport was opened.
   virtual std::uint64_t bytes_written() const noexcept = 0;
 

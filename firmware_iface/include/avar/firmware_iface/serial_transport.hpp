@@ -28,6 +28,9 @@ class SerialTransport final : public ByteTransport {
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
   void discard_input() noexcept override;
+  /// Opens the same path again (a udev symlink such as /dev/serial/by-id/... follows the device
+  /// to its new node), with the same settings and lock.
+  Status reopen() noexcept override;
   /// Readable from any thread.
   std::uint64_t bytes_written() const noexcept override { return bytes_written_.load(std::memory_order_relaxed); }
   const std::string& name() const noexcept override { return path_; }
@@ -39,7 +42,12 @@ class SerialTransport final : public ByteTransport {
   static constexpr std::size_t max_chunk = 4096;
 
  private:
+  /// Opens, locks and configures port_; throws InputError naming the path.
+  void open_port();
+  void close_port() noexcept;
+
   std::string path_;
+  int baud_ = 0;
   std::unique_ptr<LibSerial::SerialPort> port_;
   std::vector<std::uint8_t> write_buffer_;  // capacity max_chunk, reused: no allocation per write
   std::vector<std::uint8_t> read_buffer_;   // capacity max_chunk, reused
