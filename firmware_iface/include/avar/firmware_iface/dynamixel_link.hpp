@@ -1,0 +1,131 @@
+#pragma once
+// The DYNAMIXEL Protocol 2.0 driver (X-series): several servos on one half-duplex bus over any
+// ByteTransport. Per send(): ONE Sync Write of every goal position, then (readback) ONE Sync Read
+// whose replies refresh each servo's telemetry: position, load and temperature; a reply with the
+// Alert bit makes the next exchange read Hardware Error Status, whose bits become DeviceFault
+// flags (overheat, overload...). Bad CRCs and stray bytes are counted and skipped without losing
+// sync; a missing reply costs at most one reply timeout per exchange and is retried a bounded
+// number of times; a servo that misses `silent_exchanges` exchanges in a row makes send() report
+// a timeout (the controller's watchdog fault). An I/O error (port gone) makes send() report
+// io_error and try to reopen the port on later sends, re-enabling torque once it is back.
+//
+// Threads: send() and read_telemetry() run on one thread (the link's I/O thread); counters() may
+// be read from any. send() allocates nothing and throws nothing; it waits for replies, bounded
+// by the reply timeout, so it belongs on an I/O thread (control::ThreadedLink), never the tick.
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/linear_calibration.hpp"
+
+namespace avar::firmware_iface {
+
+struct DynamixelActuator {
+  std::size_t channel = 0;  ///< rig channel index
+  std::uint8_t id = 1;      ///< servo ID, 0..252
+  LinearCalibration calibration;  ///< channel units -> position pulses (0.088° each, 0..4095 per turn)
+  std::optional<double> speed_limit;         ///< device profile velocity, channel units/s
+  std::optional<double> acceleration_limit;  ///< device profile acceleration, channel units/s²
+};
+
+enum class DynamixelReadback {
+  none,      ///< write only: the fastest bus, no telemetry
+  position,  ///< Present Position (4 bytes per servo)
+  full,      ///< Present Load .. Present Temperature (addresses 126..146, 21 bytes per servo)
+};
+
+struct DynamixelLinkConfig {
+  std::vector<DynamixelActuator> actuators;
+  DynamixelReadback readback = DynamixelReadback::full;
+  /// Longest wait for the replies of one exchange (a silent servo costs this once per send).
+  std::chrono::milliseconds reply_timeout{10};
+  /// Plain Read retries per exchange for servos whose Sync Read reply was lost or corrupt.
+  std::uint32_t retries = 1;
+  /// Exchanges in a row without a reply from a servo before send() reports a timeout.
+  std::uint32_t silent_exchanges = 10;
+  /// While the port is gone, reopen it every this many sends.
+  std::uint32_t reconnect_every = 10;
+};
+
+class DynamixelLink final : public ActuatorLink {
+ public:
+  /// Sizes every buffer. Throws std::invalid_argument for an ID out of range or used twice.
+  /// The transport is borrowed.
+  DynamixelLink(ByteTransport& transport, DynamixelLinkConfig config);
+
+  /// Pings every servo (a missing one is a timeout), reads its Status Return Level (readback
+  /// needs 1 or 2: otherwise out_of_range, see start_problem()) and Return Delay Time (added to
+  /// the reply timeout), writes profile velocity / acceleration and enables torque.
+  Status start() override;
+  /// What start() found wrong, for the message (empty after success).
+  const std::string& start_problem() const noexcept { return start_problem_; }
+
+  /// Reads Present Position of each servo.
+  Status read_positions(std::span<double> frame, std::span<bool> known) override;
+  Status send(std::span<const double> frame) noexcept override;
+  /// Torque off on every servo (one Sync Write of Torque Enable = 0).
+  Status release() noexcept override;
+  /// The servo stops being driven: torque off on the next send, and no more goal positions.
+  void release_channel(std::size_t channel) noexcept override;
+  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  const std::string& describe() const noexcept override { return description_; }
+  void read_telemetry(std::span<ChannelTelemetry> out) const noexcept override;
+  LinkCounters counters() const noexcept override;
+
+  /// Bytes written and read by the last send(), for link-budget reports.
+  std::size_t last_exchange_bytes() const noexcept { return last_exchange_bytes_; }
+
+ private:
+  struct Servo {
+    std::uint8_t id = 0;
+    std::size_t actuator = 0;
+    std::uint32_t missed = 0;        ///< exchanges in a row without a reply
+    bool answered = false;           ///< this exchange
+    bool read_hardware_error = false;  ///< an Alert was seen: read address 70 next exchange
+    bool torque_off_sent = false;
+    std::uint8_t status_return_level = 2;  ///< 0: Ping only, 1: + Read, 2: every instruction
+  };
+  /// Sends a request and reads the status packet of servo `id` (its parameters in status_params_).
+  Status query(std::span<const std::uint8_t> request, std::uint8_t id, std::uint8_t* error) noexcept;
+  /// Reads the next status packet (any ID); counts framing and CRC errors on the way.
+  Status read_status(std::uint8_t* id, std::uint8_t* error, std::chrono::milliseconds timeout) noexcept;
+  void take_reply(Servo& servo, std::uint8_t error) noexcept;
+  Status write_counted(std::span<const std::uint8_t> bytes) noexcept;
+  Status enable_torque() noexcept;
+  Status try_reconnect() noexcept;
+  Status exchange_telemetry() noexcept;
+
+  ByteTransport& transport_;
+  DynamixelLinkConfig config_;
+  std::vector<Servo> servos_;
+  std::vector<ChannelTelemetry> telemetry_;   ///< by actuator
+  std::unique_ptr<std::atomic<bool>[]> released_;  ///< by actuator
+  std::vector<std::uint8_t> ids_;             ///< scratch: IDs of one instruction
+  std::vector<std::int32_t> values_;          ///< scratch: values of one Sync Write
+  std::vector<std::uint8_t> packet_;          ///< outgoing bytes
+  std::vector<std::uint8_t> rx_;              ///< incoming bytes not yet decoded
+  std::size_t rx_size_ = 0;
+  std::vector<std::uint8_t> scratch_;         ///< unstuffed parameters of the last status
+  std::span<const std::uint8_t> status_params_;
+  std::chrono::milliseconds timeout_{};
+  std::uint16_t read_address_ = 0, read_length_ = 0;
+  bool disconnected_ = false;
+  std::uint32_t sends_since_reconnect_try_ = 0;
+  std::size_t last_exchange_bytes_ = 0;
+  std::string description_;
+  std::string start_problem_;
+  std::atomic<std::uint64_t> saturated_{0};
+  struct AtomicCounters {
+    std::atomic<std::uint64_t> exchanges{0}, bytes_sent{0}, bytes_received{0}, replies{0}, crc_errors{0},
+        framing_errors{0}, timeouts{0}, retries{0}, device_errors{0}, reconnects{0};
+  } counters_;
+};
+
+}  // namespace avar::firmware_iface
