@@ -51,6 +51,7 @@ const char* to_string(FaultCause c) noexcept {
     case FaultCause::non_finite: return "non-finite command";
     case FaultCause::device_overheat: return "device over-temperature";
     case FaultCause::device_overload: return "device overload";
+    case FaultCause::device_error: return "device hardware error";
     case FaultCause::deadline_budget: return "deadline misses over budget";
   }
   return "unknown";
@@ -90,6 +91,7 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
       heading_(rig.channels.size()),
       measured_(rig.channels.size()),
       measured_known_(rig.channels.size(), 0),
+      telemetry_seen_(rig.channels.size(), 0),
       link_dead_(links_.size(), 0) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
   // A channel eases to rest on a fault unless none of its actuators asks for that.
@@ -167,6 +169,23 @@ void Controller::feed_back(std::span<const double> measured, std::span<const boo
   for (std::size_t c = 0; c < measured_.size(); ++c) {
     measured_known_[c] = known[c] ? 1 : 0;
     if (known[c]) measured_[c] = measured[c];
+  }
+}
+
+void Controller::feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept {
+  using firmware_iface::DeviceFault;
+  for (std::size_t c = 0; c < telemetry_seen_.size() && c < telemetry.size(); ++c) {
+    const firmware_iface::ChannelTelemetry& t = telemetry[c];
+    if (t.updates == telemetry_seen_[c]) continue;
+    telemetry_seen_[c] = t.updates;
+    if (std::isfinite(t.position)) {
+      measured_[c] = t.position;
+      measured_known_[c] = 1;
+    }
+    if (t.faults & firmware_iface::kDeviceOverheat) fault(FaultCause::device_overheat, c, t.temperature_c, last_now_);
+    if (t.faults & firmware_iface::kDeviceOverload) fault(FaultCause::device_overload, c, t.load, last_now_);
+    if (t.faults & ~std::uint32_t{firmware_iface::kDeviceOverheat | firmware_iface::kDeviceOverload})
+      fault(FaultCause::device_error, c, static_cast<double>(t.faults), last_now_);
   }
 }
 

@@ -3,7 +3,13 @@
 namespace avar::control {
 
 ThreadedLink::ThreadedLink(firmware_iface::ActuatorLink& inner, std::size_t frame_size, std::uint32_t watchdog_ticks)
-    : inner_(inner), mailbox_(frame_size), io_frame_(frame_size, 0.0), watchdog_ticks_(watchdog_ticks) {
+    : inner_(inner),
+      mailbox_(frame_size),
+      io_frame_(frame_size, 0.0),
+      telemetry_mailbox_(frame_size),
+      io_telemetry_(frame_size),
+      telemetry_(frame_size),
+      watchdog_ticks_(watchdog_ticks) {
   thread_ = std::thread([this] { serve(); });
 }
 
@@ -41,6 +47,13 @@ Status ThreadedLink::release() noexcept {
   return Status::ok;
 }
 
+void ThreadedLink::read_telemetry(std::span<firmware_iface::ChannelTelemetry> out) const noexcept {
+  telemetry_mailbox_.take(telemetry_);
+  // Only the channels this link has heard about: the others belong to other links.
+  for (std::size_t c = 0; c < telemetry_.size() && c < out.size(); ++c)
+    if (telemetry_[c].updates > 0) out[c] = telemetry_[c];
+}
+
 void ThreadedLink::serve() {
   bool released = false;
   for (;;) {
@@ -53,6 +66,8 @@ void ThreadedLink::serve() {
     if (stop_.load(std::memory_order_acquire)) return;
     if (released || !mailbox_.take(io_frame_)) continue;
     last_status_.store(inner_.send(io_frame_), std::memory_order_release);
+    inner_.read_telemetry(io_telemetry_);
+    telemetry_mailbox_.publish(io_telemetry_);
     completions_.fetch_add(1, std::memory_order_acq_rel);
   }
 }

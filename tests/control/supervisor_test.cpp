@@ -81,7 +81,7 @@ double drive_to(Controller& c, Phase state, int& k) {
 
 const FaultCause kCauses[] = {FaultCause::estop,          FaultCause::link_watchdog,   FaultCause::link_failure,
                               FaultCause::tracking_error, FaultCause::non_finite,      FaultCause::device_overheat,
-                              FaultCause::device_overload, FaultCause::deadline_budget};
+                              FaultCause::device_overload, FaultCause::device_error, FaultCause::deadline_budget};
 const Phase kStates[] = {Phase::disabled, Phase::homing, Phase::running, Phase::stopping};
 
 TEST(Supervisor, EveryFaultFromEveryStateTakesTheFailsafePathAndLatches) {
@@ -154,6 +154,64 @@ TEST(Supervisor, TrackingErrorBeyondToleranceFaultsWithTheChannelAndError) {
   EXPECT_EQ(c.latched_fault().cause, FaultCause::tracking_error);
   EXPECT_EQ(c.latched_fault().index, 1u);
   EXPECT_NEAR(c.latched_fault().value, 6.0, 1e-9);
+}
+
+TEST(Supervisor, DeviceTelemetryFaultsLatchWithTheirChannelAndFeedTracking) {
+  using firmware_iface::ChannelTelemetry;
+  const Rig r = rig();
+  const playback::Show s = show();
+  struct Case {
+    std::uint32_t bits;
+    FaultCause cause;
+    double value;
+  };
+  for (const Case& expected : {Case{firmware_iface::kDeviceOverheat, FaultCause::device_overheat, 81},
+                               Case{firmware_iface::kDeviceOverload, FaultCause::device_overload, 0.97},
+                               Case{firmware_iface::kDeviceEncoder, FaultCause::device_error,
+                                    static_cast<double>(firmware_iface::kDeviceEncoder)}}) {
+    SCOPED_TRACE(to_string(expected.cause));
+    RecordingLink link;
+    Controller c(r, s, {&link}, {.tick_period_s = kDt});
+    int k = 0;
+    drive_to(c, Phase::running, k);
+    std::vector<ChannelTelemetry> telemetry(3);
+    // Fresh, healthy telemetry close to the command: no fault.
+    for (std::size_t ch = 0; ch < 3; ++ch) {
+      telemetry[ch].position = c.commanded()[ch];
+      telemetry[ch].temperature_c = 40;
+      telemetry[ch].load = 0.2;
+      telemetry[ch].updates = 1;
+    }
+    c.feed_telemetry(telemetry);
+    c.tick(k++ * kDt);
+    EXPECT_EQ(c.phase(), Phase::running);
+    // The same (stale) entry again with fault bits set: not fresh, ignored.
+    telemetry[2].faults = expected.bits;
+    c.feed_telemetry(telemetry);
+    c.tick(k++ * kDt);
+    EXPECT_EQ(c.phase(), Phase::running);
+    // Fresh: latched, on its channel.
+    telemetry[2].updates = 2;
+    telemetry[2].temperature_c = 81;
+    telemetry[2].load = 0.97;
+    c.feed_telemetry(telemetry);
+    EXPECT_EQ(c.phase(), Phase::faulted);
+    EXPECT_EQ(c.latched_fault().cause, expected.cause);
+    EXPECT_EQ(c.latched_fault().index, 2u);
+    EXPECT_DOUBLE_EQ(c.latched_fault().value, expected.value);
+  }
+  // Positions from telemetry reach the tracking check.
+  RecordingLink link;
+  Controller c(r, s, {&link}, {.tick_period_s = kDt});
+  int k = 0;
+  drive_to(c, Phase::running, k);
+  std::vector<ChannelTelemetry> telemetry(3);
+  telemetry[0].position = c.commanded()[0] + 6;
+  telemetry[0].updates = 1;
+  c.feed_telemetry(telemetry);
+  c.tick(k * kDt);
+  EXPECT_EQ(c.latched_fault().cause, FaultCause::tracking_error);
+  EXPECT_EQ(c.latched_fault().index, 0u);
 }
 
 TEST(Supervisor, EstopInputReachesTheControllerThroughTheRunner) {

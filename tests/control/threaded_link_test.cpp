@@ -11,6 +11,9 @@
 
 #include "avar/control/controller.hpp"
 #include "avar/control/frame_mailbox.hpp"
+#include "avar/firmware_iface/dynamixel_link.hpp"
+#include "avar/sim/sim_dynamixel.hpp"
+#include "avar/sim/sim_wire.hpp"
 
 namespace avar::control {
 namespace {
@@ -102,6 +105,42 @@ class StallableLink final : public firmware_iface::ActuatorLink {
   int releases_ = 0;
   std::string name_ = "stallable";
 };
+
+TEST(ThreadedLink, BringsTheInnerLinksTelemetryToTheTickThreadForItsChannelsOnly) {
+  sim::SimDynamixelConfig bus;
+  bus.servos.resize(2);
+  bus.servos[1].id = 2;
+  sim::SimDynamixel device(bus);
+  sim::SimWire wire(device, 1'000'000);
+  firmware_iface::DynamixelLinkConfig config;
+  for (std::uint8_t id : {std::uint8_t{1}, std::uint8_t{2}}) {
+    firmware_iface::DynamixelActuator a;
+    a.channel = id;  // channels 1 and 2 of a 3-channel frame; channel 0 is another link's
+    a.id = id;
+    a.calibration = {-90, 90, 1024, 3072, false, 0};
+    config.actuators.push_back(a);
+  }
+  firmware_iface::DynamixelLink inner(wire, config);
+  ASSERT_EQ(inner.start(), Status::ok);
+  ThreadedLink link(inner, 3, 1000);
+  std::vector<firmware_iface::ChannelTelemetry> telemetry(3);
+  telemetry[0].position = 123;  // another link's: must stay untouched
+  telemetry[0].updates = 9;
+  const std::vector<double> frame{0, 30, -30};
+  // Enough exchanges (about 1 ms of simulated bus time each) for the servos to arrive.
+  for (int i = 0; i < 50000 && !(telemetry[1].updates > 800 && telemetry[2].updates > 800); ++i) {
+    ASSERT_EQ(link.send(frame), Status::ok);
+    link.read_telemetry(telemetry);
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  EXPECT_GT(telemetry[1].updates, 50u);
+  EXPECT_GT(telemetry[2].updates, 50u);
+  EXPECT_DOUBLE_EQ(telemetry[0].position, 123);
+  EXPECT_EQ(telemetry[0].updates, 9u);
+  EXPECT_NEAR(telemetry[1].position, 30, 1);
+  EXPECT_NEAR(telemetry[2].position, -30, 1);
+  EXPECT_GT(link.counters().replies, 100u);
+}
 
 TEST(ThreadedLink, SendsTheNewestFrameFromItsOwnThread) {
   StallableLink inner;

@@ -41,6 +41,7 @@ enum class FaultCause {
   non_finite,        ///< a NaN or infinity reached the limiter (channel)
   device_overheat,   ///< a device reported over-temperature (channel)
   device_overload,   ///< a device reported overload (channel)
+  device_error,      ///< a device reported another hardware error: voltage, encoder... (channel)
   deadline_budget,   ///< more deadline misses than allowed
 };
 const char* to_string(FaultCause c) noexcept;
@@ -109,6 +110,12 @@ class Controller {
   /// Checked against the last command on the next tick. Real-time safe.
   void feed_back(std::span<const double> measured, std::span<const bool> known) noexcept;
 
+  /// Telemetry from the links (Link::read_telemetry), indexed by channel: each entry refreshed
+  /// since the last call (its `updates` grew) feeds its position to the tracking check, and its
+  /// device fault bits latch device_overheat / device_overload / device_error faults on that
+  /// channel (value: temperature, load, or the fault bits). Real-time safe.
+  void feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept;
+
   /// faulted -> disabled, clearing the latched fault, once the fail-safe motions are over.
   /// Returns false (and changes nothing) otherwise.
   bool reset() noexcept;
@@ -161,6 +168,7 @@ class Controller {
   std::vector<double> heading_;
   std::vector<double> measured_;
   std::vector<char> measured_known_;
+  std::vector<std::uint64_t> telemetry_seen_;  ///< per channel: `updates` at the last feed_telemetry
   std::vector<char> link_dead_;
   std::array<StageTime, kStageCount> stage_times_{};
   Phase phase_ = Phase::disabled;

@@ -42,6 +42,11 @@ class ThreadedLink final : public firmware_iface::ActuatorLink {
   void release_channel(std::size_t channel) noexcept override { inner_.release_channel(channel); }
   std::uint64_t saturated_pulses() const noexcept override { return inner_.saturated_pulses(); }
   const std::string& describe() const noexcept override { return inner_.describe(); }
+  /// The newest telemetry the I/O thread brought back (through a second mailbox). Tick thread
+  /// only; real-time safe.
+  void read_telemetry(std::span<firmware_iface::ChannelTelemetry> out) const noexcept override;
+  /// Forwarded: the inner link's counters are readable from any thread.
+  firmware_iface::LinkCounters counters() const noexcept override { return inner_.counters(); }
 
   /// Sends the I/O thread completed.
   std::uint64_t completed_sends() const noexcept { return completions_.load(std::memory_order_acquire); }
@@ -52,6 +57,9 @@ class ThreadedLink final : public firmware_iface::ActuatorLink {
   firmware_iface::ActuatorLink& inner_;
   FrameMailbox mailbox_;
   std::vector<double> io_frame_;  ///< I/O thread's copy
+  mutable LatestFrameMailbox<firmware_iface::ChannelTelemetry> telemetry_mailbox_;  // reading is logically const
+  std::vector<firmware_iface::ChannelTelemetry> io_telemetry_;  ///< I/O thread's copy
+  mutable std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< tick thread's newest
   std::uint32_t watchdog_ticks_;
   std::uint32_t ticks_without_completion_ = 0;  ///< tick thread only
   std::uint64_t last_seen_completions_ = 0;    ///< tick thread only
