@@ -71,17 +71,106 @@ int maestro_channels_for_model(const YamlRef& node) {
   node.fail("unknown Maestro model " + node.describe() + "; expected one of: micro6, mini12, mini18, mini24");
 }
 
+/// What each protocol's device accepts on its serial side.
+struct ProtocolFacts {
+  control::Protocol protocol;
+  const char* name;
+  int default_baud;
+  std::vector<int> bauds;  ///< the rates the device can do; empty: any standard rate
+  const char* bauds_text;
+};
+
+const std::vector<ProtocolFacts>& protocol_facts() {
+  static const std::vector<ProtocolFacts> facts{
+      {control::Protocol::maestro, "maestro", 115200, {}, "300 to 200000"},
+      {control::Protocol::dynamixel, "dynamixel", 57600, {9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000},
+       "9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000"},
+      {control::Protocol::feetech, "feetech", 1000000, {38400, 57600, 115200, 500000, 1000000},
+       "38400, 57600, 115200, 500000, 1000000"},
+      {control::Protocol::ssc32, "ssc32", 9600, {2400, 9600, 38400, 115200}, "2400, 9600, 38400, 115200"},
+      {control::Protocol::dmx, "dmx", 57600, {}, "any (the widget is a USB device)"},
+  };
+  return facts;
+}
+
+const ProtocolFacts& facts_of(control::Protocol p) {
+  for (const ProtocolFacts& f : protocol_facts())
+    if (f.protocol == p) return f;
+  return protocol_facts().front();
+}
+
+std::string protocol_names() {
+  std::string names;
+  for (const ProtocolFacts& f : protocol_facts()) names += (names.empty() ? "" : ", ") + std::string(f.name);
+  return names;
+}
+
+void read_servo_bus(const YamlRef& node, const std::string& what, LinkSpec& link) {
+  const bool feetech = link.protocol == control::Protocol::feetech;
+  if (feetech) node.expect_only_keys({"series", "readback", "reply_timeout_ms", "retries"}, what);
+  else node.expect_only_keys({"readback", "reply_timeout_ms", "retries"}, what);
+  if (auto r = node.find("readback")) {
+    const std::string mode = r->as_string("readback");
+    if (mode == "none") link.bus.readback = control::Readback::none;
+    else if (mode == "position") link.bus.readback = control::Readback::position;
+    else if (mode == "full") link.bus.readback = control::Readback::full;
+    else r->fail("unknown readback " + r->describe() + "; expected one of: none, position, full");
+  }
+  if (auto t = node.find("reply_timeout_ms")) {
+    const long long ms = t->as_integer("reply_timeout_ms");
+    if (ms < 1 || ms > 1000) t->fail("expected reply_timeout_ms from 1 to 1000, found " + t->describe());
+    link.bus.reply_timeout_ms = static_cast<int>(ms);
+  }
+  if (auto r = node.find("retries")) {
+    const long long n = r->as_integer("retries");
+    if (n < 0 || n > 10) r->fail("expected retries from 0 to 10, found " + r->describe());
+    link.bus.retries = static_cast<int>(n);
+  }
+  if (auto series = node.find("series")) {
+    const std::string sname = series->as_string("the Feetech series");
+    if (sname == "scs") link.bus.scs = true;
+    else if (sname != "sts") series->fail("unknown Feetech series " + series->describe() + "; expected one of: sts, scs");
+  }
+}
+
 LinkSpec read_link(const std::string& name, const YamlRef& node) {
   const std::string what = "link '" + name + "'";
-  node.expect_only_keys({"port", "baud", "watchdog_ms", "maestro"}, what);
+  node.expect_only_keys({"port", "baud", "watchdog_ms", "maestro", "dynamixel", "feetech", "ssc32", "dmx"}, what);
   LinkSpec link;
   link.name = name;
   link.where = node.where();
   link.port = node.at("port", what).as_string("the port of " + what + " (a device path such as /dev/ttyACM0, or sim)");
+
+  // The protocol is the one settings block the link has: maestro: {...}, dynamixel: {} ...
+  std::optional<YamlRef> settings;
+  for (const ProtocolFacts& f : protocol_facts()) {
+    auto block = node.find(f.name);
+    if (!block) continue;
+    if (settings)
+      block->fail(what + " names two protocols; expected exactly one of: " + protocol_names());
+    settings = block;
+    link.protocol = f.protocol;
+  }
+  if (!settings)
+    node.fail("expected " + what + " to name its protocol with a settings block, one of: " + protocol_names() +
+              " (for example `dynamixel: {}`)");
+  if (!settings->node.IsNull() && !settings->node.IsMap())
+    settings->fail("expected the " + std::string(to_string(link.protocol)) + " settings of " + what +
+                   " to be a map (use {} for the defaults)");
+
+  const ProtocolFacts& facts = facts_of(link.protocol);
+  link.baud = facts.default_baud;
   if (auto baud = node.find("baud")) {
     const long long b = baud->as_integer("the baud rate of " + what);
-    if (b <= 0 || b > 4'000'000 || !firmware_iface::SerialTransport::is_supported_baud(static_cast<int>(b)))
+    const bool standard = b > 0 && b <= 4'000'000 && firmware_iface::SerialTransport::is_supported_baud(static_cast<int>(b));
+    if (!standard)
       baud->fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " + baud->describe());
+    const bool device_can = facts.bauds.empty()
+                                ? (link.protocol != control::Protocol::maestro || (b >= 300 && b <= 200000))
+                                : std::find(facts.bauds.begin(), facts.bauds.end(), b) != facts.bauds.end();
+    if (!device_can)
+      baud->fail("a " + std::string(facts.name) + " device cannot run at " + baud->describe() + " baud; expected one of: " +
+                 facts.bauds_text);
     link.baud = static_cast<int>(b);
   }
   if (auto w = node.find("watchdog_ms")) {
@@ -89,26 +178,61 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
     if (ms < 1 || ms > 60000) w->fail("expected watchdog_ms of " + what + " from 1 to 60000 milliseconds, found " + w->describe());
     link.watchdog_s = ms / 1000.0;
   }
-  if (auto m = node.find("maestro")) {
-    const std::string mwhat = "the maestro settings of " + what;
-    m->expect_only_keys({"model", "device_number", "crc", "baud_detect"}, mwhat);
-    if (auto model = m->find("model")) link.maestro.channel_count = maestro_channels_for_model(*model);
-    if (auto dev = m->find("device_number")) {
-      const long long d = dev->as_integer("the device number");
-      if (d < 0 || d > 127) dev->fail("expected a device number from 0 to 127, found " + dev->describe());
-      link.maestro.pololu_form = true;
-      link.maestro.device_number = static_cast<std::uint8_t>(d);
-    }
-    if (auto crc = m->find("crc")) link.maestro.crc = crc->as_bool("crc");
-    if (auto bd = m->find("baud_detect")) link.maestro.baud_detect = bd->as_bool("baud_detect");
+  const std::string swhat = "the " + std::string(facts.name) + " settings of " + what;
+  const YamlRef& m = *settings;
+  switch (link.protocol) {
+    case control::Protocol::maestro:
+      m.expect_only_keys({"model", "device_number", "crc", "baud_detect"}, swhat);
+      if (auto model = m.find("model")) link.maestro.channel_count = maestro_channels_for_model(*model);
+      if (auto dev = m.find("device_number")) {
+        const long long d = dev->as_integer("the device number");
+        if (d < 0 || d > 127) dev->fail("expected a device number from 0 to 127, found " + dev->describe());
+        link.maestro.pololu_form = true;
+        link.maestro.device_number = static_cast<std::uint8_t>(d);
+      }
+      if (auto crc = m.find("crc")) link.maestro.crc = crc->as_bool("crc");
+      if (auto bd = m.find("baud_detect")) link.maestro.baud_detect = bd->as_bool("baud_detect");
+      break;
+    case control::Protocol::dynamixel:
+    case control::Protocol::feetech: read_servo_bus(m, swhat, link); break;
+    case control::Protocol::ssc32:
+    case control::Protocol::dmx: m.expect_only_keys({}, swhat); break;
   }
   return link;
+}
+
+/// How an actuator is addressed and calibrated on each protocol.
+struct AddressRule {
+  const char* key;         ///< device_channel, id or address
+  long long low, high;     ///< valid addresses
+  const char* cal_min;     ///< calibration keys
+  const char* cal_max;
+  const char* trim;
+  double device_low, device_high;  ///< the device's own range
+  const char* unit;
+};
+
+AddressRule address_rule(const LinkSpec& link, bool fine) {
+  switch (link.protocol) {
+    case control::Protocol::maestro:
+      return {"device_channel", 0, link.maestro.channel_count - 1, "min_us", "max_us", "trim_us", 64, 4000, "µs"};
+    case control::Protocol::ssc32: return {"device_channel", 0, 31, "min_us", "max_us", "trim_us", 500, 2500, "µs"};
+    case control::Protocol::dynamixel:
+      return {"id", 0, 252, "min_position", "max_position", "trim", 0, 4095, "position pulses"};
+    case control::Protocol::feetech:
+      return {"id", 0, 253, "min_position", "max_position", "trim", 0, link.bus.scs ? 1023.0 : 4095.0, "position steps"};
+    case control::Protocol::dmx:
+      return {"address", 1, fine ? 511 : 512, "min_level", "max_level", "trim", 0, fine ? 65535.0 : 255.0, "DMX level"};
+  }
+  return {"device_channel", 0, 0, "min", "max", "trim", 0, 0, ""};
 }
 
 ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t index) {
   const std::string what = "actuator " + std::to_string(index + 1);
   node.expect_only_keys(
-      {"channel", "protocol", "link", "device_channel", "calibration", "speed", "acceleration", "failsafe"}, what);
+      {"channel", "protocol", "link", "device_channel", "id", "address", "fine", "calibration", "speed", "acceleration",
+       "failsafe"},
+      what);
   ActuatorSpec a;
   a.where = node.where();
 
@@ -119,10 +243,6 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   a.channel = *ci;
   const ChannelSpec& ch = rig.channels[a.channel];
 
-  const YamlRef protocol = node.at("protocol", what);
-  if (protocol.as_string("the protocol of " + what) != "maestro")
-    protocol.fail("unknown protocol " + protocol.describe() + "; expected one of: maestro");
-
   const YamlRef link = node.at("link", what);
   const std::string link_name = link.as_string("the link of " + what);
   const auto li = rig.find_link(link_name);
@@ -132,35 +252,64 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     link.fail("unknown link '" + link_name + "'; expected one of the rig's links: " + names);
   }
   a.link = *li;
+  const LinkSpec& spec = rig.links[a.link];
+  const std::string protocol_name = to_string(spec.protocol);
+  if (auto protocol = node.find("protocol")) {
+    const std::string p = protocol->as_string("the protocol of " + what);
+    bool known = false;
+    for (const ProtocolFacts& f : protocol_facts()) known = known || p == f.name;
+    if (!known) protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + protocol_names());
+    if (p != protocol_name)
+      protocol->fail("link '" + link_name + "' speaks " + protocol_name + ", not " + p + "; expected protocol: " + protocol_name);
+  }
 
-  const YamlRef dc = node.at("device_channel", what);
-  const long long device_channel = dc.as_integer("the device channel of " + what);
-  const int count = rig.links[a.link].maestro.channel_count;
-  if (device_channel < 0 || device_channel >= count)
-    dc.fail("expected a device channel from 0 to " + std::to_string(count - 1) + " (the Maestro on link '" + link_name +
-            "' has " + std::to_string(count) + " channels), found " + dc.describe());
-  a.device_channel = static_cast<int>(device_channel);
+  if (auto fine = node.find("fine")) {
+    if (spec.protocol != control::Protocol::dmx) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
+    a.fine = fine->as_bool("fine");
+  }
+  const AddressRule rule = address_rule(spec, a.fine);
+  for (const char* key : {"device_channel", "id", "address"})
+    if (std::string(key) != rule.key)
+      if (auto wrong = node.find(key))
+        wrong->fail(std::string(key) + " does not address a " + protocol_name + " actuator; expected " + rule.key);
+  const YamlRef dc = node.at(rule.key, what + " on " + protocol_name + " link '" + link_name + "'");
+  const long long address = dc.as_integer(std::string("the ") + rule.key + " of " + what);
+  if (address < rule.low || address > rule.high)
+    dc.fail("expected " + std::string(rule.key) + " from " + std::to_string(rule.low) + " to " + std::to_string(rule.high) +
+            " on " + protocol_name + " link '" + link_name + "', found " + dc.describe());
+  a.device_channel = static_cast<int>(address);
 
-  const YamlRef cal = node.at("calibration", what);
-  cal.expect_only_keys({"min_us", "max_us", "reverse", "trim_us"}, "the calibration of " + what);
   a.calibration.channel_min = ch.min;
   a.calibration.channel_max = ch.max;
-  auto pulse = [&](const char* key) {
-    const YamlRef n = cal.at(key, "the calibration of " + what);
-    const double us = n.as_double(std::string(key) + " (pulse width in microseconds)");
-    if (us < 64 || us > 4000) n.fail(std::string("expected ") + key + " to be a pulse width from 64 to 4000 µs, found " + n.describe());
-    return us;
+  a.calibration.device_at_min = rule.device_low;
+  a.calibration.device_at_max = rule.device_high;
+  const std::string cwhat = "the calibration of " + what;
+  auto device_value = [&](const YamlRef& n, const char* key) {
+    const double v = n.as_double(std::string(key) + " (" + rule.unit + ")");
+    if (v < rule.device_low || v > rule.device_high)
+      n.fail(std::string("expected ") + key + " from " + format_number(rule.device_low) + " to " + format_number(rule.device_high) +
+             " " + rule.unit + ", found " + n.describe());
+    return v;
   };
-  a.calibration.device_at_min = pulse("min_us");
-  a.calibration.device_at_max = pulse("max_us");
-  if (a.calibration.device_at_min == a.calibration.device_at_max)
-    cal.fail("expected min_us and max_us to differ (both are " + format_number(a.calibration.device_at_min) + " µs)");
-  if (auto r = cal.find("reverse")) a.calibration.reverse = r->as_bool("reverse");
-  if (auto t = cal.find("trim_us")) {
-    a.calibration.trim = t->as_double("trim_us");
-    if (a.calibration.device_low() < 64 || a.calibration.device_high() > 4000)
-      t->fail("expected the trimmed pulse window to stay within 64 to 4000 µs, found [" + format_number(a.calibration.device_low()) +
-              ", " + format_number(a.calibration.device_high()) + "] µs");
+  // A DMX dimmer spans its whole range by default; servos must be calibrated.
+  const auto cal_node = spec.protocol == control::Protocol::dmx ? node.find("calibration")
+                                                               : std::optional<YamlRef>(node.at("calibration", what));
+  if (cal_node) {
+    const YamlRef& cal = *cal_node;
+    cal.expect_only_keys({rule.cal_min, rule.cal_max, "reverse", rule.trim}, cwhat);
+    a.calibration.device_at_min = device_value(cal.at(rule.cal_min, cwhat), rule.cal_min);
+    a.calibration.device_at_max = device_value(cal.at(rule.cal_max, cwhat), rule.cal_max);
+    if (a.calibration.device_at_min == a.calibration.device_at_max)
+      cal.fail(std::string("expected ") + rule.cal_min + " and " + rule.cal_max + " to differ (both are " +
+               format_number(a.calibration.device_at_min) + " " + rule.unit + ")");
+    if (auto r = cal.find("reverse")) a.calibration.reverse = r->as_bool("reverse");
+    if (auto t = cal.find(rule.trim)) {
+      a.calibration.trim = t->as_double(rule.trim);
+      if (a.calibration.device_low() < rule.device_low || a.calibration.device_high() > rule.device_high)
+        t->fail("expected the trimmed window to stay within " + format_number(rule.device_low) + " to " +
+                format_number(rule.device_high) + " " + rule.unit + ", found [" + format_number(a.calibration.device_low()) +
+                ", " + format_number(a.calibration.device_high()) + "]");
+    }
   }
   if (auto f = node.find("failsafe")) {
     const std::string action = f->as_string("the fail-safe action of " + what);
@@ -212,9 +361,13 @@ control::Rig load_rig_file(const std::string& path) {
   for (std::size_t i = 0; i < actuators.size(); ++i) {
     const YamlRef node = actuators[i];
     ActuatorSpec a = read_actuator(rig, node, i);
-    if (!used.insert({a.link, a.device_channel}).second)
-      node.at("device_channel", "").fail("device channel " + std::to_string(a.device_channel) + " of link '" +
-                                         rig.links[a.link].name + "' is used by two actuators");
+    const LinkSpec& link = rig.links[a.link];
+    const AddressRule rule = address_rule(link, a.fine);
+    // A 16-bit DMX channel takes two slots.
+    for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
+      if (!used.insert({a.link, slot}).second)
+        node.at(rule.key, "").fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + to_string(link.protocol) +
+                                   " link '" + link.name + "' is used by two actuators");
     rig.actuators.push_back(std::move(a));
   }
   return rig;

@@ -11,6 +11,17 @@ const char* to_string(Failsafe f) noexcept {
   return "unknown";
 }
 
+const char* to_string(Protocol p) noexcept {
+  switch (p) {
+    case Protocol::maestro: return "maestro";
+    case Protocol::dynamixel: return "dynamixel";
+    case Protocol::feetech: return "feetech";
+    case Protocol::ssc32: return "ssc32";
+    case Protocol::dmx: return "dmx";
+  }
+  return "unknown";
+}
+
 std::optional<std::size_t> Rig::find_channel(std::string_view wanted) const {
   for (std::size_t i = 0; i < channels.size(); ++i)
     if (channels[i].name == wanted) return i;

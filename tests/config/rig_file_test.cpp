@@ -86,11 +86,18 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
   EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw,", "{channel: chin,")),
             ":8:15: unknown channel 'chin'; expected one of the rig's channels: jaw, pan");
   EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),
-            ":8:30: unknown protocol 'dynamixl'; expected one of: maestro");
+            ":8:30: unknown protocol 'dynamixl'; expected one of: maestro, dynamixel, feetech, ssc32, dmx");
+  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixel")),
+            ":8:30: link 'head' speaks maestro, not dynamixel; expected protocol: maestro");
   EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 12")),
-            ":9:67: expected a device channel from 0 to 11 (the Maestro on link 'head' has 12 channels), found '12'");
+            ":9:67: expected device_channel from 0 to 11 on maestro link 'head', found '12'");
   EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 0")),
-            ":9:67: device channel 0 of link 'head' is used by two actuators");
+            ":9:67: device_channel 0 of maestro link 'head' is used by two actuators");
+  EXPECT_EQ(error_of(replace(kGoodRig, ", maestro: {model: mini12}", "")),
+            ":3:9: expected link 'head' to name its protocol with a settings block, one of: maestro, dynamixel, feetech, "
+            "ssc32, dmx (for example `dynamixel: {}`)");
+  EXPECT_EQ(error_of(replace(kGoodRig, "maestro: {model: mini12}", "maestro: {model: mini12}, dmx: {}")),
+            ":3:66: link 'head' names two protocols; expected exactly one of: maestro, dynamixel, feetech, ssc32, dmx");
   EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: -3, rest: 0")),
             ":5:33: expected max of channel 'jaw' to be greater than its min 0, found -3");
   EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 40")),
@@ -111,6 +118,80 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
             ":8:83: missing field 'max_us' in the calibration of actuator 1");
   EXPECT_EQ(error_of(replace(kGoodRig, "link: head, device_channel: 0", "link: body, device_channel: 0")),
             ":8:45: unknown link 'body'; expected one of the rig's links: head");
+}
+
+const char* kBusRig = R"(name: bus
+links:
+  arm: {port: sim, baud: 1000000, dynamixel: {readback: position, reply_timeout_ms: 5, retries: 2}}
+  legs: {port: sim, feetech: {series: scs}}
+  board: {port: sim, baud: 115200, ssc32: {}}
+  lights: {port: sim, dmx: {}}
+channels:
+  shoulder: {unit: deg, min: -90, max: 90, rest: 0}
+  knee: {unit: deg, min: 0, max: 120, rest: 10}
+  tail: {unit: deg, min: -45, max: 45, rest: 0}
+  glow: {unit: '%', min: 0, max: 100, rest: 0}
+  spot: {unit: '%', min: 0, max: 100, rest: 0}
+actuators:
+  - {channel: shoulder, link: arm, id: 1, calibration: {min_position: 1024, max_position: 3072}, failsafe: release}
+  - {channel: knee, link: legs, id: 7, calibration: {min_position: 200, max_position: 800, reverse: true}}
+  - {channel: tail, link: board, device_channel: 31, calibration: {min_us: 900, max_us: 2100}}
+  - {channel: glow, link: lights, address: 1}
+  - {channel: spot, link: lights, address: 2, fine: true, calibration: {min_level: 0, max_level: 65535}}
+)";
+
+TEST(RigFile, EveryProtocolLoadsWithItsAddressingAndSettings) {
+  const control::Rig rig = load_rig_file(write_temp("bus.yaml", kBusRig));
+  ASSERT_EQ(rig.links.size(), 4u);
+  EXPECT_EQ(rig.links[0].protocol, control::Protocol::dynamixel);
+  EXPECT_EQ(rig.links[0].bus.readback, control::Readback::position);
+  EXPECT_EQ(rig.links[0].bus.reply_timeout_ms, 5);
+  EXPECT_EQ(rig.links[0].bus.retries, 2);
+  EXPECT_EQ(rig.links[1].protocol, control::Protocol::feetech);
+  EXPECT_TRUE(rig.links[1].bus.scs);
+  EXPECT_EQ(rig.links[1].baud, 1000000);  // Feetech's factory rate
+  EXPECT_EQ(rig.links[2].protocol, control::Protocol::ssc32);
+  EXPECT_EQ(rig.links[3].protocol, control::Protocol::dmx);
+  EXPECT_EQ(rig.actuators[0].device_channel, 1);
+  EXPECT_DOUBLE_EQ(rig.actuators[0].calibration.device_at_max, 3072);
+  EXPECT_EQ(rig.actuators[1].device_channel, 7);
+  EXPECT_TRUE(rig.actuators[1].calibration.reverse);
+  EXPECT_EQ(rig.actuators[2].device_channel, 31);
+  // A dimmer without calibration spans the full 8-bit range.
+  EXPECT_DOUBLE_EQ(rig.actuators[3].calibration.device_at_min, 0);
+  EXPECT_DOUBLE_EQ(rig.actuators[3].calibration.device_at_max, 255);
+  EXPECT_TRUE(rig.actuators[4].fine);
+  EXPECT_DOUBLE_EQ(rig.actuators[4].calibration.device_at_max, 65535);
+}
+
+TEST(RigFile, RejectsBadBusEntriesWithWhereAndWhat) {
+  EXPECT_EQ(error_of(replace(kBusRig, "baud: 1000000, dynamixel", "baud: 500000, dynamixel")),
+            ":3:26: a dynamixel device cannot run at '500000' baud; expected one of: 9600, 57600, 115200, 1000000, 2000000, "
+            "3000000, 4000000");
+  EXPECT_EQ(error_of(replace(kBusRig, "baud: 115200, ssc32", "baud: 57600, ssc32")),
+            ":5:28: a ssc32 device cannot run at '57600' baud; expected one of: 2400, 9600, 38400, 115200");
+  EXPECT_EQ(error_of(replace(kBusRig, "id: 7,", "id: 254,")),
+            ":15:37: expected id from 0 to 253 on feetech link 'legs', found '254'");
+  EXPECT_EQ(error_of(replace(kBusRig, "link: arm, id: 1,", "link: arm, id: 253,")),
+            ":14:40: expected id from 0 to 252 on dynamixel link 'arm', found '253'");
+  EXPECT_EQ(error_of(replace(kBusRig, "link: legs, id: 7,", "link: arm, id: 1,")),
+            ":15:36: id 1 of dynamixel link 'arm' is used by two actuators");
+  EXPECT_EQ(error_of(replace(kBusRig, "address: 1}", "address: 3}")),
+            ":18:44: address 3 of dmx link 'lights' is used by two actuators");
+  EXPECT_EQ(error_of(replace(kBusRig, "address: 2, fine", "address: 512, fine")),
+            ":18:44: expected address from 1 to 511 on dmx link 'lights', found '512'");
+  EXPECT_EQ(error_of(replace(kBusRig, "link: arm, id: 1", "link: arm, device_channel: 1")),
+            ":14:52: device_channel does not address a dynamixel actuator; expected id");
+  EXPECT_EQ(error_of(replace(kBusRig, "max_position: 800", "max_position: 1800")),
+            ":15:87: expected max_position from 0 to 1023 position steps, found '1800'");
+  EXPECT_EQ(error_of(replace(kBusRig, "readback: position", "readback: everything")),
+            ":3:57: unknown readback 'everything'; expected one of: none, position, full");
+  EXPECT_EQ(error_of(replace(kBusRig, "series: scs", "series: sms")),
+            ":4:39: unknown Feetech series 'sms'; expected one of: sts, scs");
+  EXPECT_EQ(error_of(replace(kBusRig, "address: 1}", "address: 1, fine: true}")),
+            ":18:44: address 2 of dmx link 'lights' is used by two actuators");
+  EXPECT_EQ(error_of(replace(kBusRig, "device_channel: 31,", "device_channel: 31, fine: true,")),
+            ":16:60: fine (16-bit DMX) applies to dmx links only; link 'board' speaks ssc32");
 }
 
 }  // namespace

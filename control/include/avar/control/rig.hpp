@@ -32,7 +32,15 @@ struct ChannelSpec {
   SourceLocation where;
 };
 
-enum class Protocol { maestro };
+/// What a link speaks; every actuator on a link speaks its link's protocol.
+enum class Protocol {
+  maestro,    ///< Pololu Maestro (hobby servos, pulse widths)
+  dynamixel,  ///< ROBOTIS DYNAMIXEL Protocol 2.0 smart servos (X-series)
+  feetech,    ///< Feetech SCS / STS smart servos
+  ssc32,      ///< Lynxmotion SSC-32 / SSC-32U (hobby servos, pulse widths)
+  dmx,        ///< ENTTEC DMX USB Pro (one DMX512 universe)
+};
+const char* to_string(Protocol p) noexcept;
 
 /// Settings of a Pololu Maestro link.
 struct MaestroOptions {
@@ -43,6 +51,21 @@ struct MaestroOptions {
   bool baud_detect = false;      ///< send 0xAA first (device in "UART, detect baud rate" mode)
 };
 
+/// What a smart-servo bus reads back every tick.
+enum class Readback {
+  none,      ///< write only
+  position,  ///< present position
+  full,      ///< position, load, temperature (and hardware errors on alert)
+};
+
+/// Settings of a smart-servo bus (DYNAMIXEL, Feetech).
+struct ServoBusOptions {
+  Readback readback = Readback::full;
+  int reply_timeout_ms = 10;  ///< longest wait for one exchange's replies
+  int retries = 1;            ///< re-reads per exchange for lost replies
+  bool scs = false;           ///< Feetech: SCS series (big-endian, 0..1023) instead of STS
+};
+
 /// One physical connection. port "sim" means: a simulated device on a pseudo-terminal.
 struct LinkSpec {
   std::string name;
@@ -51,6 +74,7 @@ struct LinkSpec {
   int baud = 115200;
   double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
   MaestroOptions maestro;
+  ServoBusOptions bus;
   SourceLocation where;
 
   bool simulated() const { return port == "sim"; }
@@ -69,7 +93,9 @@ const char* to_string(Failsafe f) noexcept;
 struct ActuatorSpec {
   std::size_t channel = 0;  ///< index into Rig::channels
   std::size_t link = 0;     ///< index into Rig::links
-  int device_channel = 0;   ///< the device's own channel number
+  /// Where the actuator is on its link: Maestro / SSC-32 channel, servo ID, or DMX start address.
+  int device_channel = 0;
+  bool fine = false;        ///< DMX: 16-bit (coarse at the address, fine at the next slot)
   firmware_iface::LinearCalibration calibration;
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
