@@ -1,11 +1,14 @@
 #include "avar/figure_links.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/sim_dynamixel.hpp"
 #include "avar/sim/sim_maestro.hpp"
 
 namespace avar::app {
@@ -29,13 +32,40 @@ firmware_iface::MaestroLinkConfig maestro_config(const control::Rig& rig, std::s
   return config;
 }
 
+firmware_iface::DynamixelLinkConfig dynamixel_config(const control::Rig& rig, std::size_t link) {
+  const control::LinkSpec& spec = rig.links[link];
+  firmware_iface::DynamixelLinkConfig config;
+  switch (spec.bus.readback) {
+    case control::Readback::none: config.readback = firmware_iface::DynamixelReadback::none; break;
+    case control::Readback::position: config.readback = firmware_iface::DynamixelReadback::position; break;
+    case control::Readback::full: config.readback = firmware_iface::DynamixelReadback::full; break;
+  }
+  config.reply_timeout = std::chrono::milliseconds(spec.bus.reply_timeout_ms);
+  config.retries = static_cast<std::uint32_t>(spec.bus.retries);
+  // The watchdog decides when silence is a fault: a servo may miss that many exchanges.
+  config.silent_exchanges = std::max<std::uint32_t>(2, static_cast<std::uint32_t>(std::ceil(spec.watchdog_s * rig.rate_hz)));
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    firmware_iface::DynamixelActuator d;
+    d.channel = a.channel;
+    d.id = static_cast<std::uint8_t>(a.device_channel);
+    d.calibration = a.calibration;
+    d.speed_limit = a.speed_limit;
+    d.acceleration_limit = a.acceleration_limit;
+    config.actuators.push_back(d);
+  }
+  return config;
+}
+
 struct FigureLinks::Entry {
   std::size_t link_index = 0;
   bool simulated = false;
-  std::unique_ptr<sim::SimMaestro> device;
+  std::unique_ptr<sim::ByteDevice> device;
+  /// The simulated device's true position of an actuator, in channel units (ground truth).
+  std::function<double(const control::ActuatorSpec&)> true_position;
   std::unique_ptr<sim::PtyDeviceHost> host;
   std::unique_ptr<firmware_iface::SerialTransport> transport;
-  std::unique_ptr<firmware_iface::MaestroLink> link;
+  std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
     return threaded ? static_cast<firmware_iface::ActuatorLink*>(threaded.get()) : link.get();
@@ -64,6 +94,22 @@ sim::SimMaestroConfig simulated_maestro(const control::Rig& rig, std::size_t lin
   return config;
 }
 
+/// Simulated DYNAMIXEL servos with the rig's IDs, each parked at its rest pose.
+sim::SimDynamixelConfig simulated_dynamixel(const control::Rig& rig, std::size_t link) {
+  sim::SimDynamixelConfig config;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    sim::SimDynamixelServo servo;
+    servo.id = static_cast<std::uint8_t>(a.device_channel);
+    servo.initial_position = static_cast<std::int32_t>(std::lround(a.calibration.to_device(rig.channels[a.channel].rest)));
+    config.servos.push_back(servo);
+  }
+  return config;
+}
+
+/// The simulated device of a link, and how to read an actuator's true position off it.
+void make_simulated_device(const control::Rig& rig, std::size_t link, FigureLinks::Entry& e);
+
 }  // namespace
 
 FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection) : rig_(rig) {
@@ -77,18 +123,69 @@ FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection
     std::string port = selection.port.value_or(rig.links[i].port);
     entry->simulated = selection.simulate_all || port == "sim";
     if (entry->simulated) {
-      entry->device = std::make_unique<sim::SimMaestro>(simulated_maestro(rig, i));
+      make_simulated_device(rig, i, *entry);
       entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device, sim::PtyDeviceHost::Clock::stepped);
       port = entry->host->slave_path();
     }
     entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-    entry->link = std::make_unique<firmware_iface::MaestroLink>(*entry->transport, maestro_config(rig, i));
+    entry->link = make_link(rig, i, *entry->transport);
     if (selection.threaded_rate_hz > 0) {
       const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
       entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
     }
     entries_.push_back(std::move(entry));
   }
+}
+
+namespace {
+
+void make_simulated_device(const control::Rig& rig, std::size_t link, FigureLinks::Entry& e) {
+  switch (rig.links[link].protocol) {
+    case control::Protocol::maestro: {
+      auto device = std::make_unique<sim::SimMaestro>(simulated_maestro(rig, link));
+      sim::SimMaestro* d = device.get();
+      e.true_position = [d](const control::ActuatorSpec& a) {
+        return a.calibration.to_channel(d->servo_position_us(a.device_channel));
+      };
+      e.device = std::move(device);
+      return;
+    }
+    case control::Protocol::dynamixel: {
+      auto device = std::make_unique<sim::SimDynamixel>(simulated_dynamixel(rig, link));
+      sim::SimDynamixel* d = device.get();
+      // Servos are listed in actuator order; find an actuator's servo by its ID.
+      std::vector<std::uint8_t> ids;
+      for (const control::ActuatorSpec& a : rig.actuators)
+        if (a.link == link) ids.push_back(static_cast<std::uint8_t>(a.device_channel));
+      e.true_position = [d, ids](const control::ActuatorSpec& a) {
+        const auto at = std::find(ids.begin(), ids.end(), static_cast<std::uint8_t>(a.device_channel)) - ids.begin();
+        return a.calibration.to_channel(d->position(static_cast<std::size_t>(at)));
+      };
+      e.device = std::move(device);
+      return;
+    }
+    case control::Protocol::feetech:
+    case control::Protocol::ssc32:
+    case control::Protocol::dmx: break;
+  }
+  throw InputError({rig.file, rig.links[link].where.line, rig.links[link].where.column},
+                   std::string("no simulated device for protocol ") + control::to_string(rig.links[link].protocol));
+}
+
+}  // namespace
+
+std::unique_ptr<firmware_iface::ActuatorLink> make_link(const control::Rig& rig, std::size_t link,
+                                                        firmware_iface::ByteTransport& transport) {
+  switch (rig.links[link].protocol) {
+    case control::Protocol::maestro: return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
+    case control::Protocol::dynamixel:
+      return std::make_unique<firmware_iface::DynamixelLink>(transport, dynamixel_config(rig, link));
+    case control::Protocol::feetech:
+    case control::Protocol::ssc32:
+    case control::Protocol::dmx: break;
+  }
+  throw InputError({rig.file, rig.links[link].where.line, rig.links[link].where.column},
+                   std::string("no driver for protocol ") + control::to_string(rig.links[link].protocol));
 }
 
 FigureLinks::~FigureLinks() {
@@ -123,17 +220,21 @@ std::string FigureLinks::describe(std::size_t link) const {
   return (e.simulated ? "simulated " : "") + e.link->describe();
 }
 
+void FigureLinks::read_telemetry(std::span<firmware_iface::ChannelTelemetry> telemetry) const {
+  for (const auto& e : entries_) e->outer()->read_telemetry(telemetry);
+}
+
 void FigureLinks::step_simulation(double dt_s, std::span<double> measured, std::span<bool> known) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
     // Everything sent this tick must have reached the device before its time moves on, so
     // a run on the stepped clock is deterministic.
     e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
-    e->host->with_device([&](auto&) {
-      e->device->advance(dt_s);
+    e->host->with_device([&](sim::ByteDevice& device) {
+      device.advance(dt_s);
       for (const control::ActuatorSpec& a : rig_.actuators) {
         if (a.link != e->link_index) continue;
-        measured[a.channel] = a.calibration.to_channel(e->device->servo_position_us(a.device_channel));
+        measured[a.channel] = e->true_position(a);
         known[a.channel] = true;
       }
     });

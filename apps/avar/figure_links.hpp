@@ -10,6 +10,7 @@
 
 #include "avar/control/rig.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/dynamixel_link.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 
 namespace avar::app {
@@ -24,6 +25,11 @@ struct LinkSelection {
 
 /// The Maestro driver settings for one link of the rig (calibrations and device-side limits).
 firmware_iface::MaestroLinkConfig maestro_config(const control::Rig& rig, std::size_t link);
+/// The DYNAMIXEL driver settings for one link of the rig.
+firmware_iface::DynamixelLinkConfig dynamixel_config(const control::Rig& rig, std::size_t link);
+/// The driver for one link of the rig, by its protocol, over `transport` (borrowed).
+std::unique_ptr<firmware_iface::ActuatorLink> make_link(const control::Rig& rig, std::size_t link,
+                                                        firmware_iface::ByteTransport& transport);
 
 class FigureLinks {
  public:
@@ -46,11 +52,15 @@ class FigureLinks {
   /// writes their positions in channel units to measured[channel] (known[channel] = true).
   void step_simulation(double dt_s, std::span<double> measured, std::span<bool> known);
 
+  /// Every link's newest device telemetry into telemetry[channel] (see ActuatorLink).
+  void read_telemetry(std::span<firmware_iface::ChannelTelemetry> telemetry) const;
+
   /// Total bytes written to every link.
   std::uint64_t bytes_sent() const;
 
- private:
   struct Entry;
+
+ private:
   const control::Rig& rig_;
   std::vector<std::unique_ptr<Entry>> entries_;
 };

@@ -55,7 +55,15 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   const control::Rig& rig = loaded.rig;
   out << "\nplayed '" << loaded.show.name << "' on rig '" << rig.name << "' at " << rate_hz << " Hz, "
       << (realtime ? "real time" : "simulated time") << '\n';
-  for (std::size_t i = 0; i < rig.links.size(); ++i) out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
+  for (std::size_t i = 0; i < rig.links.size(); ++i) {
+    out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
+    // Smart buses answer: report the health of the wire.
+    const firmware_iface::LinkCounters k = figure.links()[i]->counters();
+    if (k.replies > 0 || k.timeouts > 0)
+      out << "    " << k.exchanges << " exchanges, " << k.replies << " replies, " << k.crc_errors << " CRC errors, "
+          << k.framing_errors << " framing errors, " << k.timeouts << " timeouts, " << k.retries << " retries, "
+          << k.device_errors << " device errors, " << k.reconnects << " reconnects\n";
+  }
   for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
     const PhaseMark& p = recorder.phases()[i];
     if (p.phase == control::Phase::disabled) continue;
@@ -170,8 +178,9 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const std::vector<firmware_iface::ActuatorLink*> links = figure->links();
   for (firmware_iface::ActuatorLink* link : links) {
     if (const Status s = link->start(); s != Status::ok) {
+      const std::string problem = link->start_problem();
       err << "error: " << link->describe() << " did not start: " << to_string(s)
-          << " (check power, cable, the device's serial mode and the baud rate)\n";
+          << (problem.empty() ? "" : ": " + problem) << " (check power, cable, the device's serial mode and the baud rate)\n";
       return kExitFault;
     }
   }

@@ -19,7 +19,9 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
       notices_(notices),
       stats_(channels),
       measured_(channels, std::numeric_limits<double>::quiet_NaN()),
-      known_(new bool[channels]()) {
+      known_(new bool[channels]()),
+      telemetry_(channels),
+      telemetry_seen_(channels, 0) {
   if (keep_samples_) {
     seconds_.reserve(expected_ticks);
     lateness_rows_.reserve(expected_ticks);
@@ -35,9 +37,21 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double l
   const std::span<bool> known(known_.get(), channels_);
   std::fill(known.begin(), known.end(), false);
   if (figure_.any_simulated()) figure_.step_simulation(dt_s, measured_, known);
+  // Positions the devices themselves reported stand in where no simulator knows the truth.
+  figure_.read_telemetry(telemetry_);
+  for (std::size_t c = 0; c < channels_; ++c) {
+    const firmware_iface::ChannelTelemetry& t = telemetry_[c];
+    if (t.updates == telemetry_seen_[c]) continue;
+    telemetry_seen_[c] = t.updates;
+    if (!known[c] && std::isfinite(t.position)) {
+      measured_[c] = t.position;
+      known[c] = true;
+    }
+  }
   for (bool k : known) has_measurements_ = has_measurements_ || k;
   stats_.add(controller.commanded(), measured_, known);
   controller.feed_back(measured_, known);
+  controller.feed_telemetry(telemetry_);
 
   if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
   if (controller.stop_requested() && !stop_announced_) {

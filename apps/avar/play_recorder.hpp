@@ -58,6 +58,8 @@ class PlayRecorder final : public control::TickObserver {
   TrackingStats stats_;
   std::vector<double> measured_;
   std::unique_ptr<bool[]> known_;
+  std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< the devices' newest reports
+  std::vector<std::uint64_t> telemetry_seen_;                ///< per channel: updates already used
   bool has_measurements_ = false;
   std::vector<PhaseMark> phases_;
   double next_progress_s_ = 0;

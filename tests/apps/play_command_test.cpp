@@ -85,6 +85,15 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
 }
 
+TEST(PlayCommand, PlaysTheDynamixelArmOnTheSimulatedBusAndReportsTheWire) {
+  const Result r = avar({"play", AVAR_SOURCE_DIR "/examples/shows/arm-wave.yaml", "--rig",
+                         AVAR_SOURCE_DIR "/examples/rigs/dynamixel-arm.yaml", "--fast", "--no-progress"});
+  ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
+  EXPECT_NE(r.out.find("simulated DYNAMIXEL 2.0 (4 servos)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 0 CRC errors, 0 framing errors, 0 timeouts"), std::string::npos) << r.out;
+  for (const char* channel : {"base", "shoulder", "elbow", "wrist"}) EXPECT_NE(r.out.find(channel), std::string::npos);
+}
+
 TEST(PlayCommand, FastRunsAreDeterministic) {
   const std::string a = testing::temp_path("a.csv");
   const std::string b = testing::temp_path("b.csv");

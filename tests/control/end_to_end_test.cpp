@@ -12,7 +12,11 @@
 #include "avar/firmware_iface/maestro_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/pty_device_host.hpp"
+#include "avar/firmware_iface/dynamixel_codec.hpp"
+#include "avar/firmware_iface/dynamixel_link.hpp"
+#include "avar/sim/sim_dynamixel.hpp"
 #include "avar/sim/sim_maestro.hpp"
+#include "avar/sim/sim_wire.hpp"
 
 namespace avar::control {
 namespace {
@@ -147,6 +151,104 @@ TEST(EndToEnd, ShowThroughRealDriverAndSerialTransportToTheSimulatedMaestro) {
     EXPECT_NEAR(b.device.servo_position_us(2), 1000, 2.5);
     EXPECT_NEAR(b.device.servo_position_us(3), 1500, 2.5);
   });
+}
+
+}  // namespace
+}  // namespace avar::control
+
+namespace avar::control {
+namespace {
+
+/// Two DYNAMIXEL joints; the second servo runs hot. The show keeps them working.
+struct HotBus {
+  Rig rig;
+  playback::Show show;
+  sim::SimDynamixel device;
+  sim::SimWire wire;
+  firmware_iface::DynamixelLink link;
+
+  static Rig make_rig() {
+    Rig r;
+    r.name = "hot";
+    for (const char* name : {"shoulder", "elbow"})
+      r.channels.push_back({.name = name, .unit = "deg", .min = -90, .max = 90, .rest = 0, .max_velocity = 400,
+                            .max_acceleration = 8000, .max_jerk = 400000, .ramp_velocity = 90, .where = {}});
+    r.links.emplace_back().name = "bus";
+    for (std::size_t c = 0; c < 2; ++c) {
+      ActuatorSpec a;
+      a.channel = c;
+      a.device_channel = static_cast<int>(c + 1);
+      a.failsafe = c == 0 ? Failsafe::rest : Failsafe::release;
+      r.actuators.push_back(a);
+    }
+    return r;
+  }
+  static playback::Show make_show() {
+    playback::Show s;
+    s.name = "swing";
+    s.duration = 20;
+    for (const char* channel : {"shoulder", "elbow"}) {
+      playback::RawCurve raw;
+      for (int i = 0; i <= 40; ++i) {
+        playback::RawKey k;
+        k.time = i * 0.5;
+        k.value = i % 2 ? 80.0 : -80.0;
+        raw.keys.push_back(k);
+      }
+      s.tracks.push_back({channel, raw, playback::Curve::build(raw), {}});
+    }
+    return s;
+  }
+  static sim::SimDynamixelConfig bus() {
+    sim::SimDynamixelConfig c;
+    c.servos.resize(2);
+    c.servos[1].id = 2;
+    c.servos[1].ambient_c = 70;
+    c.servos[1].heating_c_per_s_at_full_load = 40;
+    return c;
+  }
+  static firmware_iface::DynamixelLinkConfig link_config() {
+    firmware_iface::DynamixelLinkConfig c;
+    for (std::uint8_t id : {std::uint8_t{1}, std::uint8_t{2}}) {
+      firmware_iface::DynamixelActuator a;
+      a.channel = id - 1u;
+      a.id = id;
+      a.calibration = {-90, 90, 1024, 3072, false, 0};
+      c.actuators.push_back(a);
+    }
+    return c;
+  }
+  HotBus() : rig(make_rig()), show(make_show()), device(bus()), wire(device, 1'000'000), link(wire, link_config()) {}
+};
+
+TEST(EndToEnd, AServoThatOverheatsMidShowFaultsItsChannelAndTheFigureGoesToItsFailsafe) {
+  HotBus b;
+  ASSERT_EQ(b.link.start(), Status::ok);
+  constexpr double kDt = 0.01;
+  Controller c(b.rig, b.show, {&b.link}, {.tick_period_s = kDt});
+  c.begin(0, std::vector<double>{0, 0});
+  std::vector<firmware_iface::ChannelTelemetry> telemetry(2);
+  int k = 0;
+  for (; k < 3000 && c.phase() != Phase::faulted; ++k) {
+    c.tick(k * kDt);
+    b.device.advance(kDt);
+    b.link.read_telemetry(telemetry);
+    c.feed_telemetry(telemetry);
+  }
+  ASSERT_EQ(c.phase(), Phase::faulted) << "the hot servo never overheated";
+  EXPECT_EQ(c.latched_fault().cause, FaultCause::device_overheat);
+  EXPECT_EQ(c.latched_fault().index, 1u);
+  EXPECT_GE(c.latched_fault().value, 80);  // the temperature it reported (°C)
+  EXPECT_GT(c.latched_fault().time_s, 1.0);  // it was running, not failing from the start
+  for (; c.active() && k < 6000; ++k) {
+    c.tick(k * kDt);
+    b.device.advance(kDt);
+  }
+  EXPECT_FALSE(c.active());
+  // Shoulder: eased to rest; elbow: released (torque off on the device).
+  EXPECT_NEAR(c.commanded()[0], 0, 1e-9);
+  EXPECT_NEAR(b.device.position(0), 2048, 5);
+  EXPECT_EQ(b.device.read_u8(1, firmware_iface::dynamixel::kTorqueEnable), 0);
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ class ThreadedLink final : public firmware_iface::ActuatorLink {
 
   /// Forwarded on the caller's thread; call before the loop starts.
   Status start() override;
+  std::string start_problem() const override { return inner_.start_problem(); }
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
 
   /// Publishes the frame for the I/O thread. Returns the status of the last completed send, or

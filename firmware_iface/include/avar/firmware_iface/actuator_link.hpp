@@ -55,6 +55,10 @@ class ActuatorLink {
   /// for replies; called once before the loop starts. Not real-time.
   virtual Status start() = 0;
 
+  /// After a failed start(): what was wrong beyond the Status (which servo, which setting), for
+  /// the message; empty when there is nothing more to say.
+  virtual std::string start_problem() const { return {}; }
+
   /// Reads where the device says each of this link's channels is, in channel units, into
   /// frame[channel]; sets known[channel] for those it could read. Channels the device cannot
   /// report are left untouched. Not real-time (waits for replies).

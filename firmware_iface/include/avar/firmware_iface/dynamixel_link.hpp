@@ -64,8 +64,7 @@ class DynamixelLink final : public ActuatorLink {
   /// needs 1 or 2: otherwise out_of_range, see start_problem()) and Return Delay Time (added to
   /// the reply timeout), writes profile velocity / acceleration and enables torque.
   Status start() override;
-  /// What start() found wrong, for the message (empty after success).
-  const std::string& start_problem() const noexcept { return start_problem_; }
+  std::string start_problem() const override { return start_problem_; }
 
   /// Reads Present Position of each servo.
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
