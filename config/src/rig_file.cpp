@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "avar/config/rig_kinematics.hpp"
 #include "avar/config/yaml_support.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 
@@ -329,7 +330,7 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
 control::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators"}, "the rig file");
+  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics"}, "the rig file");
 
   Rig rig;
   rig.file = path;
@@ -370,6 +371,7 @@ control::Rig load_rig_file(const std::string& path) {
                                    " link '" + link.name + "' is used by two actuators");
     rig.actuators.push_back(std::move(a));
   }
+  if (auto kin = root.find("kinematics")) rig.kinematics = read_rig_kinematics(rig, *kin);
   return rig;
 }
 

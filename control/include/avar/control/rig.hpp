@@ -11,6 +11,7 @@
 
 #include "avar/core/input_error.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/kinematics/model.hpp"
 
 namespace avar::control {
 
@@ -103,6 +104,24 @@ struct ActuatorSpec {
   SourceLocation where;
 };
 
+/// A kinematic joint driven by a channel: joint value (rad or m) = (channel value - offset) * scale.
+struct JointBinding {
+  std::size_t q_index = 0;  ///< the joint's entry in the model's q
+  std::size_t channel = 0;  ///< index into Rig::channels
+  double scale = 1;         ///< joint units (rad, m) per channel unit
+  double offset = 0;        ///< channel value at joint zero
+  double to_joint(double channel_value) const noexcept { return (channel_value - offset) * scale; }
+  double to_channel(double joint_value) const noexcept { return joint_value / scale + offset; }
+};
+
+/// The figure as a linkage, for inverse kinematics: the joint tree with named effectors, and
+/// which channel drives each movable joint. Joint limits are the channels' limits.
+struct RigKinematics {
+  kinematics::Model model;
+  std::vector<JointBinding> bindings;  ///< one per movable joint, in q order
+  SourceLocation where;
+};
+
 struct Rig {
   std::string name;
   std::string file;
@@ -110,6 +129,7 @@ struct Rig {
   std::vector<ChannelSpec> channels;
   std::vector<LinkSpec> links;
   std::vector<ActuatorSpec> actuators;
+  std::optional<RigKinematics> kinematics;  ///< when the rig file has a kinematics section
 
   std::optional<std::size_t> find_channel(std::string_view wanted) const;
   std::optional<std::size_t> find_link(std::string_view wanted) const;
