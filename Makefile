@@ -12,7 +12,7 @@ AVAR = $(BUILD)/apps/avar
 all: build
 
 deps:
-	@scripts/install-deps.sh
+	@scripts/install-deps.sh $(EXTRA_DEPS)
 
 configure: deps
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS) >/dev/null
@@ -41,6 +41,8 @@ test-tsan: deps
 	@cmake --build $(TSAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
+# KDL is the IK benchmark's peer; installing it before configuring lets avar-bench-ik find it.
+bench: EXTRA_DEPS = liborocos-kdl-dev
 bench: build
 	@set -e; for b in $(BUILD)/bench/avar-bench-*; do echo "== $$b"; $$b; done
 

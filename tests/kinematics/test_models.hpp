@@ -17,8 +17,13 @@
 
 namespace avar::kinematics::test {
 
-/// The IK benchmark's reference chains (UR5, iiwa7), beside the repository.
-inline const std::string kBenchChainsPath = AVAR_SOURCE_DIR "/../shared/bench/ik-chains.txt";
+/// The IK benchmark's reference chains (UR5, iiwa7), beside the repository (one level further
+/// up for a worktree under wt/).
+inline const std::string kBenchChainsPath = [] {
+  const std::string beside = AVAR_SOURCE_DIR "/../shared/bench/ik-chains.txt";
+  const std::string above = AVAR_SOURCE_DIR "/../../shared/bench/ik-chains.txt";
+  return std::filesystem::exists(beside) || !std::filesystem::exists(above) ? beside : above;
+}();
 
 /// Skips the test, naming the file, when the shared reference chains are not there.
 class BenchChains : public ::testing::Test {
