@@ -235,6 +235,21 @@ def main():
         check(alt["name"] == "PropAlt" and [k["value"] for k in alt["tracks"]["location_y"]["keys"]] == [5, 4, 6],
               "PropAlt's show: %s" % alt)
 
+        # --degrees: Euler rotations (values, handles, elastic amplitudes) in degrees, nothing else.
+        degrees_path = os.path.join(tmp, "degrees.yaml")
+        result = export(blend, degrees_path, "--degrees")
+        check(result.returncode == 0, "export --degrees exits 0: %s" % result.stderr)
+        degrees = load_show(degrees_path)
+        for channel in ("rotation_euler_z", "head_l_rotation_euler_y", "location_x", "jaw_open"):
+            factor = 180 / 3.141592653589793 if "rotation" in channel else 1
+            for d, r in zip(keys_of(degrees, channel), keys_of(show, channel)):
+                for field in ("value", "amplitude"):
+                    if field in r:
+                        check(close(d[field], r[field] * factor, 1e-6 * max(1, abs(d[field]))),
+                              "--degrees %s %s: %s vs %s" % (channel, field, d[field], r[field]))
+                check(close(d["right"][1], r["right"][1] * factor, 1e-6 * max(1, abs(d["right"][1]))) and
+                      d["time"] == r["time"] and d["right"][0] == r["right"][0], "--degrees %s handles" % channel)
+
         # Errors: exit 1, a message naming what was found and what exists.
         for extra, message in [(["--object", "Nope"], "no object named 'Nope'; the file has: Figure, Prop"),
                                (["--action", "Nope"], "no action named 'Nope'; the file has: FigureAction, PropAction, PropAlt")]:

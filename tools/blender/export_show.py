@@ -18,7 +18,8 @@ Channel names (snake_case, so they can be rig channel names as they are):
 Array custom properties get the index as a suffix (_0, _1, ...).
 
 Time: seconds = (frame - scene.frame_start) / (scene.render.fps / scene.render.fps_base), for
-keys, handles and elastic periods. Values are in Blender's units (rotations in radians).
+keys, handles and elastic periods. Values are in Blender's units (rotations in radians); with
+--degrees, Euler rotations and axis-angle angles (values, handles, elastic amplitudes) in degrees.
 The show's `duration` is the last key's time, its `name` the action's name.
 
 Exit codes: 0 written (warnings, if any, on standard error), 1 nothing written (error on
@@ -68,8 +69,8 @@ def parse_args(argv):
         epilog="Examples:\n"
                "  blender -b head.blend --python tools/blender/export_show.py -- --out head.yaml\n"
                "      the active object (or the only animated one) and its current action\n"
-               "  blender -b head.blend --python tools/blender/export_show.py -- --out nod.yaml --object Rig --action Nod\n"
-               "      another object, and an action it does not currently play\n"
+               "  blender -b head.blend --python tools/blender/export_show.py -- --out nod.yaml --object Rig --action Nod --degrees\n"
+               "      another object, an action it does not currently play, rotations in degrees\n"
                "then: avar sample head.yaml --rate 50   (the curves as CSV)   and   avar check head.yaml --rig RIG\n"
                "Channel names: [\"jaw open\"] -> jaw_open, location[0] -> location_x,\n"
                "pose.bones[\"Head.L\"].rotation_euler[2] -> head_l_rotation_euler_z.\n"
@@ -79,6 +80,8 @@ def parse_args(argv):
     parser.add_argument("--object", metavar="NAME",
                         help="object to export (default: the active object if animated, else the only animated one)")
     parser.add_argument("--action", metavar="NAME", help="action to export (default: the object's current action)")
+    parser.add_argument("--degrees", action="store_true",
+                        help="write Euler rotations and axis-angle angles in degrees instead of radians")
     return parser.parse_args(argv)
 
 
@@ -127,6 +130,12 @@ def channel_name(obj, data_path, index, indices_on_path):
     if match:
         return with_index(match.group(1), match.group(1))
     return with_index(snake(data_path), None)
+
+
+def angle_curve(data_path, index):
+    """True when data_path[index] is an angle in radians (Euler rotation, axis-angle angle)."""
+    prop = re.split(r"[.\]]", data_path)[-1]
+    return prop in ("rotation_euler", "delta_rotation_euler") or (prop == "rotation_axis_angle" and index == 0)
 
 
 def float32_text(value):
@@ -190,20 +199,22 @@ def cycles_of(curve, label):
     return cycles
 
 
-def key_text(point, clock, label):
+def key_text(point, clock, label, unit):
+    """One key as a YAML flow map; values (and elastic amplitudes) multiplied by `unit`."""
     frame, value = point.co
     (left_frame, left_value), (right_frame, right_value) = point.handle_left, point.handle_right
     check_finite(label, "a key at frame %g" % frame, frame, value, left_frame, left_value, right_frame, right_value)
+    value_text = float32_text if unit == 1 else (lambda v: "%.9g" % (v * unit))
     interpolation = point.interpolation
     if interpolation not in SUPPORTED_INTERPOLATIONS:
         raise ExportError("curve %s: interpolation %s at frame %g; expected one of %s"
                           % (label, interpolation, frame, ", ".join(sorted(SUPPORTED_INTERPOLATIONS))))
     fields = [
         "time: " + seconds_text(clock.seconds(frame)),
-        "value: " + float32_text(value),
+        "value: " + value_text(value),
         "interpolation: " + interpolation.lower(),
-        "left: [%s, %s]" % (seconds_text(clock.seconds(left_frame)), float32_text(left_value)),
-        "right: [%s, %s]" % (seconds_text(clock.seconds(right_frame)), float32_text(right_value)),
+        "left: [%s, %s]" % (seconds_text(clock.seconds(left_frame)), value_text(left_value)),
+        "right: [%s, %s]" % (seconds_text(clock.seconds(right_frame)), value_text(right_value)),
         "left_type: " + point.handle_left_type.lower(),
         "right_type: " + point.handle_right_type.lower(),
     ]
@@ -213,7 +224,7 @@ def key_text(point, clock, label):
         fields.append("back: " + float32_text(point.back))
     if interpolation == "ELASTIC":
         # Blender's period is in frames; avar's in seconds (0 keeps Blender's default in both).
-        fields.append("amplitude: " + float32_text(point.amplitude))
+        fields.append("amplitude: " + value_text(point.amplitude))
         fields.append("period: " + seconds_text(point.period / clock.fps))
     return "{" + ", ".join(fields) + "}"
 
@@ -250,14 +261,16 @@ def exported_curves(obj, action):
     return result
 
 
-def show_text(source, obj, action, clock):
+def show_text(source, obj, action, clock, degrees):
     curves = exported_curves(obj, action)
     if not curves:
         raise ExportError("action '%s' has no F-curve with keys to export; expected at least one" % action.name)
     tracks, last_time = [], None
     for name, curve in curves:
         label = curve_label(curve)
-        lines = ["  %s:  # %s" % (name, label),
+        in_degrees = degrees and angle_curve(curve.data_path, curve.array_index)
+        unit = 180 / math.pi if in_degrees else 1
+        lines = ["  %s:  # %s%s" % (name, label, ", in degrees" if in_degrees else ""),
                  "    extrapolation: " + curve.extrapolation.lower()]
         cycles = cycles_of(curve, label)
         if cycles:
@@ -265,7 +278,7 @@ def show_text(source, obj, action, clock):
         lines.append("    auto_smoothing: " + ("continuous_acceleration" if curve.auto_smoothing == "CONT_ACCEL" else "none"))
         lines.append("    keys:")
         for point in curve.keyframe_points:
-            lines.append("      - " + key_text(point, clock, label))
+            lines.append("      - " + key_text(point, clock, label, unit))
         first_frame = curve.keyframe_points[0].co[0]
         if first_frame < clock.start:
             warn("curve %s: a key at frame %g lies before the scene's start frame %d, at a negative time"
@@ -284,8 +297,8 @@ def show_text(source, obj, action, clock):
     header = [
         "# Exported by tools/blender/export_show.py from Blender %s" % bpy.app.version_string,
         "# source: %s" % source,
-        "# object: %s   action: %s   fps: %s   frame_start: %d (time 0)"
-        % (obj.name, action.name, clock.describe(), clock.start),
+        "# object: %s   action: %s   fps: %s   frame_start: %d (time 0)   rotations: %s"
+        % (obj.name, action.name, clock.describe(), clock.start, "degrees" if degrees else "radians"),
         "name: " + json.dumps(action.name),
         "duration: " + seconds_text(duration),
         "loop: false",
@@ -336,7 +349,7 @@ def main():
     try:
         obj = chosen_object(args.object)
         action = chosen_action(obj, args.action)
-        text = show_text(bpy.data.filepath or "(unsaved file)", obj, action, Clock(bpy.context.scene))
+        text = show_text(bpy.data.filepath or "(unsaved file)", obj, action, Clock(bpy.context.scene), args.degrees)
         try:
             with open(args.out, "w") as out:
                 out.write(text)
