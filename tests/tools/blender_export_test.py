@@ -4,7 +4,8 @@ Builds a .blend with tests/tools/make_fixture_blend.py in real Blender (headless
 and checks the show file: channel names, frame -> seconds, handles and handle types,
 interpolation, easing and its parameters, extrapolation, Cycles, warnings and errors. Then
 `avar sample` must reproduce Blender's own FCurve.evaluate values (1e-3 + 1e-4 x range) for
-the curves avar's show loader accepts.
+the curves avar's show loader accepts, and `avar check` accept them on a rig named after the
+tracks.
 
     python3 tests/tools/blender_export_test.py --avar build/apps/avar
 
@@ -190,6 +191,17 @@ def reduced_show(show, out_path):
     return sorted(tracks)
 
 
+def rig_for(channels):
+    """A simulated Maestro rig with one channel per track, named as the exporter names them."""
+    lines = ["name: blender-figure", "rate_hz: 50", "links:",
+             "  body: {port: sim, baud: 115200, maestro: {model: mini24}}", "channels:"]
+    lines += ["  %s: {unit: u, min: -10, max: 10, rest: 0}" % c for c in channels]
+    lines.append("actuators:")
+    lines += ["  - {channel: %s, protocol: maestro, link: body, device_channel: %d, calibration: {min_us: 1000, max_us: 2000}}"
+              % (c, i) for i, c in enumerate(channels)]
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--avar", required=True, help="the avar binary")
@@ -274,6 +286,12 @@ def main():
             ("head_l_location_x", 'pose.bones["Head.L"].location[0]'), ("head_l_blink", 'pose.bones["Head.L"]["blink"][0]'),
             ("jaw_open", '["jaw open"][0]')]}
         compare_with_blender(args.avar, reduced_path, {c: source[c] for c in kept if c in source}, golden, "reduced show")
+        rig_path = os.path.join(tmp, "rig.yaml")
+        with open(rig_path, "w") as f:
+            f.write(rig_for(kept))
+        checked = run([args.avar, "check", reduced_path, "--rig", rig_path])
+        check(checked.returncode == 0 and "ok: show 'FigureAction'" in checked.stdout,
+              "avar check accepts the reduced show on a rig named after its tracks: %s%s" % (checked.stdout, checked.stderr))
         alt_reduced = os.path.join(tmp, "alt-reduced.yaml")
         reduced_show(alt, alt_reduced)
         compare_with_blender(args.avar, alt_reduced, {"location_y": "PropAlt:location[1]"}, golden, "PropAlt")
