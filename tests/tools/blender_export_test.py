@@ -96,6 +96,7 @@ def check_figure(show_path, golden, stderr):
         "head_l_rotation_euler_y": 'pose.bones["Head.L"].rotation_euler[1]',
         "head_l_location_x": 'pose.bones["Head.L"].location[0]',
         "head_l_blink": 'pose.bones["Head.L"]["blink"][0]', "jaw_open": '["jaw open"][0]',
+        "eye_lid": '["EyeLid"][0]', "empty_display_size": "empty_display_size[0]",
     }
     check(sorted(show["tracks"]) == sorted(expected), "channel names: %s" % sorted(show["tracks"]))
     for channel, path in expected.items():
@@ -284,7 +285,7 @@ def main():
             ("location_x", "location[0]"), ("location_z", "location[2]"), ("rotation_euler_z", "rotation_euler[2]"),
             ("rotation_euler_x", "rotation_euler[0]"), ("head_l_rotation_euler_y", 'pose.bones["Head.L"].rotation_euler[1]'),
             ("head_l_location_x", 'pose.bones["Head.L"].location[0]'), ("head_l_blink", 'pose.bones["Head.L"]["blink"][0]'),
-            ("jaw_open", '["jaw open"][0]')]}
+            ("jaw_open", '["jaw open"][0]'), ("eye_lid", '["EyeLid"][0]'), ("empty_display_size", "empty_display_size[0]")]}
         compare_with_blender(args.avar, reduced_path, {c: source[c] for c in kept if c in source}, golden, "reduced show")
         rig_path = os.path.join(tmp, "rig.yaml")
         with open(rig_path, "w") as f:

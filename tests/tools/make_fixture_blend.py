@@ -18,7 +18,8 @@ Objects:
   - scale[1]: a Noise modifier, which avar does not support (the exporter warns);
   - pose.bones["Head.L"].rotation_euler[1] and pose.bones["Head.L"].location[0]: a bone's keys;
   - pose.bones["Head.L"]["blink"]: a bone's custom property;
-  - ["jaw open"]: a custom property.
+  - ["jaw open"], ["EyeLid"]: custom properties;
+  - empty_display_size: a scalar built-in property.
 - "Prop", an empty with its own action "PropAction" (location[1]), and a second action
   "PropAlt" that no object uses.
 
@@ -68,6 +69,7 @@ def make_armature(scene):
     bone.tail = (0, 0, 1)
     bpy.ops.object.mode_set(mode="OBJECT")
     figure["jaw open"] = 0.0
+    figure["EyeLid"] = 0.0
     figure.pose.bones["Head.L"]["blink"] = 0.0
     return figure
 
@@ -153,6 +155,8 @@ def animate_figure(figure):
     keyed_curve(action, '["jaw open"]', 0, [
         (11, 0.0, {}), (14, 0.8, {"interpolation": "LINEAR"}), (17, 0.1, {"interpolation": "CONSTANT"}), (23, 0.6, {}),
     ])
+    keyed_curve(action, '["EyeLid"]', 0, [(11, 0.0, {}), (21, 1.0, {})])
+    keyed_curve(action, "empty_display_size", 0, [(11, 1.0, {}), (21, 2.0, {"interpolation": "LINEAR"}), (31, 1.0, {})])
     return action
 
 

@@ -15,7 +15,7 @@ Channel names (snake_case, so they can be rig channel names as they are):
   location[0]                            -> location_x            (x, y, z; quaternions w, x, y, z)
   pose.bones["Head.L"].rotation_euler[2] -> head_l_rotation_euler_z
   anything else                          -> its data path in snake_case, then the index
-Array custom properties get the index as a suffix (_0, _1, ...).
+Array properties other than transforms get the index as a suffix (_0, _1, ...); scalars none.
 
 Time: seconds = (frame - scene.frame_start) / (scene.render.fps / scene.render.fps_base), for
 keys, handles and elastic periods. Values are in Blender's units (rotations in radians); with
@@ -86,7 +86,8 @@ def parse_args(argv):
 
 
 def snake(text):
-    """Lower-case letters, digits and single underscores."""
+    """Lower-case letters, digits and single underscores: "Head.L" -> head_l, "JawOpen" -> jaw_open."""
+    text = re.sub(r"([a-z0-9])([A-Z])", r"\1_\2", text)
     text = re.sub(r"[^0-9a-zA-Z]+", "_", text).strip("_").lower()
     return text or "channel"
 
@@ -106,23 +107,22 @@ def is_array(obj, data_path):
 def channel_name(obj, data_path, index, indices_on_path):
     """The track name of the F-curve data_path[index] (see the module docstring)."""
     def with_index(base, prop):
+        array = is_array(obj, data_path)
+        if array is None:  # the path does not resolve on this object (e.g. a bone it lacks)
+            array = prop in AXIS_LETTERS or indices_on_path != {0}
+        if not array:
+            return base
         letters = AXIS_LETTERS.get(prop)
         if letters and index < len(letters):
             return base + "_" + letters[index]
         return base + "_" + str(index)
 
-    def custom(base):
-        array = is_array(obj, data_path)
-        if array is None:
-            array = indices_on_path != {0}
-        return with_index(base, None) if array else base
-
     match = CUSTOM.match(data_path)
     if match:
-        return custom(snake(unescape(match.group(1))))
+        return with_index(snake(unescape(match.group(1))), None)
     match = BONE_CUSTOM.match(data_path)
     if match:
-        return custom(snake(unescape(match.group(1))) + "_" + snake(unescape(match.group(2))))
+        return with_index(snake(unescape(match.group(1))) + "_" + snake(unescape(match.group(2))), None)
     match = BONE_PROPERTY.match(data_path)
     if match:
         return with_index(snake(unescape(match.group(1))) + "_" + match.group(2), match.group(2))
