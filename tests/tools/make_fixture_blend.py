@@ -24,8 +24,8 @@ Objects:
   "PropAlt" that no object uses.
 
 golden.json: {"fps": ..., "frame_start": ..., "curves": {"<data_path>[<index>]": {"frames": [...],
-"values": [...]}}} with FCurve.evaluate on a half-frame grid from 12 frames before the first
-key to 12 frames after the last.
+"values": [...]}}} with FCurve.evaluate on a half-frame grid from 45 frames before the first
+key to 45 frames after the last.
 """
 
 import argparse
@@ -35,6 +35,8 @@ import sys
 import bpy
 
 FRAME_START = 11
+# Golden values reach this far before the first key and after the last: past two 20-frame cycles.
+MARGIN_FRAMES = 45
 
 
 def parse_args():
@@ -178,8 +180,8 @@ def golden_of(actions):
         for curve in action.fcurves:
             first, last = curve.range()
             frames = []
-            frame = first - 12
-            while frame <= last + 12 + 1e-9:
+            frame = first - MARGIN_FRAMES
+            while frame <= last + MARGIN_FRAMES + 1e-9:
                 frames.append(frame)
                 frame += 0.5
             name = "%s:%s[%d]" % (action.name, curve.data_path, curve.array_index)
