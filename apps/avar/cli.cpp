@@ -7,6 +7,7 @@
 #include "avar/check_command.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/play_command.hpp"
+#include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
 
 namespace avar::app {
@@ -23,6 +24,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      drive a real Maestro (its USB command port) instead of the rig's port\n"
       "  avar check SHOW --rig RIG [--retime OUT.yaml]\n"
       "      validate both files and list what the rig cannot do, without moving anything\n"
+      "  avar sample SHOW --rate 100 --channels neck_pan,jaw\n"
+      "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
@@ -68,6 +71,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   check_cmd->add_option("--retime", retime,
                         "Write a version of the show whose too-fast segments are stretched just enough (OUT.yaml)");
 
+  SampleOptions sample;
+  CLI::App* sample_cmd = add_sample_subcommand(app, sample);
+
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
   sim_cmd->require_subcommand(1);
@@ -108,6 +114,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return run_play(play, out, err);
   }
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
+  if (*sample_cmd) return run_sample(sample, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   return kExitBadInput;

@@ -1,0 +1,169 @@
+#include "avar/sample_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <ostream>
+#include <stdexcept>
+
+#include "avar/config/show_file.hpp"
+#include "avar/core/format.hpp"
+#include "avar/exit_codes.hpp"
+
+namespace avar::app {
+namespace {
+
+/// A bad command-line value: the message says what was found and what was expected.
+struct OptionError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Grid {
+  double from = 0;
+  double step = 0;
+  std::size_t rows = 0;
+  double to = 0;
+};
+
+void expect_finite(const std::optional<double>& value, const char* option) {
+  if (value && !std::isfinite(*value)) throw OptionError(std::string("expected ") + option + " to be a finite number, found " + format_number(*value));
+}
+
+Grid grid_for(const SampleOptions& o, double duration) {
+  expect_finite(o.rate_hz, "--rate");
+  expect_finite(o.step_s, "--step");
+  expect_finite(o.from_s, "--from");
+  expect_finite(o.to_s, "--to");
+  if (o.rate_hz && o.step_s) throw OptionError("--rate and --step both given; expected one of them (--step = 1 / --rate)");
+  if (o.rate_hz && *o.rate_hz <= 0) throw OptionError("expected --rate to be more than 0 Hz, found " + format_number(*o.rate_hz));
+  if (o.step_s && *o.step_s <= 0) throw OptionError("expected --step to be more than 0 s, found " + format_number(*o.step_s));
+  Grid g;
+  g.step = o.step_s ? *o.step_s : 1.0 / o.rate_hz.value_or(kDefaultSampleRateHz);
+  if (g.step < kMinSampleStepS)
+    throw OptionError("expected samples at least " + format_number(kMinSampleStepS) + " s apart (--rate up to " +
+                      format_number(1 / kMinSampleStepS) + " Hz), found " + format_number(g.step) + " s");
+  g.from = o.from_s.value_or(0.0);
+  g.to = o.to_s.value_or(duration);
+  if (!(g.from < g.to))
+    throw OptionError("expected --from (" + format_number(g.from) + " s) to be before --to (" + format_number(g.to) +
+                      " s)" + (o.to_s ? "" : ", the show's duration"));
+  // The tolerance keeps `to` when rounding puts it a hair past the last whole step.
+  const double intervals = std::floor((g.to - g.from) / g.step + 1e-9);
+  if (intervals + 1 > kMaxSampleRows)
+    throw OptionError("the range " + format_number(g.from) + " to " + format_number(g.to) + " s at " + format_number(g.step) +
+                      " s per sample makes " + format_number(intervals + 1) + " rows; expected at most " +
+                      format_number(kMaxSampleRows) + " (lower --rate or narrow --from/--to)");
+  g.rows = static_cast<std::size_t>(intervals) + 1;
+  return g;
+}
+
+/// from + i * step on a nanosecond grid, so 0.1 * 3 prints as 0.3 and the printed time is the
+/// evaluated time.
+double sample_time(const Grid& g, std::size_t i) {
+  const double t = g.from + static_cast<double>(i) * g.step;
+  return std::round(t * 1e9) / 1e9;
+}
+
+/// Shortest decimal text that reads back to the same double; -0 prints as 0.
+void append_number(std::string& line, double value) {
+  if (value == 0) value = 0;
+  std::array<char, 32> buf{};
+  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  line.append(buf.data(), result.ptr);
+}
+
+/// The tracks to print, in column order.
+std::vector<const playback::Track*> columns_for(const playback::Show& show, const std::vector<std::string>& channels) {
+  std::vector<const playback::Track*> columns;
+  if (channels.empty()) {
+    for (const auto& track : show.tracks) columns.push_back(&track);
+    return columns;
+  }
+  for (const auto& name : channels) {
+    const playback::Track* found = nullptr;
+    for (const auto& track : show.tracks)
+      if (track.channel == name) found = &track;
+    if (!found) {
+      std::string available;
+      for (const auto& track : show.tracks) available += (available.empty() ? "" : ", ") + track.channel;
+      throw OptionError("unknown channel '" + name + "' in --channels; the show has: " + available);
+    }
+    for (const auto* column : columns)
+      if (column == found) throw OptionError("channel '" + name + "' is listed twice in --channels; expected each once");
+    columns.push_back(found);
+  }
+  return columns;
+}
+
+void write_csv(const std::vector<const playback::Track*>& columns, const Grid& grid, std::ostream& out) {
+  std::string line = "seconds";
+  for (const auto* track : columns) line += "," + track->channel;
+  out << line << '\n';
+  std::vector<playback::CurveCursor> cursors(columns.size());
+  for (std::size_t i = 0; i < grid.rows; ++i) {
+    const double t = sample_time(grid, i);
+    line.clear();
+    append_number(line, t);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      line += ',';
+      append_number(line, columns[c]->curve.evaluate(t, cursors[c]));
+    }
+    line += '\n';
+    out << line;
+  }
+}
+
+}  // namespace
+
+CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
+  CLI::App* cmd = app.add_subcommand("sample", "Write a show's curves, evaluated on a time grid, as CSV (needs no rig)");
+  cmd->add_option("show", o.show_path, "Show file (validated whole first, as `avar check` does)")->required();
+  CLI::Option* rate = cmd->add_option("--rate", o.rate_hz, "Samples per second (default 100)");
+  CLI::Option* step = cmd->add_option("--step", o.step_s, "Seconds between samples, instead of --rate");
+  rate->excludes(step);
+  cmd->add_option("--from", o.from_s, "First sample time in seconds (default 0; may be negative, before the show)");
+  cmd->add_option("--to", o.to_s, "Last sample time in seconds (default the show's duration; may lie past it)");
+  cmd->add_option("--channels", o.channels, "Only these channels, in this order, comma-separated (default: all, in file order)")
+      ->delimiter(',');
+  cmd->add_option("--out", o.out_path, "Write the CSV to this file instead of standard output");
+  cmd->footer(
+      "Output: a header `seconds,<channel>,...`, then one row per sample time from --from to --to\n"
+      "(inclusive when it falls on the grid). Each curve is evaluated as it is defined outside its keys too\n"
+      "(held or extrapolated); a looping show is not wrapped. Numbers read back exactly.\n"
+      "Examples:\n"
+      "  avar sample examples/shows/hello-head.yaml --rate 50 > hello-head.csv\n"
+      "      every channel at 50 Hz over the whole show\n"
+      "  avar sample SHOW --step 0.01 --from -1 --to 13 --channels neck_pan,jaw\n"
+      "      two channels every 10 ms, one second either side of the show\n"
+      "  avar sample before.yaml --out a.csv && avar sample after.yaml --out b.csv && diff a.csv b.csv\n"
+      "      see exactly where two versions of a show differ");
+  return cmd;
+}
+
+int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& err) {
+  try {
+    const playback::Show show = config::load_show_file(options.show_path);
+    const Grid grid = grid_for(options, show.duration);
+    const std::vector<const playback::Track*> columns = columns_for(show, options.channels);
+    if (!options.out_path) {
+      write_csv(columns, grid, out);
+      return kExitOk;
+    }
+    std::ofstream file(*options.out_path);
+    if (!file) throw OptionError("cannot write --out " + *options.out_path + "; expected a writable file path");
+    write_csv(columns, grid, file);
+    file.close();
+    if (!file) throw OptionError("writing " + *options.out_path + " failed; expected a writable file path with free space");
+    return kExitOk;
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+  } catch (const OptionError& e) {
+    err << "error: " << e.what() << '\n';
+  }
+  return kExitBadInput;
+}
+
+}  // namespace avar::app

@@ -1,0 +1,185 @@
+// `avar sample`: the CSV it writes (grid, columns, exact numbers, values off the keys) and its
+// refusals, in-process and as the real binary.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../support/child_process.hpp"
+#include "../support/temp_file.hpp"
+#include "avar/cli.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/exit_codes.hpp"
+
+namespace avar::app {
+namespace {
+
+const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
+
+// Two tracks: a ramp (linear 0 -> 10 over 1 s, then held) and a step channel.
+const char* const kSmallShow = R"(name: small
+duration: 2
+tracks:
+  ramp:
+    - {time: 0.5, value: 0}
+    - {time: 1.5, value: 10}
+  switch:
+    - {time: 0.0, value: 1, interpolation: step}
+    - {time: 1.0, value: -2}
+)";
+
+struct Result {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+Result sample(std::vector<std::string> args) {
+  args.insert(args.begin(), {"avar", "sample"});
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::vector<std::vector<std::string>> rows_of(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream lines(csv);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(SampleCommand, WritesEveryChannelOfTheShowOnTheGridWithTheCurvesValuesExactly) {
+  const Result r = sample({kShow, "--rate", "4"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const auto rows = rows_of(r.out);
+  const playback::Show show = config::load_show_file(kShow);
+  ASSERT_EQ(rows.size(), 1u + 12 * 4 + 1);  // header, then 0, 0.25, ..., 12 s
+  ASSERT_EQ(rows[0].size(), 1 + show.tracks.size());
+  EXPECT_EQ(rows[0][0], "seconds");
+  for (std::size_t c = 0; c < show.tracks.size(); ++c) EXPECT_EQ(rows[0][c + 1], show.tracks[c].channel);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), rows[0].size()) << "row " << i;
+    const double t = 0.25 * static_cast<double>(i - 1);
+    EXPECT_EQ(std::strtod(rows[i][0].c_str(), nullptr), t);
+    // Every number reads back to the very double the curve gives.
+    for (std::size_t c = 0; c < show.tracks.size(); ++c)
+      EXPECT_EQ(std::strtod(rows[i][c + 1].c_str(), nullptr), show.tracks[c].curve.evaluate(t))
+          << show.tracks[c].channel << " at " << t << " s: " << rows[i][c + 1];
+  }
+}
+
+TEST(SampleCommand, SamplesBeforeAndAfterTheKeysInTheOrderAsked) {
+  const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
+  const Result r = sample({path, "--step", "0.25", "--from", "-0.5", "--to", "2.5", "--channels", "switch,ramp"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(r.out,
+            "seconds,switch,ramp\n"
+            "-0.5,1,0\n-0.25,1,0\n0,1,0\n0.25,1,0\n0.5,1,0\n0.75,1,2.5\n1,-2,5\n1.25,-2,7.5\n1.5,-2,10\n"
+            "1.75,-2,10\n2,-2,10\n2.25,-2,10\n2.5,-2,10\n");
+}
+
+TEST(SampleCommand, PrintsGridTimesAsTheirShortDecimalAndIncludesTheEnd) {
+  const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
+  const Result r = sample({path, "--step", "0.1", "--from", "-0.3", "--to", "0.3", "--channels", "ramp"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::vector<std::string> times;
+  for (const auto& row : rows_of(r.out)) times.push_back(row[0]);
+  EXPECT_EQ(times, (std::vector<std::string>{"seconds", "-0.3", "-0.2", "-0.1", "0", "0.1", "0.2", "0.3"}));
+  // 1/3 s does not land on 2 s; the last row is the last grid time before it.
+  const Result thirds = sample({path, "--rate", "3", "--to", "2", "--channels", "ramp"});
+  ASSERT_EQ(thirds.code, kExitOk) << thirds.err;
+  const auto rows = rows_of(thirds.out);
+  ASSERT_EQ(rows.size(), 1u + 7);
+  EXPECT_EQ(rows.back()[0], "2");
+  const Result sevenths = sample({path, "--rate", "7", "--to", "0.5", "--channels", "ramp"});
+  EXPECT_EQ(rows_of(sevenths.out).back()[0], "0.428571429");
+}
+
+TEST(SampleCommand, DefaultsToOneHundredHertzOverTheShow) {
+  const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
+  const Result r = sample({path});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto rows = rows_of(r.out);
+  ASSERT_EQ(rows.size(), 1u + 201);
+  EXPECT_EQ(rows[1][0], "0");
+  EXPECT_EQ(rows[2][0], "0.01");
+  EXPECT_EQ(rows.back()[0], "2");
+}
+
+TEST(SampleCommand, WritesTheSameCsvToAFileWithOut) {
+  const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
+  const std::string csv = testing::temp_path("out.csv");
+  const Result to_file = sample({path, "--rate", "10", "--out", csv});
+  ASSERT_EQ(to_file.code, kExitOk) << to_file.err;
+  EXPECT_TRUE(to_file.out.empty());
+  std::ifstream in(csv);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), sample({path, "--rate", "10"}).out);
+}
+
+TEST(SampleCommand, RefusesBadOptionsSayingWhatWasExpected) {
+  const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{path, "--channels", "ramp,jaw"}, "unknown channel 'jaw' in --channels; the show has: ramp, switch"},
+      {{path, "--channels", "ramp,ramp"}, "channel 'ramp' is listed twice"},
+      {{path, "--rate", "0"}, "expected --rate to be more than 0 Hz, found 0"},
+      {{path, "--rate", "-5"}, "expected --rate to be more than 0 Hz, found -5"},
+      {{path, "--step", "0"}, "expected --step to be more than 0 s, found 0"},
+      {{path, "--rate", "10", "--step", "0.1"}, "--rate excludes --step"},
+      {{path, "--from", "1", "--to", "1"}, "expected --from (1 s) to be before --to (1 s)"},
+      {{path, "--from", "3"}, "expected --from (3 s) to be before --to (2 s), the show's duration"},
+      {{path, "--to", "inf"}, "expected --to to be a finite number"},
+      {{path, "--step", "1e-9"}, "expected samples at least 1e-06 s apart"},
+      {{path, "--rate", "100000", "--to", "1000"}, "rows; expected at most 1e+07"},
+      {{path, "--out", "/nonexistent-dir/x.csv"}, "cannot write --out /nonexistent-dir/x.csv"},
+      {{testing::temp_path("missing.yaml")}, "missing.yaml"},
+  };
+  for (const auto& c : cases) {
+    const Result r = sample(c.args);
+    EXPECT_EQ(r.code, kExitBadInput) << c.message;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+TEST(SampleCommand, RejectsABadShowWholeWithFileAndLine) {
+  const std::string path = testing::write_temp_file("bad.yaml", "duration: 2\ntracks:\n  a:\n    - {time: 1, value: 0}\n    - {time: 0.5, value: 1}\n");
+  const Result r = sample({path});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(path + ":5:"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(SampleCommand, TheBinaryWritesCsvToStandardOutputAndTeachesInItsHelp) {
+  testing::ChildProcess run({AVAR_BINARY, "sample", kShow, "--rate", "1", "--channels", "jaw"});
+  ASSERT_TRUE(run.started());
+  EXPECT_EQ(run.wait(), kExitOk) << run.err();
+  const auto rows = rows_of(run.out());
+  ASSERT_EQ(rows.size(), 1u + 13);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"seconds", "jaw"}));
+  EXPECT_EQ(rows[8], (std::vector<std::string>{"7", "4"}));  // the jaw key at 7 s
+
+  testing::ChildProcess help({AVAR_BINARY, "sample", "--help"});
+  EXPECT_EQ(help.wait(), kExitOk);
+  EXPECT_NE(help.out().find("Examples:"), std::string::npos) << help.out();
+  EXPECT_NE(help.out().find("--channels"), std::string::npos) << help.out();
+}
+
+}  // namespace
+}  // namespace avar::app
