@@ -106,7 +106,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
 void write_trace(const std::string& path, const control::Rig& rig, const PlayRecorder& r) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
-  csv << "seconds,phase,wake_late_us,sample_us,limit_us,send_us";
+  csv << "seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us";
   for (const auto& c : rig.channels) csv << ',' << c.name << ".target," << c.name << ".command," << c.name << ".measured";
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();

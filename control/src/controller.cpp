@@ -60,6 +60,7 @@ const char* to_string(FaultCause c) noexcept {
 const char* to_string(Stage s) noexcept {
   switch (s) {
     case Stage::sample: return "sample";
+    case Stage::ik: return "ik";
     case Stage::limit: return "limit";
     case Stage::send: return "send";
   }
@@ -101,7 +102,16 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
     has_actuator[a.channel] = 1;
     if (a.failsafe == Failsafe::rest) channel_rests_[a.channel] = 1;
   }
-  sampler_.sample(0.0, first_frame_);
+  if (!show.targets.empty()) {
+    if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
+    ik_.emplace(*rig.kinematics, show, rest_);
+  }
+  sample_show(0.0, first_frame_);
+}
+
+void Controller::sample_show(double show_time_s, std::span<double> frame) noexcept {
+  sampler_.sample(show_time_s, frame);
+  if (ik_) ik_->apply(show_time_s, frame);
 }
 
 void Controller::lap(Stage s, std::int64_t& mark) noexcept {
@@ -116,6 +126,12 @@ void Controller::lap(Stage s, std::int64_t& mark) noexcept {
 void Controller::begin(double now_s, std::span<const double> start_pose) noexcept {
   if (phase_ != Phase::disabled) return;
   limiter_.reset(start_pose);
+  if (ik_) {
+    // Solve the first frame from where the figure is, so that homing heads for the solution
+    // nearest to it.
+    ik_->reseed(limiter_.last());
+    sample_show(0.0, first_frame_);
+  }
   const auto from = limiter_.last();
   std::copy(from.begin(), from.end(), commanded_.begin());
   ramp_.plan(commanded_, first_frame_, ramp_velocity_, options_.min_ramp_s);
@@ -231,6 +247,7 @@ Status Controller::tick(double now_s) noexcept {
     if (tolerance > 0 && error > tolerance) fault(FaultCause::tracking_error, c, error, now_s);
   }
 
+  bool sampled_show = false;
   switch (phase_) {
     case Phase::homing:
       if (now_s - phase_start_ >= ramp_.duration()) {
@@ -245,6 +262,7 @@ Status Controller::tick(double now_s) noexcept {
       show_time_ = now_s - show_start_;
       if (!show_over(show_time_)) {
         sampler_.sample(show_time_, target_);
+        sampled_show = true;
         break;
       }
       ease_to(rest_, now_s);
@@ -255,6 +273,8 @@ Status Controller::tick(double now_s) noexcept {
     case Phase::disabled: break;
   }
   lap(Stage::sample, mark);
+  if (sampled_show && ik_) ik_->apply(show_time_, target_);
+  lap(Stage::ik, mark);
 
   if (limiter_.apply(target_, commanded_) != Status::ok) {
     std::size_t bad = 0;

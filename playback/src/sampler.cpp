@@ -33,11 +33,7 @@ Sampler::Sampler(const Show& show, std::span<const std::size_t> channel_of_track
 
 void Sampler::sample(double show_time_s, std::span<double> frame) noexcept {
   if (frame.size() != defaults_.size()) return;
-  double t = show_time_s;
-  if (show_.loop && show_.duration > 0) {
-    t = std::fmod(t, show_.duration);
-    if (t < 0) t += show_.duration;
-  }
+  const double t = show_.local_time(show_time_s);
   std::copy(defaults_.begin(), defaults_.end(), frame.begin());
   for (std::size_t i = 0; i < channel_of_track_.size(); ++i)
     frame[channel_of_track_[i]] = show_.tracks[i].curve.evaluate(t, cursors_[i]);

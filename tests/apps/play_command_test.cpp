@@ -68,7 +68,7 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::ifstream csv(trace);
   std::string header, line, last;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
   int rows = 0;
   while (std::getline(csv, line)) {
     last = line;
@@ -78,10 +78,10 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::vector<std::string> cells;
   std::stringstream cells_in(last);
   for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
-  ASSERT_EQ(cells.size(), 6u + 8u * 3u);
-  EXPECT_DOUBLE_EQ(std::stod(cells[7]), 0.0);               // jaw command = rest
-  EXPECT_NEAR(std::stod(cells[8]), 0.0, 0.5);               // jaw simulated position
-  EXPECT_DOUBLE_EQ(std::stod(cells[6 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
+  ASSERT_EQ(cells.size(), 7u + 8u * 3u);
+  EXPECT_DOUBLE_EQ(std::stod(cells[8]), 0.0);               // jaw command = rest
+  EXPECT_NEAR(std::stod(cells[9]), 0.0, 0.5);               // jaw simulated position
+  EXPECT_DOUBLE_EQ(std::stod(cells[7 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
   EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
 }
 

@@ -16,9 +16,11 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "avar/control/ik_stage.hpp"
 #include "avar/control/limiter.hpp"
 #include "avar/control/ramp.hpp"
 #include "avar/control/rig.hpp"
@@ -57,8 +59,8 @@ struct Fault {
 };
 
 /// The stages of a tick whose cost is measured.
-enum class Stage { sample, limit, send };
-inline constexpr std::size_t kStageCount = 3;
+enum class Stage { sample, ik, limit, send };
+inline constexpr std::size_t kStageCount = 4;
 const char* to_string(Stage s) noexcept;
 
 /// Cost of one stage: the last tick's and the worst so far, in nanoseconds.
@@ -141,6 +143,8 @@ class Controller {
   /// The frame that the last tick asked for before limits.
   std::span<const double> target() const noexcept { return target_; }
   const Limiter& limiter() const noexcept { return limiter_; }
+  /// The inverse-kinematics stage, when the show has targets; nullptr otherwise.
+  const IkStage* ik() const noexcept { return ik_ ? &*ik_ : nullptr; }
   const StageTime& stage_time(Stage s) const noexcept { return stage_times_[static_cast<std::size_t>(s)]; }
   std::size_t channel_count() const noexcept { return rig_.channels.size(); }
   double tick_period() const noexcept { return options_.tick_period_s; }
@@ -150,12 +154,15 @@ class Controller {
   bool ramp_done(double now_s) const noexcept;
   bool show_over(double show_time_s) const noexcept;
   void lap(Stage s, std::int64_t& mark) noexcept;
+  /// The show's frame at a show time: tracks, then inverse kinematics for the targets.
+  void sample_show(double show_time_s, std::span<double> frame) noexcept;
 
   const Rig& rig_;
   const playback::Show& show_;
   std::vector<firmware_iface::ActuatorLink*> links_;
   ControllerOptions options_;
   playback::Sampler sampler_;
+  std::optional<IkStage> ik_;  ///< when the show has targets for the rig's kinematics
   Limiter limiter_;
   Ramp ramp_;
   std::vector<double> rest_;

@@ -2,6 +2,8 @@
 // A show: tracks of keyframe curves, each bound by name to a channel of a rig, played over a
 // duration, once or looping.
 
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -17,12 +19,40 @@ struct Track {
   SourceLocation where;
 };
 
+/// What an effector of the rig's kinematics is asked to do with a target point.
+enum class TargetKind {
+  position,  ///< bring the effector's origin to the point
+  aim,       ///< point the effector-frame axis `aim_axis` at the point (eyes, heads, lights)
+};
+
+/// A target in space for one effector, solved by inverse kinematics every tick: the point's
+/// x, y and z (metres, in the rig's base frame) are keyframe curves (a static point is three
+/// one-key curves).
+struct TargetTrack {
+  std::string effector;  ///< effector name in the rig's kinematics
+  TargetKind kind = TargetKind::position;
+  std::array<double, 3> aim_axis{1, 0, 0};  ///< effector frame, any non-zero length (aim only)
+  std::array<RawCurve, 3> raw;              ///< x, y, z as authored
+  std::array<Curve, 3> xyz;                 ///< built from raw
+  SourceLocation where;
+};
+
 struct Show {
   std::string name;
   double duration = 0;  ///< seconds, > 0
   bool loop = false;
   std::vector<Track> tracks;
+  std::vector<TargetTrack> targets;
   SourceLocation where;
+
+  /// The time within the show's curves for playing time t (seconds): a looping show wraps t
+  /// modulo its duration (negative times included); a show played once passes t through (its
+  /// curves hold their end values outside the keys). Real-time safe.
+  double local_time(double t) const noexcept {
+    if (!loop || !(duration > 0)) return t;
+    const double w = std::fmod(t, duration);
+    return w < 0 ? w + duration : w;
+  }
 };
 
 }  // namespace avar::playback
