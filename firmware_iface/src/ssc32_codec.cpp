@@ -30,6 +30,20 @@ struct Writer {
   }
 };
 
+/// One `<prefix><ch><suffix>` per channel, then CR.
+std::size_t encode_per_channel(std::span<std::uint8_t> out, std::span<const std::uint8_t> channels, const char* prefix,
+                               const char* suffix) noexcept {
+  if (channels.empty() || channels.size() > kChannels) return 0;
+  Writer w{out};
+  for (std::uint8_t ch : channels) {
+    if (ch >= kChannels) return 0;
+    for (const char* p = prefix; *p; ++p) w.put(*p);
+    w.number(ch);
+    for (const char* p = suffix; *p; ++p) w.put(*p);
+  }
+  return w.finish();
+}
+
 bool is_space(std::uint8_t c) { return c == ' ' || c == '\t' || c == '\n'; }
 bool is_digit(std::uint8_t c) { return c >= '0' && c <= '9'; }
 std::uint8_t upper(std::uint8_t c) { return c >= 'a' && c <= 'z' ? static_cast<std::uint8_t>(c - 'a' + 'A') : c; }
@@ -100,27 +114,11 @@ std::size_t encode_group_move(std::span<std::uint8_t> out, std::span<const Servo
 }
 
 std::size_t encode_outputs_low(std::span<std::uint8_t> out, std::span<const std::uint8_t> channels) noexcept {
-  if (channels.empty() || channels.size() > kChannels) return 0;
-  Writer w{out};
-  for (std::uint8_t ch : channels) {
-    if (ch >= kChannels) return 0;
-    w.put('#');
-    w.number(ch);
-    w.put('L');
-  }
-  return w.finish();
+  return encode_per_channel(out, channels, "#", "L");
 }
 
 std::size_t encode_query_pulse(std::span<std::uint8_t> out, std::span<const std::uint8_t> channels) noexcept {
-  if (channels.empty() || channels.size() > kChannels) return 0;
-  Writer w{out};
-  for (std::uint8_t ch : channels) {
-    if (ch >= kChannels) return 0;
-    w.put('Q');
-    w.put('P');
-    w.number(ch);
-  }
-  return w.finish();
+  return encode_per_channel(out, channels, "QP", "");
 }
 
 std::size_t encode_query_movement(std::span<std::uint8_t> out) noexcept {

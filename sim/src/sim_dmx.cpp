@@ -1,4 +1,5 @@
 #include "avar/sim/sim_dmx.hpp"
+#include "avar/sim/reply_queue.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -95,10 +96,7 @@ void SimDmx::handle(std::uint8_t label, std::span<const std::uint8_t> data) {
 }
 
 std::size_t SimDmx::take_replies(std::span<std::uint8_t> out) {
-  const std::size_t n = std::min(out.size(), replies_.size());
-  std::copy_n(replies_.begin(), n, out.begin());
-  replies_.erase(replies_.begin(), replies_.begin() + static_cast<long>(n));
-  return n;
+  return take_from(replies_, out);
 }
 
 void SimDmx::advance(double dt_s) {

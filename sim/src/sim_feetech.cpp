@@ -6,6 +6,7 @@
 #include <string>
 
 #include "avar/firmware_iface/wire_time.hpp"
+#include "avar/sim/reply_queue.hpp"
 
 namespace avar::sim {
 namespace ft = firmware_iface::feetech;
@@ -224,10 +225,7 @@ void SimFeetech::handle(std::uint8_t id, std::uint8_t instruction, std::span<con
 }
 
 std::size_t SimFeetech::take_replies(std::span<std::uint8_t> out) {
-  const std::size_t n = std::min(out.size(), replies_.size());
-  std::copy_n(replies_.begin(), n, out.begin());
-  replies_.erase(replies_.begin(), replies_.begin() + static_cast<long>(n));
-  return n;
+  return take_from(replies_, out);
 }
 
 void SimFeetech::advance(double dt_s) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "avar/firmware_iface/wire_time.hpp"
+#include "avar/sim/reply_queue.hpp"
 
 namespace avar::sim {
 namespace ssc = firmware_iface::ssc32;
@@ -88,10 +89,7 @@ void SimSsc32::move(const ssc::Command& c) {
 }
 
 std::size_t SimSsc32::take_replies(std::span<std::uint8_t> out) {
-  const std::size_t n = std::min(out.size(), replies_.size());
-  std::copy_n(replies_.begin(), n, out.begin());
-  replies_.erase(replies_.begin(), replies_.begin() + static_cast<long>(n));
-  return n;
+  return take_from(replies_, out);
 }
 
 void SimSsc32::advance(double dt_s) {

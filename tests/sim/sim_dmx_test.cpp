@@ -106,35 +106,18 @@ fw::DmxLinkConfig link_config() {
   return c;
 }
 
-class WriteCounter final : public fw::ByteTransport {
- public:
-  explicit WriteCounter(ByteDevice& d) : inner_(d) {}
-  Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    ++writes;
-    return inner_.write(bytes);
-  }
-  Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds t) noexcept override { return inner_.read_exact(out, t); }
-  void discard_input() noexcept override { inner_.discard_input(); }
-  std::uint64_t bytes_written() const noexcept override { return inner_.bytes_written(); }
-  const std::string& name() const noexcept override { return inner_.name(); }
-  int writes = 0;
-
- private:
-  DeviceTransport inner_;
-};
-
 TEST(DmxLink, EachTickSendsTheWholeUniverseOnce) {
   SimDmxConfig c;
   c.fixtures = {{1, false, 1000, 2000, 1500}, {3, true, 1000, 2000, 1500}};
   SimDmx widget(c);
-  WriteCounter t(widget);
+  DeviceTransport t(widget);
   fw::DmxLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   EXPECT_EQ(link.widget_parameters().output_rate, 40);
   EXPECT_EQ(link.slot_count(), 30u);
-  t.writes = 0;
+  const std::uint64_t writes = t.writes();
   ASSERT_EQ(link.send(std::array<double, 3>{90, 0, 25}), Status::ok);
-  EXPECT_EQ(t.writes, 1);
+  EXPECT_EQ(t.writes(), writes + 1);
   EXPECT_EQ(link.last_send_size(), dmx::send_dmx_size(30));
   EXPECT_EQ(widget.slot(1), 255);
   EXPECT_EQ(widget.fixture_level(1), 32768);  // 0 ° = middle of 0..65535, rounded

@@ -42,26 +42,6 @@ fw::FeetechLinkConfig link_config(ft::Series series = ft::Series::sts, std::vect
   return c;
 }
 
-/// Counts the writes that reach the device (the driver promises one per tick).
-class CountingDeviceTransport final : public fw::ByteTransport {
- public:
-  explicit CountingDeviceTransport(ByteDevice& d) : inner_(d) {}
-  Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    ++writes;
-    last.assign(bytes.begin(), bytes.end());
-    return inner_.write(bytes);
-  }
-  Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds t) noexcept override { return inner_.read_exact(out, t); }
-  void discard_input() noexcept override { inner_.discard_input(); }
-  std::uint64_t bytes_written() const noexcept override { return inner_.bytes_written(); }
-  const std::string& name() const noexcept override { return inner_.name(); }
-  int writes = 0;
-  std::vector<std::uint8_t> last;
-
- private:
-  DeviceTransport inner_;
-};
-
 /// A device between the driver and the bus that spoils replies on request.
 class SpoilingDevice final : public ByteDevice {
  public:
@@ -112,15 +92,15 @@ TEST(FeetechLink, StartFailsOnASilentServo) {
 
 TEST(FeetechLink, EachTickIsOneWriteOfSyncWriteAndSyncReadAndFillsTelemetry) {
   SimFeetech bus(three_servos());
-  CountingDeviceTransport t(bus);
+  DeviceTransport t(bus);
   fw::FeetechLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   const std::array<double, 3> frame{45, 45, -30};  // channel 1 is reversed
   std::array<fw::ChannelTelemetry, 3> telemetry{};
   for (int tick = 0; tick < 100; ++tick) {
-    t.writes = 0;
+    const std::uint64_t writes = t.writes();
     ASSERT_EQ(link.send(frame), Status::ok);
-    EXPECT_EQ(t.writes, 1);
+    EXPECT_EQ(t.writes(), writes + 1);
     bus.advance(0.01);
   }
   EXPECT_EQ(link.last_send_size(), ft::sync_write_size(2, 3) + ft::sync_read_size(3));
@@ -128,12 +108,12 @@ TEST(FeetechLink, EachTickIsOneWriteOfSyncWriteAndSyncReadAndFillsTelemetry) {
   // The packet on the wire: goals 2560, 1536 (reversed), 1707, then the sync read of 8 bytes.
   ft::Packet p;
   std::size_t used = 0;
-  ASSERT_EQ(ft::decode_packet(t.last, &p, &used), ft::DecodeResult::ok);
+  ASSERT_EQ(ft::decode_packet(t.last_write(), &p, &used), ft::DecodeResult::ok);
   EXPECT_EQ(p.code, ft::kSyncWrite);
   EXPECT_EQ(ft::get_word(ft::Series::sts, p.params.subspan(3, 2)), 2560);
   EXPECT_EQ(ft::get_word(ft::Series::sts, p.params.subspan(6, 2)), 1536);
   EXPECT_EQ(ft::get_word(ft::Series::sts, p.params.subspan(9, 2)), 1707);
-  ASSERT_EQ(ft::decode_packet(std::span(t.last).subspan(used), &p, &used), ft::DecodeResult::ok);
+  ASSERT_EQ(ft::decode_packet(std::span(t.last_write()).subspan(used), &p, &used), ft::DecodeResult::ok);
   EXPECT_EQ(p.code, ft::kSyncRead);
   EXPECT_NEAR(bus.position(0), 2560, 1.5);
   EXPECT_NEAR(bus.position(1), 1536, 1.5);
@@ -230,7 +210,7 @@ TEST(FeetechLink, CorruptRepliesAreCountedAndTheNextTickIsInSync) {
 
 TEST(FeetechLink, ReleasedChannelsGoLimpAndLeaveTheSyncWrite) {
   SimFeetech bus(three_servos());
-  CountingDeviceTransport t(bus);
+  DeviceTransport t(bus);
   fw::FeetechLinkConfig config = link_config();
   config.readback = fw::FeetechReadback::none;
   fw::FeetechLink link(t, config);

@@ -113,6 +113,8 @@ TEST(SimSsc32, ModelsItsLineRate) {
   EXPECT_THROW(SimSsc32{bad}, std::invalid_argument);
 }
 
+std::string text(const std::vector<std::uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
+
 fw::Ssc32LinkConfig link_config() {
   fw::Ssc32LinkConfig c;
   c.actuators.push_back({0, 0, {-90, 90, 1000, 2000, false, 0}, {}});
@@ -121,35 +123,16 @@ fw::Ssc32LinkConfig link_config() {
   return c;
 }
 
-class LineRecorder final : public fw::ByteTransport {
- public:
-  explicit LineRecorder(ByteDevice& d) : inner_(d) {}
-  Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    ++writes;
-    last.assign(bytes.begin(), bytes.end());
-    return inner_.write(bytes);
-  }
-  Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds t) noexcept override { return inner_.read_exact(out, t); }
-  void discard_input() noexcept override { inner_.discard_input(); }
-  std::uint64_t bytes_written() const noexcept override { return inner_.bytes_written(); }
-  const std::string& name() const noexcept override { return inner_.name(); }
-  int writes = 0;
-  std::string last;
-
- private:
-  DeviceTransport inner_;
-};
-
 TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
   SimSsc32 board({});
-  LineRecorder t(board);
+  DeviceTransport t(board);
   fw::Ssc32Link link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
-  t.writes = 0;
+  const std::uint64_t writes = t.writes();
   ASSERT_EQ(link.send(std::array<double, 3>{0, 45, 50}), Status::ok);
-  EXPECT_EQ(t.writes, 1);
-  EXPECT_EQ(t.last, "#0P1500#7P1250#31P1500S4000T20\r");
-  EXPECT_EQ(link.last_send_size(), t.last.size());
+  EXPECT_EQ(t.writes(), writes + 1);
+  EXPECT_EQ(text(t.last_write()), "#0P1500#7P1250#31P1500S4000T20\r");
+  EXPECT_EQ(link.last_send_size(), t.last_write().size());
   for (int tick = 1; tick <= 50; ++tick) {
     const double s = tick / 50.0;
     ASSERT_EQ(link.send(std::array<double, 3>{90 * s, -90 * s, 50 + 50 * s}), Status::ok);
@@ -169,22 +152,22 @@ TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
 
 TEST(Ssc32Link, ReleasedChannelsAreHeldLowOnce) {
   SimSsc32 board({});
-  LineRecorder t(board);
+  DeviceTransport t(board);
   fw::Ssc32Link link(t, link_config());
   const std::array<double, 3> frame{0, 0, 50};
   ASSERT_EQ(link.send(frame), Status::ok);
   link.release_channel(1);
   ASSERT_EQ(link.send(frame), Status::ok);
-  EXPECT_EQ(t.last, "#7L\r#0P1500#31P1500S4000T20\r");
+  EXPECT_EQ(text(t.last_write()), "#7L\r#0P1500#31P1500S4000T20\r");
   EXPECT_EQ(board.output_pulse(7), 0);
   ASSERT_EQ(link.send(frame), Status::ok);
-  EXPECT_EQ(t.last, "#0P1500#31P1500S4000T20\r");
+  EXPECT_EQ(text(t.last_write()), "#0P1500#31P1500S4000T20\r");
   std::array<double, 3> positions{};
   std::array<bool, 3> known{};
   ASSERT_EQ(link.read_positions(positions, known), Status::ok);
   EXPECT_FALSE(known[1]);  // no pulse: unknown
   ASSERT_EQ(link.release(), Status::ok);
-  EXPECT_EQ(t.last, "#0L#7L#31L\r");
+  EXPECT_EQ(text(t.last_write()), "#0L#7L#31L\r");
   EXPECT_EQ(board.output_pulse(0), 0);
 }
 

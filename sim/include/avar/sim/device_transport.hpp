@@ -7,6 +7,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/sim/byte_device.hpp"
@@ -22,6 +23,8 @@ class DeviceTransport final : public firmware_iface::ByteTransport {
   Status write(std::span<const std::uint8_t> bytes) noexcept override {
     device_.receive(bytes);
     written_ += bytes.size();
+    ++writes_;
+    last_write_.assign(bytes.begin(), bytes.end());
     return Status::ok;
   }
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds) noexcept override {
@@ -35,10 +38,16 @@ class DeviceTransport final : public firmware_iface::ByteTransport {
   std::uint64_t bytes_written() const noexcept override { return written_; }
   const std::string& name() const noexcept override { return name_; }
 
+  /// write() calls so far, and the bytes of the last one (what a driver sent in one tick).
+  std::uint64_t writes() const noexcept { return writes_; }
+  const std::vector<std::uint8_t>& last_write() const noexcept { return last_write_; }
+
  private:
   ByteDevice& device_;
   std::string name_;
   std::uint64_t written_ = 0;
+  std::uint64_t writes_ = 0;
+  std::vector<std::uint8_t> last_write_;
 };
 
 }  // namespace avar::sim
