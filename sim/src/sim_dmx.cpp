@@ -1,10 +1,12 @@
 #include "avar/sim/sim_dmx.hpp"
-#include "avar/sim/reply_queue.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "avar/firmware_iface/wire_time.hpp"
+#include "avar/sim/reply_queue.hpp"
 
 namespace avar::sim {
 namespace dmx = firmware_iface::dmx;
@@ -28,6 +30,8 @@ double SimDmx::fixture_pulse_us(std::size_t fixture) const {
   const double full = f.fine ? 65535.0 : 255.0;
   return f.pulse_at_zero_us + (f.pulse_at_full_us - f.pulse_at_zero_us) * fixture_level(fixture) / full;
 }
+
+double SimDmx::wire_time(std::size_t bytes) const { return firmware_iface::wire_seconds(bytes, config_.baud); }
 
 double SimDmx::dmx_period() const {
   const double packet = dmx::dmx_packet_seconds(std::max<std::size_t>(slot_count_, 1));

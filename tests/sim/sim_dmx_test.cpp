@@ -93,6 +93,7 @@ TEST(SimDmx, PacketsGoOutAtTheOutputRateAndFixturesFollow) {
   EXPECT_NEAR(d.servo_position_us(0), 2000, 3);
   EXPECT_NEAR(d.servo_position_us(1), 1250, 3);
   EXPECT_DOUBLE_EQ(d.dmx_period(), 1.0 / 40);
+  EXPECT_DOUBLE_EQ(d.wire_time(dmx::send_dmx_size(24)), 30 * 10 / 115200.0);
   SimDmxConfig bad;
   bad.fixtures = {{512, true, 1000, 2000, 1500}};
   EXPECT_THROW(SimDmx{bad}, std::invalid_argument);

@@ -32,6 +32,9 @@ struct SimDmxFixture {
 };
 
 struct SimDmxConfig {
+  /// Host-side serial rate the link budget assumes (8N1). The real widget's USB link ignores
+  /// the rate a host sets (unconfirmed); the DMX line itself runs at 250 kbit/s 8N2.
+  int baud = 115200;
   std::vector<SimDmxFixture> fixtures;
   ServoParams servo;
   firmware_iface::dmx::WidgetParameters parameters{0x0144, 9, 1, 40};
@@ -62,6 +65,8 @@ class SimDmx final : public ByteDevice {
   int fixture_level(std::size_t fixture) const;
   double fixture_pulse_us(std::size_t fixture) const;
   double servo_position_us(std::size_t fixture) const { return servos_[fixture].position_us(); }
+  /// Seconds `bytes` take on the host side at the configured rate (8N1).
+  double wire_time(std::size_t bytes) const;
   /// Seconds between DMX packets: the output rate's period, never shorter than the packet.
   double dmx_period() const;
 
