@@ -17,6 +17,15 @@ int from_sign_magnitude(std::uint16_t raw, int sign_bit) noexcept {
   return (raw >> sign_bit) & 1 ? -magnitude : magnitude;
 }
 
+std::uint16_t position_word(Series series, long steps) noexcept {
+  if (series == Series::sts) return to_sign_magnitude(static_cast<int>(std::clamp(steps, -32767L, 32767L)), kPositionSignBit);
+  return static_cast<std::uint16_t>(std::clamp(steps, 0L, 65535L));
+}
+
+int position_from_word(Series series, std::uint16_t raw) noexcept {
+  return series == Series::sts ? from_sign_magnitude(raw, kPositionSignBit) : raw;
+}
+
 void put_word(Series series, std::span<std::uint8_t, 2> out, std::uint16_t value) noexcept {
   const auto low = static_cast<std::uint8_t>(value & 0xFF);
   const auto high = static_cast<std::uint8_t>(value >> 8);

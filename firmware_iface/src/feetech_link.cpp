@@ -64,22 +64,13 @@ std::size_t FeetechLink::reply_bytes_per_tick() const noexcept {
   return config_.readback == FeetechReadback::none ? 0 : config_.actuators.size() * ft::status_size(readback_length());
 }
 
-std::uint16_t FeetechLink::goal_word(double steps) const noexcept {
-  const long rounded = std::lround(steps);
-  if (config_.series == ft::Series::sts) return ft::to_sign_magnitude(static_cast<int>(std::clamp(rounded, -32767L, 32767L)), ft::kPositionSignBit);
-  return static_cast<std::uint16_t>(std::clamp(rounded, 0L, static_cast<long>(ft::position_resolution(ft::Series::scs) - 1)));
-}
-
-double FeetechLink::position_from_word(std::uint16_t raw) const noexcept {
-  return config_.series == ft::Series::sts ? ft::from_sign_magnitude(raw, ft::kPositionSignBit) : raw;
-}
-
 template <class Take>
 Status FeetechLink::collect(std::span<const std::size_t> slots, std::size_t data_length, Take&& take) noexcept {
   for (std::size_t s : slots) answered_[s] = false;
   const Clock::time_point deadline = Clock::now() + config_.reply_timeout;
   const std::size_t reply_size = ft::status_size(data_length);
-  std::size_t have = 0, taken = 0;
+  const std::size_t expected = slots.size() * reply_size;
+  std::size_t have = 0, taken = 0, bytes_read = 0;
   bool corrupt = false;
   while (taken < slots.size()) {
     ft::Packet packet;
@@ -88,11 +79,16 @@ Status FeetechLink::collect(std::span<const std::size_t> slots, std::size_t data
     if (r == ft::DecodeResult::need_more) {
       // Ask for the rest of the packet under way, or for one whole reply.
       const std::size_t want = have >= ft::kHeaderSize ? ft::kHeaderSize + rx_[3] - have : reply_size - have;
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-      if (left.count() <= 0 || have + want > rx_.size()) break;
+      // Past the deadline, only what has already arrived is taken (reads of 0 ms), and no more
+      // than the replies asked for: a late thread still collects them, a babbling line cannot
+      // hold the tick.
+      const auto left = std::max(std::chrono::milliseconds(0),
+                                 std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+      if ((left.count() == 0 && bytes_read > expected) || have + want > rx_.size()) break;
       if (transport_.read_exact(std::span(rx_.data() + have, want), left) != Status::ok) break;
       AtomicLinkCounters::add(counters_.bytes_received, want);
       have += want;
+      bytes_read += want;
       continue;
     }
     if (r == ft::DecodeResult::bad_checksum) {
@@ -190,7 +186,7 @@ Status FeetechLink::read_positions(std::span<double> frame, std::span<bool> know
   AtomicLinkCounters::add(counters_.bytes_sent, len);
   return collect(all_slots_, 2, [&](std::size_t slot, const ft::Packet& p) {
     const FeetechActuator& a = config_.actuators[slot];
-    frame[a.channel] = a.calibration.to_channel(position_from_word(ft::get_word(config_.series, p.params)));
+    frame[a.channel] = a.calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
     known[a.channel] = true;
   });
 }
@@ -208,7 +204,7 @@ Status FeetechLink::send(std::span<const double> frame) noexcept {
     const double steps = a.calibration.to_device(frame[a.channel], &clamped);
     if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
     ids_[driven] = a.id;
-    goals_[driven++] = goal_word(steps);
+    goals_[driven++] = ft::position_word(config_.series, std::lround(steps));
   }
   const std::span<std::uint8_t> out(packet_);
   std::size_t size = 0;
@@ -239,7 +235,7 @@ Status FeetechLink::send(std::span<const double> frame) noexcept {
   if (length == 0) return Status::ok;
   const Status s = collect(all_slots_, length, [&](std::size_t slot, const ft::Packet& p) {
     ChannelTelemetry& t = telemetry_[slot];
-    t.position = config_.actuators[slot].calibration.to_channel(position_from_word(ft::get_word(config_.series, p.params)));
+    t.position = config_.actuators[slot].calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
     if (length >= 8) {
       t.load = ft::from_sign_magnitude(ft::get_word(config_.series, p.params.subspan(4, 2)), ft::kLoadSignBit) / 1000.0;
       t.temperature_c = p.params[7];

@@ -99,7 +99,7 @@ std::uint8_t SimFeetech::write(Servo& s, std::uint8_t address, std::span<const s
   const auto covers = [&](std::uint8_t reg, std::size_t size) { return address <= reg && reg + size <= address + data.size(); };
   if (covers(ft::kGoalPosition, 2)) {
     const std::uint16_t raw = ft::get_word(config_.series, data.subspan(ft::kGoalPosition - address, 2));
-    const int goal = config_.series == ft::Series::sts ? ft::from_sign_magnitude(raw, ft::kPositionSignBit) : raw;
+    const int goal = ft::position_from_word(config_.series, raw);
     const int lo = ft::get_word(config_.series, std::span(s.table).subspan(ft::kMinPositionLimit, 2));
     const int hi = ft::get_word(config_.series, std::span(s.table).subspan(ft::kMaxPositionLimit, 2));
     if (!(lo == 0 && hi == 0) && (goal < lo || goal > hi)) return ft::kErrorRange;
@@ -236,12 +236,10 @@ void SimFeetech::advance(double dt_s) {
 }
 
 void SimFeetech::step(Servo& s, double dt_s) {
-  const bool sts = config_.series == ft::Series::sts;
   const SimFeetechServo& spec = s.spec;
   const double before = s.model.position_us() - kModelBias;
   if (dt_s > 0 && s.table[ft::kTorqueEnable] == 1) {
-    const std::uint16_t goal_raw = read_word(static_cast<std::size_t>(&s - servos_.data()), ft::kGoalPosition);
-    const double goal = sts ? ft::from_sign_magnitude(goal_raw, ft::kPositionSignBit) : goal_raw;
+    const double goal = ft::position_from_word(config_.series, read_word(static_cast<std::size_t>(&s - servos_.data()), ft::kGoalPosition));
     const int speed_reg = std::abs(ft::from_sign_magnitude(read_word(static_cast<std::size_t>(&s - servos_.data()), ft::kGoalSpeed),
                                                            ft::kSpeedSignBit));
     const double top = speed_reg > 0 ? std::min<double>(speed_reg, spec.max_speed_steps_per_s) : spec.max_speed_steps_per_s;
@@ -275,9 +273,7 @@ void SimFeetech::step(Servo& s, double dt_s) {
   if (status & s.table[ft::kUnloadingCondition]) s.table[ft::kTorqueEnable] = 0;  // protection: torque off
   const double position = s.model.position_us() - kModelBias;
   const long steps = std::lround(position);
-  put_word(s, ft::kPresentPosition,
-           sts ? ft::to_sign_magnitude(static_cast<int>(steps), ft::kPositionSignBit)
-               : static_cast<std::uint16_t>(std::clamp(steps, 0L, 0xFFFFL)));
+  put_word(s, ft::kPresentPosition, ft::position_word(config_.series, steps));
   put_word(s, ft::kPresentSpeed, ft::to_sign_magnitude(static_cast<int>(std::lround(s.velocity)), ft::kSpeedSignBit));
   put_word(s, ft::kPresentLoad, ft::to_sign_magnitude(static_cast<int>(std::lround(s.load * 1000)), ft::kLoadSignBit));
   s.table[ft::kPresentVoltage] = spec.voltage_decivolts;

@@ -88,6 +88,12 @@ TEST(FeetechCodec, F9_SignMagnitude) {
   EXPECT_EQ(from_sign_magnitude(0x400 | 500, kLoadSignBit), -500);
   EXPECT_EQ(to_sign_magnitude(5000, kLoadSignBit), 1023);
   EXPECT_EQ(to_sign_magnitude(-40000, kPositionSignBit), 0xFFFF);
+  // Positions: sign-magnitude on STS, unsigned on SCS.
+  EXPECT_EQ(position_word(Series::sts, -100), 0x8064);
+  EXPECT_EQ(position_from_word(Series::sts, 0x8064), -100);
+  EXPECT_EQ(position_word(Series::scs, -100), 0);
+  EXPECT_EQ(position_word(Series::scs, 1023), 1023);
+  EXPECT_EQ(position_from_word(Series::scs, 0x8064), 0x8064);
 }
 
 TEST(FeetechCodec, RejectsWhatCannotBeSent) {

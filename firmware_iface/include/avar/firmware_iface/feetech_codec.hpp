@@ -100,6 +100,11 @@ constexpr int position_resolution(Series s) noexcept { return s == Series::sts ?
 std::uint16_t to_sign_magnitude(int value, int sign_bit) noexcept;
 int from_sign_magnitude(std::uint16_t raw, int sign_bit) noexcept;
 
+/// Position register value (goal, present) for a position in steps: sign-magnitude with the
+/// sign in bit 15 on STS, unsigned on SCS; saturates, never wraps.
+std::uint16_t position_word(Series series, long steps) noexcept;
+int position_from_word(Series series, std::uint16_t raw) noexcept;
+
 /// Two-byte register value in the series' byte order.
 void put_word(Series series, std::span<std::uint8_t, 2> out, std::uint16_t value) noexcept;
 std::uint16_t get_word(Series series, std::span<const std::uint8_t> in) noexcept;  ///< in.size() >= 2

@@ -48,6 +48,8 @@ struct FeetechLinkConfig {
   /// Write's status reply. With 0 only Read and Ping are answered.
   bool replies_to_writes = true;
   /// Longest a send() waits for its Sync Read replies, and a start() query for its reply.
+  /// Replies that have already arrived are still taken after it (reads of 0 ms: at most 1 ms
+  /// each on SerialTransport), never more bytes than were asked for.
   std::chrono::milliseconds reply_timeout{10};
   std::vector<FeetechActuator> actuators;
 };
@@ -95,8 +97,6 @@ class FeetechLink final : public ActuatorLink {
   Status query(std::size_t slot, std::span<const std::uint8_t> request, std::size_t data_length,
                feetech::Packet* reply = nullptr);
   Status write_register(std::size_t slot, std::uint8_t address, std::span<const std::uint8_t> data);
-  std::uint16_t goal_word(double steps) const noexcept;
-  double position_from_word(std::uint16_t raw) const noexcept;
   std::uint8_t readback_length() const noexcept;
 
   ByteTransport& transport_;
