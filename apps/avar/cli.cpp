@@ -26,7 +26,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      validate both files and list what the rig cannot do, without moving anything\n"
       "  avar sample SHOW --rate 100 --channels neck_pan,jaw\n"
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
-      "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3\n"
+      "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
   app.require_subcommand(1);
@@ -91,6 +91,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   sim_dynamixel_cmd->add_flag("--pty", sim_dynamixel.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
   sim_dynamixel_cmd->add_option("--ids", sim_dynamixel.ids, "Servo IDs on the bus, comma-separated (default 1)")
       ->delimiter(',');
+  SimFeetechOptions sim_feetech;
+  CLI::App* sim_feetech_cmd = sim_cmd->add_subcommand(
+      "feetech", "Simulated Feetech STS or SCS servos on one bus; prints the port path, serves until Ctrl-C");
+  sim_feetech_cmd->add_flag("--pty", sim_feetech.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
+  sim_feetech_cmd->add_option("--ids", sim_feetech.ids, "Servo IDs on the bus, comma-separated (default 1)")->delimiter(',');
+  sim_feetech_cmd->add_option("--series", sim_feetech.series, "sts (little-endian, default) or scs (big-endian)");
+  sim_feetech_cmd->add_option("--baud", sim_feetech.baud, "Bus rate the servos are set to (default 1000000)");
+  SimSsc32Options sim_ssc32;
+  CLI::App* sim_ssc32_cmd = sim_cmd->add_subcommand(
+      "ssc32", "A simulated Lynxmotion SSC-32U (32 hobby servos, ASCII commands); prints the port path, serves until Ctrl-C");
+  sim_ssc32_cmd->add_flag("--pty", sim_ssc32.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
+  SimDmxOptions sim_dmx;
+  CLI::App* sim_dmx_cmd = sim_cmd->add_subcommand(
+      "dmx", "A simulated ENTTEC DMX USB Pro widget (one DMX universe); prints the port path, serves until Ctrl-C");
+  sim_dmx_cmd->add_flag("--pty", sim_dmx.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
 
   try {
     app.parse(argc, argv);
@@ -117,6 +132,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
+  if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);
+  if (*sim_ssc32_cmd) return run_sim_ssc32(sim_ssc32, out, err);
+  if (*sim_dmx_cmd) return run_sim_dmx(sim_dmx, out, err);
   return kExitBadInput;
 }
 

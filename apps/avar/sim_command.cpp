@@ -3,16 +3,23 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "avar/exit_codes.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
+#include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/sim_dmx.hpp"
 #include "avar/sim/sim_dynamixel.hpp"
+#include "avar/sim/sim_feetech.hpp"
 #include "avar/sim/sim_maestro.hpp"
+#include "avar/sim/sim_ssc32.hpp"
 
 namespace avar::app {
 namespace {
@@ -52,13 +59,37 @@ int serve_on_pty(sim::ByteDevice& device, const std::string& description, const 
   return kExitOk;
 }
 
+int refuse_without_pty(std::ostream& err) {
+  err << "error: say where to serve: --pty (a pseudo-terminal)\n";
+  return kExitBadInput;
+}
+
+/// Checks bus IDs (each 0..max_id, none twice) into `ids`; reports the first bad one on err.
+bool checked_ids(const std::vector<int>& given, int max_id, const char* what, std::vector<std::uint8_t>& ids, std::ostream& err) {
+  for (int id : given) {
+    if (id < 0 || id > max_id) {
+      err << "error: --ids: " << id << " is not " << what << "; expected 0 to " << max_id << "\n";
+      return false;
+    }
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+      err << "error: --ids: " << id << " is given twice; every servo on a bus needs its own ID\n";
+      return false;
+    }
+    ids.push_back(static_cast<std::uint8_t>(id));
+  }
+  return true;
+}
+
+std::string id_list(const std::vector<std::uint8_t>& ids) {
+  std::string out;
+  for (std::uint8_t id : ids) out += (out.empty() ? "" : ",") + std::to_string(id);
+  return out;
+}
+
 }  // namespace
 
 int run_sim_maestro(const SimMaestroOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) {
-    err << "error: say where to serve: --pty (a pseudo-terminal)\n";
-    return kExitBadInput;
-  }
+  if (!options.pty) return refuse_without_pty(err);
   sim::SimMaestroConfig config;
   config.channel_count = options.channels;
   config.device_number = static_cast<std::uint8_t>(options.device_number);
@@ -81,34 +112,84 @@ int run_sim_maestro(const SimMaestroOptions& options, std::ostream& out, std::os
 }
 
 int run_sim_dynamixel(const SimDynamixelOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) {
-    err << "error: say where to serve: --pty (a pseudo-terminal)\n";
-    return kExitBadInput;
-  }
+  if (!options.pty) return refuse_without_pty(err);
+  std::vector<std::uint8_t> ids;
+  if (!checked_ids(options.ids, firmware_iface::dynamixel::kMaxId, "a Dynamixel ID", ids, err)) return kExitBadInput;
   sim::SimDynamixelConfig config;
-  std::string ids;
-  for (int id : options.ids) {
-    if (id < 0 || id > firmware_iface::dynamixel::kMaxId) {
-      err << "error: --ids: " << id << " is not a Dynamixel ID; expected 0 to 252\n";
-      return kExitBadInput;
-    }
-    for (const auto& s : config.servos)
-      if (s.id == id) {
-        err << "error: --ids: " << id << " is given twice; every servo on a bus needs its own ID\n";
-        return kExitBadInput;
-      }
+  for (std::uint8_t id : ids) {
     sim::SimDynamixelServo servo;
-    servo.id = static_cast<std::uint8_t>(id);
+    servo.id = id;
     config.servos.push_back(servo);
-    ids += (ids.empty() ? "" : ",") + std::to_string(id);
   }
   sim::SimDynamixel device(config);
   return serve_on_pty(
-      device, "simulated Dynamixel bus (IDs " + ids + ")",
+      device, "simulated Dynamixel bus (IDs " + id_list(ids) + ")",
       [&] {
         std::string line = "positions:";
         for (std::size_t i = 0; i < config.servos.size() && i < 8; ++i)
           line += " " + std::to_string(static_cast<long>(device.position(i)));
+        return line;
+      },
+      out, err);
+}
+
+int run_sim_feetech(const SimFeetechOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.pty) return refuse_without_pty(err);
+  std::vector<std::uint8_t> ids;
+  if (!checked_ids(options.ids, firmware_iface::feetech::kMaxId, "a Feetech ID", ids, err)) return kExitBadInput;
+  sim::SimFeetechConfig config;
+  if (options.series == "sts" || options.series == "scs") {
+    config.series = options.series == "sts" ? firmware_iface::feetech::Series::sts : firmware_iface::feetech::Series::scs;
+  } else {
+    err << "error: --series: '" << options.series << "' is not a Feetech series; expected sts or scs\n";
+    return kExitBadInput;
+  }
+  if (sim::SimFeetech::baud_code(options.baud) < 0) {
+    err << "error: --baud: a Feetech servo cannot run at " << options.baud
+        << "; expected 1000000, 500000, 250000, 128000, 115200, 76800, 57600, 38400, 19200, 14400, 9600 or 4800\n";
+    return kExitBadInput;
+  }
+  config.baud = options.baud;
+  for (std::uint8_t id : ids) {
+    sim::SimFeetechServo servo;
+    servo.id = id;
+    config.servos.push_back(servo);
+  }
+  sim::SimFeetech device(config);
+  return serve_on_pty(
+      device,
+      "simulated Feetech " + std::string(options.series == "sts" ? "STS" : "SCS") + " bus (IDs " + id_list(ids) + ", " +
+          std::to_string(options.baud) + " baud)",
+      [&] {
+        std::string line = "positions:";
+        for (std::size_t i = 0; i < config.servos.size() && i < 8; ++i)
+          line += " " + std::to_string(std::lround(device.position(i)));
+        return line;
+      },
+      out, err);
+}
+
+int run_sim_ssc32(const SimSsc32Options& options, std::ostream& out, std::ostream& err) {
+  if (!options.pty) return refuse_without_pty(err);
+  sim::SimSsc32 device(sim::SimSsc32Config{});
+  return serve_on_pty(
+      device, "simulated SSC-32U (32 channels)",
+      [&] {
+        std::string line = "outputs (µs):";
+        for (int ch = 0; ch < 12; ++ch) line += " " + std::to_string(std::lround(device.output_pulse(ch)));
+        return line;
+      },
+      out, err);
+}
+
+int run_sim_dmx(const SimDmxOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.pty) return refuse_without_pty(err);
+  sim::SimDmx device(sim::SimDmxConfig{});
+  return serve_on_pty(
+      device, "simulated DMX USB Pro (one universe)",
+      [&] {
+        std::string line = std::to_string(device.frames_received()) + " frames; slots:";
+        for (int address = 1; address <= 16; ++address) line += " " + std::to_string(device.slot(address));
         return line;
       },
       out, err);

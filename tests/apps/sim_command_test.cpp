@@ -1,11 +1,13 @@
-// `avar sim maestro --pty` as another program uses it: read the port path from its output, talk
+// `avar sim maestro|dynamixel|feetech|ssc32|dmx --pty` as another program uses it: read the port path from its output, talk
 // to it, stop it with Ctrl-C.
 #include <gtest/gtest.h>
 
 #include <array>
 
 #include "../support/child_process.hpp"
+#include "avar/firmware_iface/dmx_codec.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
+#include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 
 namespace avar::app {
@@ -59,6 +61,80 @@ TEST(SimCommand, RejectsDuplicateDynamixelIds) {
   testing::ChildProcess sim({AVAR_BINARY, "sim", "dynamixel", "--pty", "--ids", "3,3"});
   EXPECT_EQ(sim.wait(), 2);
   EXPECT_NE(sim.err().find("--ids: 3 is given twice"), std::string::npos) << sim.err();
+}
+
+TEST(SimCommand, ServesAFeetechBusThatAnswersReads) {
+  testing::ChildProcess sim({AVAR_BINARY, "sim", "feetech", "--pty", "--ids", "4,6", "--series", "scs", "--baud", "500000"});
+  ASSERT_TRUE(sim.started());
+  std::string path = sim.read_out_until("\n");
+  ASSERT_FALSE(path.empty());
+  path.pop_back();
+  {
+    firmware_iface::SerialTransport port(path, 500000);
+    std::array<std::uint8_t, 16> read{};
+    const std::size_t n = firmware_iface::feetech::encode_read(read, 6, firmware_iface::feetech::kModelNumber, 2);
+    ASSERT_EQ(port.write(std::span(read.data(), n)), Status::ok);
+    std::array<std::uint8_t, 8> reply{};
+    ASSERT_EQ(port.read_exact(reply, std::chrono::milliseconds(2000)), Status::ok);
+    EXPECT_EQ(reply[2], 6);
+    EXPECT_EQ(firmware_iface::feetech::get_word(firmware_iface::feetech::Series::scs, std::span(reply).subspan(5, 2)), 1284);
+  }
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(), 0) << sim.err();
+  EXPECT_NE(sim.err().find("simulated Feetech SCS bus (IDs 4,6, 500000 baud)"), std::string::npos) << sim.err();
+}
+
+TEST(SimCommand, RejectsAFeetechBaudRateTheServosCannotDo) {
+  testing::ChildProcess sim({AVAR_BINARY, "sim", "feetech", "--pty", "--baud", "123456"});
+  EXPECT_EQ(sim.wait(), 2);
+  EXPECT_NE(sim.err().find("--baud: a Feetech servo cannot run at 123456"), std::string::npos) << sim.err();
+  testing::ChildProcess series({AVAR_BINARY, "sim", "feetech", "--pty", "--series", "xl"});
+  EXPECT_EQ(series.wait(), 2);
+  EXPECT_NE(series.err().find("--series: 'xl' is not a Feetech series"), std::string::npos) << series.err();
+  testing::ChildProcess ids({AVAR_BINARY, "sim", "feetech", "--pty", "--ids", "1,254"});
+  EXPECT_EQ(ids.wait(), 2);
+  EXPECT_NE(ids.err().find("--ids: 254 is not a Feetech ID; expected 0 to 253"), std::string::npos) << ids.err();
+}
+
+TEST(SimCommand, ServesAnSsc32ThatAnswersPositionQueries) {
+  testing::ChildProcess sim({AVAR_BINARY, "sim", "ssc32", "--pty"});
+  ASSERT_TRUE(sim.started());
+  std::string path = sim.read_out_until("\n");
+  ASSERT_FALSE(path.empty());
+  path.pop_back();
+  {
+    firmware_iface::SerialTransport port(path, 115200);
+    const std::string line = "#5P1500\rQP5\r";
+    ASSERT_EQ(port.write(std::span(reinterpret_cast<const std::uint8_t*>(line.data()), line.size())), Status::ok);
+    std::array<std::uint8_t, 1> reply{};
+    ASSERT_EQ(port.read_exact(reply, std::chrono::milliseconds(2000)), Status::ok);
+    EXPECT_EQ(reply[0], 150);
+  }
+  sim.signal(SIGTERM);
+  EXPECT_EQ(sim.wait(), 0) << sim.err();
+  EXPECT_NE(sim.err().find("simulated SSC-32U"), std::string::npos) << sim.err();
+}
+
+TEST(SimCommand, ServesADmxWidgetThatAnswersItsParameters) {
+  testing::ChildProcess sim({AVAR_BINARY, "sim", "dmx", "--pty"});
+  ASSERT_TRUE(sim.started());
+  std::string path = sim.read_out_until("\n");
+  ASSERT_FALSE(path.empty());
+  path.pop_back();
+  {
+    firmware_iface::SerialTransport port(path, 115200);
+    std::array<std::uint8_t, 8> request{};
+    const std::size_t n = firmware_iface::dmx::encode_get_widget_parameters(request);
+    ASSERT_EQ(port.write(std::span(request.data(), n)), Status::ok);
+    std::array<std::uint8_t, 10> reply{};
+    ASSERT_EQ(port.read_exact(reply, std::chrono::milliseconds(2000)), Status::ok);
+    EXPECT_EQ(reply[0], 0x7E);
+    EXPECT_EQ(reply[1], 0x03);
+    EXPECT_EQ(reply[9], 0xE7);
+  }
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(), 0) << sim.err();
+  EXPECT_NE(sim.err().find("simulated DMX USB Pro"), std::string::npos) << sim.err();
 }
 
 TEST(SimCommand, RefusesWithoutATransport) {
