@@ -109,7 +109,7 @@ int main() {
     }
   for (const auto& [c, measure] : cases) {
     const Measured m = measure(c);
-    const double limit_hz = 1.0 / sim::wire_seconds(static_cast<std::uint64_t>(c.minimum_bytes), c.baud);
+    const double limit_hz = 1.0 / firmware_iface::wire_seconds(static_cast<std::size_t>(c.minimum_bytes), c.baud);
     std::printf("link,%s,actuators=%d,baud=%d,readback=%d,achieved_hz=%.1f,limit_hz=%.1f\n", c.protocol.c_str(),
                 c.actuators, c.baud, c.readback ? 1 : 0, m.achieved_hz, limit_hz);
     std::printf("#   %.1f bytes per tick (minimum %.0f), %.1f%% of the limit, driver + simulated device CPU %.2f us per tick\n",

@@ -359,12 +359,6 @@ void DynamixelLink::read_telemetry(std::span<ChannelTelemetry> out) const noexce
   for (std::size_t i = 0; i < config_.actuators.size(); ++i) out[config_.actuators[i].channel] = telemetry_[i];
 }
 
-LinkCounters DynamixelLink::counters() const noexcept {
-  const auto get = [](const std::atomic<std::uint64_t>& c) { return c.load(std::memory_order_relaxed); };
-  return {get(counters_.exchanges), get(counters_.bytes_sent),     get(counters_.bytes_received),
-          get(counters_.replies),   get(counters_.crc_errors),     get(counters_.framing_errors),
-          get(counters_.timeouts),  get(counters_.retries),        get(counters_.device_errors),
-          get(counters_.reconnects)};
-}
+LinkCounters DynamixelLink::counters() const noexcept { return counters_.snapshot(); }
 
 }  // namespace avar::firmware_iface

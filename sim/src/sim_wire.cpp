@@ -6,7 +6,9 @@
 namespace avar::sim {
 
 SimWire::SimWire(ByteDevice& device, int baud, double turnaround_s, std::string name)
-    : device_(device), baud_(baud), turnaround_s_(turnaround_s), name_(std::move(name)) {}
+    : device_(device), baud_(baud), turnaround_s_(turnaround_s), name_(std::move(name)) {
+  last_write_.reserve(4096);
+}
 
 void SimWire::pass(double dt_s) noexcept {
   if (dt_s <= 0) return;
@@ -36,13 +38,15 @@ Status SimWire::write(std::span<const std::uint8_t> bytes) noexcept {
     open_ = false;  // like a vanished USB adapter: the handle stays dead until reopened
     return Status::io_error;
   }
-  pass(wire_seconds(bytes.size(), baud_));
+  pass(firmware_iface::wire_seconds(bytes.size(), baud_));
   try {
     device_.receive(bytes);
   } catch (...) {
     return Status::io_error;
   }
   bytes_written_ += bytes.size();
+  ++writes_;
+  if (bytes.size() <= last_write_.capacity()) last_write_.assign(bytes.begin(), bytes.end());
   return Status::ok;
 }
 
@@ -69,7 +73,7 @@ Status SimWire::read_exact(std::span<std::uint8_t> out, std::chrono::millisecond
   std::memmove(pending_.data(), pending_.data() + out.size(), pending_size_ - out.size());
   pending_size_ -= out.size();
   bytes_read_ += out.size();
-  pass(wire_seconds(out.size(), baud_));
+  pass(firmware_iface::wire_seconds(out.size(), baud_));
   return Status::ok;
 }
 

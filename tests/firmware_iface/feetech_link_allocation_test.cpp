@@ -29,6 +29,7 @@ class ScriptedTransport final : public ByteTransport {
     return Status::ok;
   }
   void discard_input() noexcept override {}
+  Status reopen() noexcept override { return Status::ok; }
   std::uint64_t bytes_written() const noexcept override { return written_; }
   const std::string& name() const noexcept override { return name_; }
 

@@ -9,7 +9,7 @@
 
 #include "avar/firmware_iface/dmx_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
-#include "avar/sim/device_transport.hpp"
+#include "avar/sim/sim_wire.hpp"
 #include "avar/sim/pty_device_host.hpp"
 
 namespace avar::sim {
@@ -111,7 +111,7 @@ TEST(DmxLink, EachTickSendsTheWholeUniverseOnce) {
   SimDmxConfig c;
   c.fixtures = {{1, false, 1000, 2000, 1500}, {3, true, 1000, 2000, 1500}};
   SimDmx widget(c);
-  DeviceTransport t(widget);
+  SimWire t(widget);
   fw::DmxLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   EXPECT_EQ(link.widget_parameters().output_rate, 40);
@@ -140,7 +140,7 @@ TEST(DmxLink, EachTickSendsTheWholeUniverseOnce) {
 
 TEST(DmxLink, ReleaseSendsLevelZero) {
   SimDmx widget({});
-  DeviceTransport t(widget);
+  SimWire t(widget);
   fw::DmxLink link(t, link_config());
   ASSERT_EQ(link.send(std::array<double, 3>{90, 90, 0}), Status::ok);
   link.release_channel(1);
@@ -155,7 +155,7 @@ TEST(DmxLink, ReleaseSendsLevelZero) {
 
 TEST(DmxLink, RefusesSlotsThatDoNotFitOrOverlap) {
   SimDmx widget({});
-  DeviceTransport t(widget);
+  SimWire t(widget);
   fw::DmxLinkConfig overlap = link_config();
   overlap.actuators[2].address = 4;  // inside the 16-bit pair 3-4
   EXPECT_THROW(fw::DmxLink(t, overlap), std::invalid_argument);

@@ -8,7 +8,7 @@
 
 #include "avar/firmware_iface/feetech_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
-#include "avar/sim/device_transport.hpp"
+#include "avar/sim/sim_wire.hpp"
 #include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/sim_feetech.hpp"
 
@@ -71,7 +71,7 @@ class SpoilingDevice final : public ByteDevice {
 
 TEST(FeetechLink, StartPingsHoldsPositionAndTurnsTorqueOn) {
   SimFeetech bus(three_servos());
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   for (std::size_t i = 0; i < 3; ++i) {
@@ -84,7 +84,7 @@ TEST(FeetechLink, StartPingsHoldsPositionAndTurnsTorqueOn) {
 
 TEST(FeetechLink, StartFailsOnASilentServo) {
   SimFeetech bus(three_servos());
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLink link(t, link_config(ft::Series::sts, {3, 5, 7}));
   EXPECT_EQ(link.start(), Status::timeout);
   EXPECT_EQ(link.counters().timeouts, 1u);
@@ -92,7 +92,7 @@ TEST(FeetechLink, StartFailsOnASilentServo) {
 
 TEST(FeetechLink, EachTickIsOneWriteOfSyncWriteAndSyncReadAndFillsTelemetry) {
   SimFeetech bus(three_servos());
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   const std::array<double, 3> frame{45, 45, -30};  // channel 1 is reversed
@@ -134,7 +134,7 @@ TEST(FeetechLink, EachTickIsOneWriteOfSyncWriteAndSyncReadAndFillsTelemetry) {
 
 TEST(FeetechLink, ScsSeriesSpeaksBigEndian) {
   SimFeetech bus(three_servos(ft::Series::scs));
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLinkConfig config = link_config(ft::Series::scs);
   config.readback = fw::FeetechReadback::position;
   fw::FeetechLink link(t, config);
@@ -159,7 +159,7 @@ TEST(FeetechLink, OverheatAndLoadReachTelemetryAsDeviceFaults) {
   SimFeetechConfig sc = three_servos();
   sc.servos[2].heating_c_per_s_at_full_load = 20;
   SimFeetech bus(sc);
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLink link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   bus.set_external_load(2, -0.9);
@@ -184,7 +184,7 @@ TEST(FeetechLink, OverheatAndLoadReachTelemetryAsDeviceFaults) {
 TEST(FeetechLink, CorruptRepliesAreCountedAndTheNextTickIsInSync) {
   SimFeetech bus(three_servos());
   SpoilingDevice spoil(bus);
-  DeviceTransport t(spoil);
+  SimWire t(spoil);
   fw::FeetechLinkConfig config = link_config();
   config.readback = fw::FeetechReadback::position;
   fw::FeetechLink link(t, config);
@@ -210,7 +210,7 @@ TEST(FeetechLink, CorruptRepliesAreCountedAndTheNextTickIsInSync) {
 
 TEST(FeetechLink, ReleasedChannelsGoLimpAndLeaveTheSyncWrite) {
   SimFeetech bus(three_servos());
-  DeviceTransport t(bus);
+  SimWire t(bus);
   fw::FeetechLinkConfig config = link_config();
   config.readback = fw::FeetechReadback::none;
   fw::FeetechLink link(t, config);
@@ -230,7 +230,7 @@ TEST(FeetechLink, ReleasedChannelsGoLimpAndLeaveTheSyncWrite) {
 
 TEST(FeetechLink, RejectsBadConfigurations) {
   SimFeetech bus(three_servos());
-  DeviceTransport t(bus);
+  SimWire t(bus);
   EXPECT_THROW(fw::FeetechLink(t, link_config(ft::Series::sts, {3, 3})), std::invalid_argument);
   EXPECT_THROW(fw::FeetechLink(t, link_config(ft::Series::sts, {254})), std::invalid_argument);
   EXPECT_THROW(fw::FeetechLink(t, fw::FeetechLinkConfig{}), std::invalid_argument);

@@ -10,7 +10,7 @@
 
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/firmware_iface/ssc32_link.hpp"
-#include "avar/sim/device_transport.hpp"
+#include "avar/sim/sim_wire.hpp"
 #include "avar/sim/pty_device_host.hpp"
 
 namespace avar::sim {
@@ -125,7 +125,7 @@ fw::Ssc32LinkConfig link_config() {
 
 TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
   SimSsc32 board({});
-  DeviceTransport t(board);
+  SimWire t(board);
   fw::Ssc32Link link(t, link_config());
   ASSERT_EQ(link.start(), Status::ok);
   const std::uint64_t writes = t.writes();
@@ -152,7 +152,7 @@ TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
 
 TEST(Ssc32Link, ReleasedChannelsAreHeldLowOnce) {
   SimSsc32 board({});
-  DeviceTransport t(board);
+  SimWire t(board);
   fw::Ssc32Link link(t, link_config());
   const std::array<double, 3> frame{0, 0, 50};
   ASSERT_EQ(link.send(frame), Status::ok);
@@ -182,7 +182,7 @@ class SilentDevice final : public ByteDevice {
 
 TEST(Ssc32Link, ASilentBoardIsATimeoutAndBadSetupIsRefused) {
   SilentDevice silent;
-  DeviceTransport t(silent);
+  SimWire t(silent);
   fw::Ssc32Link link(t, link_config());
   EXPECT_EQ(link.start(), Status::timeout);
   fw::Ssc32LinkConfig twice = link_config();

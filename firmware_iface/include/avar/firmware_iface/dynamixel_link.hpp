@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/atomic_link_counters.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 
@@ -121,10 +122,7 @@ class DynamixelLink final : public ActuatorLink {
   std::string description_;
   std::string start_problem_;
   std::atomic<std::uint64_t> saturated_{0};
-  struct AtomicCounters {
-    std::atomic<std::uint64_t> exchanges{0}, bytes_sent{0}, bytes_received{0}, replies{0}, crc_errors{0},
-        framing_errors{0}, timeouts{0}, retries{0}, device_errors{0}, reconnects{0};
-  } counters_;
+  AtomicLinkCounters counters_;
 };
 
 }  // namespace avar::firmware_iface

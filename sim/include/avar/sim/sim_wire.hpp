@@ -9,22 +9,19 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/wire_time.hpp"
 #include "avar/sim/byte_device.hpp"
 
 namespace avar::sim {
-
-/// Seconds that `bytes` take on an asynchronous serial line at `baud` (8N1: 10 bit times each).
-constexpr double wire_seconds(std::uint64_t bytes, int baud) noexcept {
-  return static_cast<double>(bytes) * 10.0 / static_cast<double>(baud);
-}
 
 class SimWire final : public firmware_iface::ByteTransport {
  public:
   /// device is borrowed and must outlive this. turnaround_s: time between the end of a request
   /// and the first reply byte (the device's return delay), charged once per read that waits.
-  SimWire(ByteDevice& device, int baud, double turnaround_s = 0, std::string name = "simulated wire");
+  SimWire(ByteDevice& device, int baud = 1'000'000, double turnaround_s = 0, std::string name = "simulated wire");
 
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
@@ -40,6 +37,10 @@ class SimWire final : public firmware_iface::ByteTransport {
   double now_s() const noexcept { return now_s_; }
   std::uint64_t bytes_read() const noexcept { return bytes_read_; }
   std::uint64_t reopens() const noexcept { return reopens_; }
+  /// Writes that reached the device, and the bytes of the last one (for tests of what a driver
+  /// sends per tick).
+  std::uint64_t writes() const noexcept { return writes_; }
+  const std::vector<std::uint8_t>& last_write() const noexcept { return last_write_; }
 
  private:
   /// Lets simulated time pass for the device.
@@ -57,6 +58,8 @@ class SimWire final : public firmware_iface::ByteTransport {
   std::uint64_t bytes_written_ = 0;
   std::uint64_t bytes_read_ = 0;
   std::uint64_t reopens_ = 0;
+  std::uint64_t writes_ = 0;
+  std::vector<std::uint8_t> last_write_;  ///< capacity reserved: no allocation per write
   std::array<std::uint8_t, 8192> pending_{};  ///< received, not yet read
   std::size_t pending_size_ = 0;
 };
