@@ -8,7 +8,10 @@
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/sim_dmx.hpp"
 #include "avar/sim/sim_dynamixel.hpp"
+#include "avar/sim/sim_feetech.hpp"
+#include "avar/sim/sim_ssc32.hpp"
 #include "avar/sim/sim_maestro.hpp"
 
 namespace avar::app {
@@ -52,6 +55,62 @@ firmware_iface::DynamixelLinkConfig dynamixel_config(const control::Rig& rig, st
     d.calibration = a.calibration;
     d.speed_limit = a.speed_limit;
     d.acceleration_limit = a.acceleration_limit;
+    config.actuators.push_back(d);
+  }
+  return config;
+}
+
+firmware_iface::FeetechLinkConfig feetech_config(const control::Rig& rig, std::size_t link) {
+  const control::LinkSpec& spec = rig.links[link];
+  firmware_iface::FeetechLinkConfig config;
+  config.series = spec.bus.scs ? firmware_iface::feetech::Series::scs : firmware_iface::feetech::Series::sts;
+  config.baud = spec.baud;
+  switch (spec.bus.readback) {
+    case control::Readback::none: config.readback = firmware_iface::FeetechReadback::none; break;
+    case control::Readback::position: config.readback = firmware_iface::FeetechReadback::position; break;
+    case control::Readback::full: config.readback = firmware_iface::FeetechReadback::full; break;
+  }
+  config.reply_timeout = std::chrono::milliseconds(spec.bus.reply_timeout_ms);
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    firmware_iface::FeetechActuator f;
+    f.channel = a.channel;
+    f.id = static_cast<std::uint8_t>(a.device_channel);
+    f.calibration = a.calibration;
+    // Device-side limits are given in channel units; the servo counts in position steps.
+    if (a.speed_limit) f.speed_steps_per_s = *a.speed_limit * a.calibration.device_per_unit();
+    if (a.acceleration_limit) f.acceleration_steps_per_s2 = *a.acceleration_limit * a.calibration.device_per_unit();
+    config.actuators.push_back(f);
+  }
+  return config;
+}
+
+firmware_iface::Ssc32LinkConfig ssc32_config(const control::Rig& rig, std::size_t link) {
+  firmware_iface::Ssc32LinkConfig config;
+  config.baud = rig.links[link].baud;
+  // Each group move lasts one tick, so the servos glide between the ticks' positions.
+  config.move_time = std::chrono::milliseconds(static_cast<long>(std::lround(1000.0 / rig.rate_hz)));
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    firmware_iface::Ssc32Actuator s;
+    s.channel = a.channel;
+    s.device_channel = a.device_channel;
+    s.calibration = a.calibration;
+    if (a.speed_limit) s.speed_us_per_s = *a.speed_limit * a.calibration.device_per_unit();
+    config.actuators.push_back(s);
+  }
+  return config;
+}
+
+firmware_iface::DmxLinkConfig dmx_config(const control::Rig& rig, std::size_t link) {
+  firmware_iface::DmxLinkConfig config;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    firmware_iface::DmxActuator d;
+    d.channel = a.channel;
+    d.address = a.device_channel;
+    d.fine = a.fine;
+    d.calibration = a.calibration;
     config.actuators.push_back(d);
   }
   return config;
@@ -107,6 +166,45 @@ sim::SimDynamixelConfig simulated_dynamixel(const control::Rig& rig, std::size_t
   return config;
 }
 
+/// Simulated Feetech servos with the rig's IDs and series, each parked at its rest pose.
+sim::SimFeetechConfig simulated_feetech(const control::Rig& rig, std::size_t link) {
+  sim::SimFeetechConfig config;
+  config.series = rig.links[link].bus.scs ? firmware_iface::feetech::Series::scs : firmware_iface::feetech::Series::sts;
+  config.baud = rig.links[link].baud;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    sim::SimFeetechServo servo;
+    servo.id = static_cast<std::uint8_t>(a.device_channel);
+    servo.initial_position = std::round(a.calibration.to_device(rig.channels[a.channel].rest));
+    config.servos.push_back(servo);
+  }
+  return config;
+}
+
+/// A simulated DMX widget with a servo decoder (or dimmer) on every actuator's slots.
+sim::SimDmxConfig simulated_dmx(const control::Rig& rig, std::size_t link) {
+  sim::SimDmxConfig config;
+  config.baud = rig.links[link].baud;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (a.link != link) continue;
+    sim::SimDmxFixture fixture;
+    fixture.address = a.device_channel;
+    fixture.fine = a.fine;
+    config.fixtures.push_back(fixture);
+  }
+  return config;
+}
+
+/// Index of an actuator among its link's actuators (the order simulated devices list them in).
+std::size_t index_on_link(const control::Rig& rig, const control::ActuatorSpec& wanted) {
+  std::size_t i = 0;
+  for (const control::ActuatorSpec& a : rig.actuators) {
+    if (&a == &wanted) return i;
+    if (a.link == wanted.link) ++i;
+  }
+  return i;
+}
+
 /// The simulated device of a link, and how to read an actuator's true position off it.
 void make_simulated_device(const control::Rig& rig, std::size_t link, FigureLinks::Entry& e);
 
@@ -128,7 +226,16 @@ FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection
       port = entry->host->slave_path();
     }
     entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-    entry->link = make_link(rig, i, *entry->transport);
+    if (entry->simulated) {
+      // A simulated device answers from a thread of this process, which a busy machine may keep
+      // waiting for longer than a real servo's reply timeout: give it room (it answers at once
+      // when it runs, so only a lost reply would ever wait this long).
+      control::Rig patched = rig;  // the drivers copy what they need from it
+      patched.links[i].bus.reply_timeout_ms = std::max(patched.links[i].bus.reply_timeout_ms, 200);
+      entry->link = make_link(patched, i, *entry->transport);
+    } else {
+      entry->link = make_link(rig, i, *entry->transport);
+    }
     if (selection.threaded_rate_hz > 0) {
       const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
       entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
@@ -153,23 +260,45 @@ void make_simulated_device(const control::Rig& rig, std::size_t link, FigureLink
     case control::Protocol::dynamixel: {
       auto device = std::make_unique<sim::SimDynamixel>(simulated_dynamixel(rig, link));
       sim::SimDynamixel* d = device.get();
-      // Servos are listed in actuator order; find an actuator's servo by its ID.
-      std::vector<std::uint8_t> ids;
-      for (const control::ActuatorSpec& a : rig.actuators)
-        if (a.link == link) ids.push_back(static_cast<std::uint8_t>(a.device_channel));
-      e.true_position = [d, ids](const control::ActuatorSpec& a) {
-        const auto at = std::find(ids.begin(), ids.end(), static_cast<std::uint8_t>(a.device_channel)) - ids.begin();
-        return a.calibration.to_channel(d->position(static_cast<std::size_t>(at)));
+      e.true_position = [d, &rig](const control::ActuatorSpec& a) {
+        return a.calibration.to_channel(d->position(index_on_link(rig, a)));
       };
       e.device = std::move(device);
       return;
     }
-    case control::Protocol::feetech:
-    case control::Protocol::ssc32:
-    case control::Protocol::dmx: break;
+    case control::Protocol::feetech: {
+      auto device = std::make_unique<sim::SimFeetech>(simulated_feetech(rig, link));
+      sim::SimFeetech* d = device.get();
+      e.true_position = [d, &rig](const control::ActuatorSpec& a) {
+        return a.calibration.to_channel(d->position(index_on_link(rig, a)));
+      };
+      e.device = std::move(device);
+      return;
+    }
+    case control::Protocol::ssc32: {
+      sim::SimSsc32Config config;
+      config.baud = rig.links[link].baud;
+      auto device = std::make_unique<sim::SimSsc32>(config);
+      sim::SimSsc32* d = device.get();
+      e.true_position = [d](const control::ActuatorSpec& a) {
+        return a.calibration.to_channel(d->servo_position_us(a.device_channel));
+      };
+      e.device = std::move(device);
+      return;
+    }
+    case control::Protocol::dmx: {
+      auto device = std::make_unique<sim::SimDmx>(simulated_dmx(rig, link));
+      sim::SimDmx* d = device.get();
+      // A dimmer's truth is the level the widget puts out.
+      e.true_position = [d, &rig](const control::ActuatorSpec& a) {
+        return a.calibration.to_channel(d->fixture_level(index_on_link(rig, a)));
+      };
+      e.device = std::move(device);
+      return;
+    }
   }
   throw InputError({rig.file, rig.links[link].where.line, rig.links[link].where.column},
-                   std::string("no simulated device for protocol ") + control::to_string(rig.links[link].protocol));
+                   std::string("unknown protocol ") + control::to_string(rig.links[link].protocol));
 }
 
 }  // namespace
@@ -180,12 +309,12 @@ std::unique_ptr<firmware_iface::ActuatorLink> make_link(const control::Rig& rig,
     case control::Protocol::maestro: return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
     case control::Protocol::dynamixel:
       return std::make_unique<firmware_iface::DynamixelLink>(transport, dynamixel_config(rig, link));
-    case control::Protocol::feetech:
-    case control::Protocol::ssc32:
-    case control::Protocol::dmx: break;
+    case control::Protocol::feetech: return std::make_unique<firmware_iface::FeetechLink>(transport, feetech_config(rig, link));
+    case control::Protocol::ssc32: return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
+    case control::Protocol::dmx: return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
   }
   throw InputError({rig.file, rig.links[link].where.line, rig.links[link].where.column},
-                   std::string("no driver for protocol ") + control::to_string(rig.links[link].protocol));
+                   std::string("unknown protocol ") + control::to_string(rig.links[link].protocol));
 }
 
 FigureLinks::~FigureLinks() {

@@ -10,7 +10,10 @@
 
 #include "avar/control/rig.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/dmx_link.hpp"
 #include "avar/firmware_iface/dynamixel_link.hpp"
+#include "avar/firmware_iface/feetech_link.hpp"
+#include "avar/firmware_iface/ssc32_link.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 
 namespace avar::app {
@@ -27,6 +30,9 @@ struct LinkSelection {
 firmware_iface::MaestroLinkConfig maestro_config(const control::Rig& rig, std::size_t link);
 /// The DYNAMIXEL driver settings for one link of the rig.
 firmware_iface::DynamixelLinkConfig dynamixel_config(const control::Rig& rig, std::size_t link);
+firmware_iface::FeetechLinkConfig feetech_config(const control::Rig& rig, std::size_t link);
+firmware_iface::Ssc32LinkConfig ssc32_config(const control::Rig& rig, std::size_t link);
+firmware_iface::DmxLinkConfig dmx_config(const control::Rig& rig, std::size_t link);
 /// The driver for one link of the rig, by its protocol, over `transport` (borrowed).
 std::unique_ptr<firmware_iface::ActuatorLink> make_link(const control::Rig& rig, std::size_t link,
                                                         firmware_iface::ByteTransport& transport);
