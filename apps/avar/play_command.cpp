@@ -59,7 +59,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
     out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
     // Smart buses answer: report the health of the wire.
     const firmware_iface::LinkCounters k = figure.links()[i]->counters();
-    if (k.replies > 0 || k.timeouts > 0)
+    if (k.replies > 0 || k.timeouts > 0 || k.reconnects > 0)
       out << "    " << k.exchanges << " exchanges, " << k.replies << " replies, " << k.crc_errors << " CRC errors, "
           << k.framing_errors << " framing errors, " << k.timeouts << " timeouts, " << k.retries << " retries, "
           << k.device_errors << " device errors, " << k.reconnects << " reconnects\n";

@@ -71,7 +71,7 @@ Status DmxLink::send(std::span<const double> frame) noexcept {
 
 Status DmxLink::write_frame() noexcept {
   last_send_size_ = dmx::encode_send_dmx(packet_, slots_);
-  return transport_.write(std::span(packet_.data(), last_send_size_));
+  return reconnector_.write(transport_, std::span(packet_.data(), last_send_size_));
 }
 
 Status DmxLink::release() noexcept {

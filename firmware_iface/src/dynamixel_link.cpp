@@ -39,7 +39,7 @@ std::int32_t profile_units(double channel_per_s, double pulses_per_unit, double 
 }  // namespace
 
 DynamixelLink::DynamixelLink(ByteTransport& transport, DynamixelLinkConfig config)
-    : transport_(transport), config_(std::move(config)) {
+    : transport_(transport), config_(std::move(config)), reconnector_(config_.reconnect_every) {
   const std::size_t n = config_.actuators.size();
   std::array<bool, 256> used{};
   for (std::size_t i = 0; i < n; ++i) {
@@ -75,7 +75,7 @@ Status DynamixelLink::write_counted(std::span<const std::uint8_t> bytes) noexcep
     counters_.bytes_sent.fetch_add(bytes.size(), std::memory_order_relaxed);
     last_exchange_bytes_ += bytes.size();
   } else if (s == Status::io_error) {
-    disconnected_ = true;
+    reconnector_.lost();
   }
   return s;
 }
@@ -115,7 +115,7 @@ Status DynamixelLink::read_status(std::uint8_t* id, std::uint8_t* error, std::ch
       continue;
     }
     const Status s = transport_.read_exact(std::span(rx_).subspan(rx_size_, need - rx_size_), timeout);
-    if (s == Status::io_error) disconnected_ = true;
+    if (s == Status::io_error) reconnector_.lost();
     if (s != Status::ok) {
       if (s == Status::timeout) counters_.timeouts.fetch_add(1, std::memory_order_relaxed);
       rx_size_ = 0;  // the transport discarded the partial read
@@ -213,17 +213,6 @@ Status DynamixelLink::read_positions(std::span<double> frame, std::span<bool> kn
   return Status::ok;
 }
 
-Status DynamixelLink::try_reconnect() noexcept {
-  if (++sends_since_reconnect_try_ < config_.reconnect_every) return Status::io_error;
-  sends_since_reconnect_try_ = 0;
-  if (transport_.reopen() != Status::ok) return Status::io_error;
-  disconnected_ = false;
-  counters_.reconnects.fetch_add(1, std::memory_order_relaxed);
-  // A servo that lost power with the adapter comes back with torque off.
-  if (const Status s = enable_torque(); s != Status::ok) return s == Status::timeout ? Status::timeout : Status::io_error;
-  return Status::ok;
-}
-
 void DynamixelLink::take_reply(Servo& servo, std::uint8_t error) noexcept {
   servo.answered = true;
   servo.missed = 0;
@@ -305,7 +294,12 @@ Status DynamixelLink::exchange_telemetry() noexcept {
 
 Status DynamixelLink::send(std::span<const double> frame) noexcept {
   last_exchange_bytes_ = 0;
-  if (disconnected_ && try_reconnect() != Status::ok) return Status::io_error;
+  bool reopened = false;
+  if (reconnector_.ask(transport_, &reopened) != Status::ok) return Status::io_error;
+  if (reopened) {
+    // A servo that lost power with the adapter comes back with torque off.
+    if (const Status s = enable_torque(); s != Status::ok) return s == Status::timeout ? Status::timeout : Status::io_error;
+  }
   transport_.discard_input();
   rx_size_ = 0;
   counters_.exchanges.fetch_add(1, std::memory_order_relaxed);
@@ -359,6 +353,10 @@ void DynamixelLink::read_telemetry(std::span<ChannelTelemetry> out) const noexce
   for (std::size_t i = 0; i < config_.actuators.size(); ++i) out[config_.actuators[i].channel] = telemetry_[i];
 }
 
-LinkCounters DynamixelLink::counters() const noexcept { return counters_.snapshot(); }
+LinkCounters DynamixelLink::counters() const noexcept {
+  LinkCounters k = counters_.snapshot();
+  k.reconnects = reconnector_.reconnects();
+  return k;
+}
 
 }  // namespace avar::firmware_iface

@@ -23,7 +23,7 @@ std::uint32_t faults_from_error(std::uint8_t error) noexcept {
 }  // namespace
 
 FeetechLink::FeetechLink(ByteTransport& transport, FeetechLinkConfig config)
-    : transport_(transport), config_(std::move(config)) {
+    : transport_(transport), config_(std::move(config)), reconnector_(config_.reconnect_every) {
   const std::size_t n = config_.actuators.size();
   if (n == 0) throw std::invalid_argument("a Feetech bus needs at least one servo");
   if (n > kMaxServos)
@@ -45,6 +45,7 @@ FeetechLink::FeetechLink(ByteTransport& transport, FeetechLinkConfig config)
   all_slots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) all_slots_[i] = i;
   answered_.assign(n, false);
+  missed_.assign(n, 0);
   telemetry_.resize(n);
   packet_.resize(2 * ft::sync_write_size(2, n) + ft::sync_read_size(n));
   description_ = std::string("Feetech ") + (config_.series == ft::Series::sts ? "STS" : "SCS") + " bus (IDs " + ids + ", " +
@@ -120,7 +121,7 @@ Status FeetechLink::collect(std::span<const std::size_t> slots, std::size_t data
 }
 
 Status FeetechLink::query(std::size_t slot, std::span<const std::uint8_t> request, std::size_t data_length,
-                          ft::Packet* reply) {
+                          ft::Packet* reply) noexcept {
   transport_.discard_input();
   if (const Status s = transport_.write(request); s != Status::ok) return s;
   AtomicLinkCounters::add(counters_.exchanges);
@@ -192,6 +193,8 @@ Status FeetechLink::read_positions(std::span<double> frame, std::span<bool> know
 }
 
 Status FeetechLink::send(std::span<const double> frame) noexcept {
+  bool reopened = false;  // nothing to restore: the servos kept their power and torque
+  if (reconnector_.ask(transport_, &reopened) != Status::ok) return Status::io_error;
   const std::size_t n = config_.actuators.size();
   std::size_t driven = 0, newly_released = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -229,28 +232,58 @@ Status FeetechLink::send(std::span<const double> frame) noexcept {
   last_send_size_ = size;
   if (size == 0) return Status::ok;
   transport_.discard_input();  // late replies of an earlier tick
-  if (const Status s = transport_.write(out.first(size)); s != Status::ok) return s;
+  if (const Status s = transport_.write(out.first(size)); s != Status::ok) {
+    if (s == Status::io_error) reconnector_.lost();
+    return s;
+  }
   AtomicLinkCounters::add(counters_.exchanges);
   AtomicLinkCounters::add(counters_.bytes_sent, size);
   if (length == 0) return Status::ok;
-  const Status s = collect(all_slots_, length, [&](std::size_t slot, const ft::Packet& p) {
-    ChannelTelemetry& t = telemetry_[slot];
-    t.position = config_.actuators[slot].calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
-    if (length >= 8) {
-      t.load = ft::from_sign_magnitude(ft::get_word(config_.series, p.params.subspan(4, 2)), ft::kLoadSignBit) / 1000.0;
-      t.temperature_c = p.params[7];
+  const auto take = [&](std::size_t slot, const ft::Packet& p) { take_telemetry(slot, p, length); };
+  if (collect(all_slots_, length, take) == Status::io_error) {
+    reconnector_.lost();
+    return Status::io_error;
+  }
+  // Bounded retries, each a plain Read of a servo whose reply was lost or corrupt; a servo silent
+  // for silent_exchanges sends in a row is a timeout (the controller's watchdog fault).
+  std::uint32_t retries = config_.retries;
+  bool silent = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!answered_[i] && retries > 0 && !released_[i].load(std::memory_order_relaxed)) {
+      --retries;
+      AtomicLinkCounters::add(counters_.retries);
+      std::array<std::uint8_t, ft::kMaxPacketSize> request{};
+      const std::size_t len = ft::encode_read(request, config_.actuators[i].id, ft::kPresentPosition, length);
+      ft::Packet reply;
+      const Status r = query(i, std::span(request.data(), len), length, &reply);
+      if (r == Status::io_error) {
+        reconnector_.lost();
+        return r;
+      }
+      if (r == Status::ok) take_telemetry(i, reply, length);
     }
-    t.faults = faults_from_error(p.code);
-    ++t.updates;
-  });
-  // Stale feedback is absent, not old.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!answered_[i]) {
+    if (answered_[i]) {
+      missed_[i] = 0;
+    } else {
+      // Stale feedback is absent, not old.
       telemetry_[i].position = ChannelTelemetry::kUnknown;
       telemetry_[i].load = ChannelTelemetry::kUnknown;
       telemetry_[i].temperature_c = ChannelTelemetry::kUnknown;
+      silent = silent || ++missed_[i] >= config_.silent_exchanges;
     }
-  return s;
+  }
+  return silent ? Status::timeout : Status::ok;
+}
+
+void FeetechLink::take_telemetry(std::size_t slot, const ft::Packet& p, std::uint8_t length) noexcept {
+  ChannelTelemetry& t = telemetry_[slot];
+  t.position = config_.actuators[slot].calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
+  if (length >= 8) {
+    t.load = ft::from_sign_magnitude(ft::get_word(config_.series, p.params.subspan(4, 2)), ft::kLoadSignBit) / 1000.0;
+    t.temperature_c = p.params[7];
+  }
+  t.faults = faults_from_error(p.code);
+  ++t.updates;
 }
 
 Status FeetechLink::release() noexcept {

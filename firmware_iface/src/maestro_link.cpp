@@ -116,7 +116,7 @@ Status MaestroLink::write_targets() noexcept {
     size += len;
   }
   last_send_size_ = size;
-  return transport_.write(out.first(size));
+  return reconnector_.write(transport_, out.first(size));
 }
 
 void MaestroLink::release_channel(std::size_t channel) noexcept {

@@ -85,7 +85,8 @@ Status Ssc32Link::send(std::span<const double> frame) noexcept {
     size += ssc32::encode_group_move(std::span(packet_).subspan(size), std::span(moves_.data(), driven),
                                      static_cast<std::uint32_t>(config_.move_time.count()));
   last_send_size_ = size;
-  return size == 0 ? Status::ok : transport_.write(std::span(packet_.data(), size));
+  if (size == 0) return Status::ok;
+  return reconnector_.write(transport_, std::span(packet_.data(), size));
 }
 
 Status Ssc32Link::release() noexcept {

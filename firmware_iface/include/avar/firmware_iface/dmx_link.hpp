@@ -14,6 +14,7 @@
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/dmx_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -51,6 +52,8 @@ class DmxLink final : public ActuatorLink {
   void release_channel(std::size_t channel) noexcept override;
   std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
+  /// Only reconnects: the device does not answer every tick.
+  LinkCounters counters() const noexcept override { return reconnector_.counters(); }
 
   /// The widget's parameters as start() read them.
   const dmx::WidgetParameters& widget_parameters() const noexcept { return parameters_; }
@@ -69,6 +72,7 @@ class DmxLink final : public ActuatorLink {
   dmx::WidgetParameters parameters_;
   std::atomic<std::uint64_t> saturated_{0};
   std::size_t last_send_size_ = 0;
+  Reconnector reconnector_;  ///< reopens the port after an I/O error
 };
 
 }  // namespace avar::firmware_iface

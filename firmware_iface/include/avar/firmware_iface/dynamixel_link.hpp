@@ -25,6 +25,7 @@
 #include "avar/firmware_iface/atomic_link_counters.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -99,7 +100,6 @@ class DynamixelLink final : public ActuatorLink {
   void take_reply(Servo& servo, std::uint8_t error) noexcept;
   Status write_counted(std::span<const std::uint8_t> bytes) noexcept;
   Status enable_torque() noexcept;
-  Status try_reconnect() noexcept;
   Status exchange_telemetry() noexcept;
 
   ByteTransport& transport_;
@@ -116,8 +116,7 @@ class DynamixelLink final : public ActuatorLink {
   std::span<const std::uint8_t> status_params_;
   std::chrono::milliseconds timeout_{};
   std::uint16_t read_address_ = 0, read_length_ = 0;
-  bool disconnected_ = false;
-  std::uint32_t sends_since_reconnect_try_ = 0;
+  Reconnector reconnector_;
   std::size_t last_exchange_bytes_ = 0;
   std::string description_;
   std::string start_problem_;

@@ -20,6 +20,7 @@
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -51,6 +52,12 @@ struct FeetechLinkConfig {
   /// Replies that have already arrived are still taken after it (reads of 0 ms: at most 1 ms
   /// each on SerialTransport), never more bytes than were asked for.
   std::chrono::milliseconds reply_timeout{10};
+  /// Plain Read retries per send for servos whose Sync Read reply was lost or corrupt.
+  std::uint32_t retries = 1;
+  /// Sends in a row without a reply from a servo before send() reports a timeout.
+  std::uint32_t silent_exchanges = 10;
+  /// While the port is gone, reopen it every this many sends.
+  std::uint32_t reconnect_every = 10;
   std::vector<FeetechActuator> actuators;
 };
 
@@ -71,8 +78,10 @@ class FeetechLink final : public ActuatorLink {
   /// the result is timeout). Not real-time.
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
   /// One write (sync write of goals, plus the sync read request when read-back is on), then
-  /// the replies, waiting at most reply_timeout. Returns timeout when a servo stayed silent,
-  /// bad_data when a reply was corrupt (telemetry of the others is still taken).
+  /// the replies, waiting at most reply_timeout, then at most `retries` plain reads for lost or
+  /// corrupt replies. Corrupt and lost replies are counted and leave that servo's telemetry
+  /// unknown for the tick; a servo silent for `silent_exchanges` sends in a row makes it return
+  /// timeout. After an I/O error it returns io_error and reopens the port on later sends.
   Status send(std::span<const double> frame) noexcept override;
   /// Broadcast torque off (no reply). Real-time safe.
   Status release() noexcept override;
@@ -80,7 +89,11 @@ class FeetechLink final : public ActuatorLink {
   std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
   void read_telemetry(std::span<ChannelTelemetry> out) const noexcept override;
-  LinkCounters counters() const noexcept override { return counters_.snapshot(); }
+  LinkCounters counters() const noexcept override {
+    LinkCounters k = counters_.snapshot();
+    k.reconnects = reconnector_.reconnects();
+    return k;
+  }
 
   /// Bytes of the last send()'s write, for link-budget reports.
   std::size_t last_send_size() const noexcept { return last_send_size_; }
@@ -95,7 +108,9 @@ class FeetechLink final : public ActuatorLink {
   Status collect(std::span<const std::size_t> slots, std::size_t data_length, Take&& take) noexcept;
   /// Writes a request and waits for the one reply of the servo in `slot`.
   Status query(std::size_t slot, std::span<const std::uint8_t> request, std::size_t data_length,
-               feetech::Packet* reply = nullptr);
+               feetech::Packet* reply = nullptr) noexcept;
+  /// Takes one status reply of `length` data bytes into the slot's telemetry.
+  void take_telemetry(std::size_t slot, const feetech::Packet& p, std::uint8_t length) noexcept;
   Status write_register(std::size_t slot, std::uint8_t address, std::span<const std::uint8_t> data);
   std::uint8_t readback_length() const noexcept;
 
@@ -109,6 +124,8 @@ class FeetechLink final : public ActuatorLink {
   std::vector<std::uint8_t> torque_off_;           ///< scratch: zeros for the torque-off packet
   std::vector<std::size_t> all_slots_;             ///< 0..n-1
   std::vector<bool> answered_;                     ///< per actuator, one collect()
+  std::vector<std::uint32_t> missed_;              ///< per actuator: sends in a row without a reply
+  Reconnector reconnector_;
   std::vector<std::uint8_t> packet_;               ///< the whole tick's bytes
   std::array<std::uint8_t, 2 * feetech::kMaxPacketSize> rx_{};
   std::vector<ChannelTelemetry> telemetry_;        ///< per actuator

@@ -15,6 +15,7 @@
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/maestro_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -52,6 +53,8 @@ class MaestroLink final : public ActuatorLink {
   void release_channel(std::size_t channel) noexcept override;
   std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
+  /// Only reconnects: the device does not answer every tick.
+  LinkCounters counters() const noexcept override { return reconnector_.counters(); }
 
   /// Reads (and so clears) the device's error register.
   Status read_errors(std::uint16_t& errors);
@@ -78,6 +81,7 @@ class MaestroLink final : public ActuatorLink {
   std::atomic<std::uint64_t> saturated_{0};  ///< counted on the sending thread, read anywhere
   std::size_t last_send_size_ = 0;
   std::string description_;
+  Reconnector reconnector_;  ///< reopens the port after an I/O error
 };
 
 }  // namespace avar::firmware_iface

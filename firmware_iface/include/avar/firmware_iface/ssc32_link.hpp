@@ -15,6 +15,7 @@
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/reconnector.hpp"
 #include "avar/firmware_iface/ssc32_codec.hpp"
 
 namespace avar::firmware_iface {
@@ -51,6 +52,8 @@ class Ssc32Link final : public ActuatorLink {
   void release_channel(std::size_t channel) noexcept override;
   std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
   const std::string& describe() const noexcept override { return description_; }
+  /// Only reconnects: the device does not answer every tick.
+  LinkCounters counters() const noexcept override { return reconnector_.counters(); }
 
   /// True while the board says a move is still running (Q). Not real-time.
   Status query_moving(bool& moving);
@@ -67,6 +70,7 @@ class Ssc32Link final : public ActuatorLink {
   std::vector<std::uint8_t> packet_;
   std::atomic<std::uint64_t> saturated_{0};
   std::size_t last_send_size_ = 0;
+  Reconnector reconnector_;  ///< reopens the port after an I/O error
 };
 
 }  // namespace avar::firmware_iface

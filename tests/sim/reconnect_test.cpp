@@ -1,0 +1,74 @@
+// Every driver survives its port going away and coming back: sends fail with io_error while the
+// wire is unplugged, and the port is reopened (a bounded number of sends later) once it returns.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "avar/firmware_iface/dmx_link.hpp"
+#include "avar/firmware_iface/maestro_link.hpp"
+#include "avar/firmware_iface/ssc32_link.hpp"
+#include "avar/sim/sim_dmx.hpp"
+#include "avar/sim/sim_maestro.hpp"
+#include "avar/sim/sim_ssc32.hpp"
+#include "avar/sim/sim_wire.hpp"
+
+namespace avar::sim {
+namespace {
+
+namespace fw = firmware_iface;
+
+void unplug_and_replug(fw::ActuatorLink& link, SimWire& wire, const char* what) {
+  SCOPED_TRACE(what);
+  const std::vector<double> frame{0.5, 0.25};
+  ASSERT_EQ(link.start(), Status::ok);
+  ASSERT_EQ(link.send(frame), Status::ok);
+  wire.set_connected(false);
+  for (int i = 0; i < 25; ++i) EXPECT_EQ(link.send(frame), Status::io_error);
+  EXPECT_EQ(link.counters().reconnects, 0u);
+  wire.set_connected(true);
+  Status s = Status::io_error;
+  int sends = 0;
+  for (; sends < 20 && s != Status::ok; ++sends) s = link.send(frame);
+  EXPECT_EQ(s, Status::ok);
+  EXPECT_LE(sends, 10);  // reconnect_every
+  EXPECT_EQ(link.counters().reconnects, 1u);
+  EXPECT_EQ(wire.reopens(), 1u);
+}
+
+TEST(Reconnect, MaestroSsc32AndDmxLinksReopenTheirPortWhenItComesBack) {
+  {
+    SimMaestroConfig dc;
+    dc.channel_count = 12;
+    SimMaestro device(dc);
+    SimWire wire(device, 115200);
+    fw::MaestroLinkConfig c;
+    c.channel_count = 12;
+    c.actuators.push_back({0, 0, {0, 1, 1000, 2000, false, 0}, {}, {}});
+    c.actuators.push_back({1, 1, {0, 1, 1000, 2000, false, 0}, {}, {}});
+    fw::MaestroLink link(wire, c);
+    unplug_and_replug(link, wire, "maestro");
+  }
+  {
+    SimSsc32 device({});
+    SimWire wire(device, 115200);
+    fw::Ssc32LinkConfig c;
+    c.actuators.push_back({0, 0, {0, 1, 1000, 2000, false, 0}, {}});
+    c.actuators.push_back({1, 5, {0, 1, 1000, 2000, false, 0}, {}});
+    fw::Ssc32Link link(wire, c);
+    unplug_and_replug(link, wire, "ssc32");
+  }
+  {
+    SimDmx device({});
+    SimWire wire(device, 115200);
+    fw::DmxLinkConfig c;
+    c.actuators.push_back({0, 1, false, {0, 1, 0, 255, false, 0}});
+    c.actuators.push_back({1, 2, true, {0, 1, 0, 65535, false, 0}});
+    fw::DmxLink link(wire, c);
+    unplug_and_replug(link, wire, "dmx");
+  }
+}
+
+}  // namespace
+}  // namespace avar::sim
