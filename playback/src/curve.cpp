@@ -388,11 +388,17 @@ double Curve::cycle_time(double t, double& offset) const noexcept {
   }
   const double dx = end_ - start_;
   if (side == 0 || dx == 0 || !std::isfinite(t)) return t;
-  const double cycle = side * (t - from) / dx;  // >= 0
-  const double within = std::fmod(t - from, dx);
+  // Blender works in frames, where cycle boundaries fall on exact numbers; in seconds they carry
+  // rounding, so a time within 1e-9 cycles of a boundary counts as on it.
+  double cycle = side * (t - from) / dx;  // >= 0
+  const double nearest = std::round(cycle);
+  const bool on_boundary = std::abs(cycle - nearest) <= 1e-9 * std::max(1.0, nearest);
+  if (on_boundary) cycle = nearest;
+  const double within = on_boundary ? 0.0 : std::fmod(t - from, dx);
   if (count != 0 && cycle > count) return t;
   if (mode == CycleMode::repeat_offset) {
-    const double whole = side < 0 ? std::floor((t - from) / dx) : std::ceil((t - from) / dx);
+    const double signed_cycles = side * cycle;
+    const double whole = side < 0 ? std::floor(signed_cycles) : std::ceil(signed_cycles);
     offset = whole * (last_value_ - first_value_);
   }
   const auto odd = [](double c) { return std::fmod(std::floor(c), 2.0) == 1.0; };

@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
 #include "../support/temp_file.hpp"
 
 namespace avar::config {
@@ -123,6 +129,55 @@ TEST(ShowFile, RejectsMalformedCurveFieldsWithWhereAndWhat) {
             ":4:5: unknown field 'keyz' in track 'jaw'; expected one of: extrapolation, cycles, auto_smoothing, keys");
   EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: elastic, period: .nan}\n"),
             ":4:59: expected the period (seconds) to be a finite number, found '.nan'");
+}
+
+// Blender's own FCurve.evaluate on a dense grid (tests/playback/golden, made by
+// generate_golden.py): every channel of the golden show must match every sample within
+// 1e-3 + 1e-4 x the channel's range, before, between and after its keys.
+TEST(ShowFile, ReproducesBlenderGoldenCurves) {
+  const std::string dir = AVAR_SOURCE_DIR "/tests/playback/golden/";
+  const playback::Show show = load_show_file(dir + "blender_curves.yaml");
+  std::ifstream csv(dir + "blender_curves.csv");
+  ASSERT_TRUE(csv) << "missing " << dir << "blender_curves.csv";
+  std::string line;
+  std::getline(csv, line);
+  std::vector<std::string> names;
+  {
+    std::stringstream header(line);
+    std::string name;
+    std::getline(header, name, ',');  // seconds
+    while (std::getline(header, name, ',')) names.push_back(name);
+  }
+  std::vector<double> times;
+  std::vector<std::vector<double>> expected(names.size());
+  while (std::getline(csv, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    std::getline(row, cell, ',');
+    times.push_back(std::stod(cell));
+    for (auto& column : expected) {
+      std::getline(row, cell, ',');
+      column.push_back(std::stod(cell));
+    }
+  }
+  ASSERT_EQ(names.size(), show.tracks.size());
+  ASSERT_GT(times.size(), 300u);
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const playback::Track& track = show.tracks[c];
+    ASSERT_EQ(track.channel, names[c]);
+    const auto [low, high] = std::minmax_element(expected[c].begin(), expected[c].end());
+    const double tolerance = 1e-3 + 1e-4 * (*high - *low);
+    playback::CurveCursor cursor;
+    double worst = 0, worst_time = 0, worst_value = 0;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      const double value = track.curve.evaluate(times[i], cursor);
+      EXPECT_EQ(value, track.curve.evaluate(times[i])) << names[c] << " at " << times[i] << " s";
+      const double error = std::abs(value - expected[c][i]);
+      if (!(error <= worst)) worst = error, worst_time = times[i], worst_value = value;
+    }
+    EXPECT_LE(worst, tolerance) << names[c] << ": worst at " << worst_time << " s (frame " << worst_time * 24 << "): avar "
+                                << worst_value << ", Blender " << expected[c][static_cast<std::size_t>(std::find(times.begin(), times.end(), worst_time) - times.begin())];
+  }
 }
 
 TEST(ShowFile, BundledExampleLoads) {
