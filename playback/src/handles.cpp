@@ -159,8 +159,14 @@ bool solve_with_limits(System s, std::vector<double>& h, const std::vector<doubl
   std::vector<bool> is_locked(n, false);
   std::vector<int> unlocks(n, 0);
   bool overshoot = false, unlocked = false;
+  int rounds = 0;
   do {
+    // Each round locks or releases at least one handle and releases are limited, so this ends;
+    // the cap only guards against rounding making a locked handle look out of range.
+    if (++rounds > 4 * static_cast<int>(n) + 8) return true;
     if (!solve_cyclic_tridiagonal(s.a, s.b, s.c, s.d, h)) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (is_locked[i]) h[i] = s.d[i];  // a locked row reads h[i] = d[i], exactly
     bool all = false, locked = false;
     overshoot = unlocked = false;
     do {
