@@ -167,7 +167,7 @@ void Curve::build_segments(const RawCurve& raw) {
     switch (k.interpolation) {
       case Interpolation::step: s.shape = Shape::step; break;
       case Interpolation::linear:
-        s.shape = Shape::polynomial;
+        s.shape = Shape::linear;
         s.e1 = change;
         break;
       case Interpolation::hermite: hermite(*k.out_slope, *next.in_slope); break;
@@ -256,7 +256,7 @@ void Curve::build_extrapolation(const RawCurve& raw) {
       case Interpolation::bspline: {
         if (segments_.empty()) return 0;
         const Segment& s = before ? segments_.front() : segments_.back();
-        if (s.shape != Shape::polynomial) return 0;
+        if (s.shape != Shape::polynomial && s.shape != Shape::linear) return 0;
         return (before ? s.e1 : s.e1 + 2 * s.e2 + 3 * s.e3) * s.inv_duration;
       }
       default: {
@@ -340,6 +340,7 @@ double Curve::evaluate_in(std::size_t i, double t) const noexcept {
   switch (s.shape) {
     case Shape::step:
     case Shape::constant: return s.v0;
+    case Shape::linear: return s.v0 + x * s.e1;
     case Shape::polynomial: return s.v0 + x * (s.e1 + x * (s.e2 + x * s.e3));
     case Shape::bezier_table: {
       const double scaled = x * kTablePieces;
@@ -432,6 +433,9 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
 }
 
 double Curve::evaluate(double t, CurveCursor& cursor) const noexcept {
+  // The tick's common case: t still inside the cursor's segment (key times themselves take the
+  // general path, which decides which segment owns them).
+  if (const std::size_t i = cursor.segment; i < segments_.size() && t > times_[i] && t < times_[i + 1]) return evaluate_in(i, t);
   if (times_.empty()) return 0;
   if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, &cursor);
   double offset = 0;

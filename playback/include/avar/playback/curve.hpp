@@ -153,7 +153,8 @@ class Curve {
  private:
   enum class Shape : std::uint8_t {
     step,             ///< the start key's value
-    polynomial,       ///< v0 + s (e1 + s (e2 + s e3)) in the normalised time s (linear, splines)
+    linear,           ///< v0 + s e1
+    polynomial,       ///< v0 + s (e1 + s (e2 + s e3)) in the normalised time s (Hermite-family splines, B-spline)
     constant,         ///< a Bezier segment whose four values agree (Blender's shortcut)
     bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse + refinement
     bezier_closed,    ///< Bezier with handles that let time stall or run backwards: Blender's solve
