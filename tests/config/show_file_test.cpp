@@ -183,6 +183,8 @@ TEST(ShowFile, ReproducesBlenderGoldenCurves) {
 TEST(ShowFile, BundledExampleLoads) {
   const playback::Show show = load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
   EXPECT_EQ(show.tracks.size(), 8u);
+  const playback::Show tour = load_show_file(AVAR_SOURCE_DIR "/examples/shows/curves-tour.yaml");
+  EXPECT_EQ(tour.tracks.size(), 8u);
 }
 
 TEST(ShowFile, RejectsEachBadInputWithWhereAndWhat) {
