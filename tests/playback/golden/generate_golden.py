@@ -76,6 +76,16 @@ case("smooth_mixed", [
     k(0, 0.0, lt="AUTO", rt="AUTO"), k(10, 8.0, lt="AUTO_CLAMPED", rt="AUTO_CLAMPED"), k(18, 3.0, lt="VECTOR", rt="VECTOR"),
     k(30, 12.0, lt="AUTO", rt="AUTO"), k(44, -4.0, lt="ALIGNED", rt="AUTO", left=(40, -8.0)), k(60, 2.0, lt="AUTO", rt="AUTO"),
 ], smoothing="CONT_ACCEL")
+MONOTONE = [(0, 0.0), (6, 1.0), (12, 10.0), (30, 11.0), (36, 30.0), (60, 31.0)]
+UNEVEN = [(0, 0.0), (1, 5.0), (30, -3.0), (31, 8.0), (60, 0.0)]  # neighbours 30x apart: Blender's 5x handle clamp
+case("bezier_auto_clamped_monotone", [k(f, v) for f, v in MONOTONE])  # handles clamped against overshoot
+case("bezier_auto_monotone", [k(f, v, lt="AUTO", rt="AUTO") for f, v in MONOTONE])
+case("bezier_auto_uneven", [k(f, v, lt="AUTO", rt="AUTO") for f, v in UNEVEN])
+case("bezier_auto_clamped_uneven", [k(f, v) for f, v in UNEVEN])
+case("smooth_auto_clamped_monotone", [k(f, v) for f, v in MONOTONE], smoothing="CONT_ACCEL")
+case("smooth_auto_uneven", [k(f, v, lt="AUTO", rt="AUTO") for f, v in UNEVEN], smoothing="CONT_ACCEL")
+case("smooth_two_keys", [k(0, 0.0, lt="AUTO", rt="AUTO"), k(30, 10.0, lt="AUTO", rt="AUTO")], smoothing="CONT_ACCEL",
+     extrapolation="LINEAR")
 case("mixed_interpolations", [
     k(0, 0.0, ipo="LINEAR"), k(10, 8.0, ipo="BEZIER"), k(18, 3.0, ipo="CONSTANT"), k(30, 12.0, ipo="SINE", easing="EASE_IN_OUT"),
     k(44, -4.0, ipo="BEZIER", lt="AUTO", rt="AUTO"), k(60, 2.0, ipo="LINEAR"),
@@ -124,6 +134,14 @@ case("cycles_mirror", cyc(ipo="LINEAR"), cycles=("MIRROR", "MIRROR", 0, 0))
 case("cycles_counts", cyc(lt="AUTO_CLAMPED", rt="AUTO_CLAMPED"), cycles=("REPEAT", "MIRROR", 2, 1))
 case("cycles_counts_linear_extrapolation", cyc(ipo="LINEAR"), extrapolation="LINEAR", cycles=("REPEAT_OFFSET", "REPEAT", 1, 2))
 case("cycles_after_only", cyc(ipo="QUAD", easing="EASE_OUT"), extrapolation="LINEAR", cycles=("NONE", "REPEAT_OFFSET", 0, 0))
+case("cycles_two_keys_smooth", [k(10, 1.0, lt="AUTO", rt="AUTO"), k(30, 4.0, lt="AUTO", rt="AUTO")], smoothing="CONT_ACCEL",
+     cycles=("REPEAT_OFFSET", "REPEAT_OFFSET", 0, 0))
+case("cycles_smooth_with_a_vector_key", [k(10, 1.0, lt="AUTO", rt="AUTO"), k(16, 6.0, lt="AUTO", rt="AUTO"),
+                                         k(22, -2.0, lt="VECTOR", rt="VECTOR"), k(26, 0.0, lt="AUTO", rt="AUTO"),
+                                         k(30, 4.0, lt="AUTO", rt="AUTO")],
+     smoothing="CONT_ACCEL", cycles=("REPEAT", "REPEAT", 0, 0))
+case("cycles_smooth_clamped_monotone", [k(10, 1.0), k(14, 2.0), k(20, 9.0), k(30, 10.0)], smoothing="CONT_ACCEL",
+     cycles=("REPEAT_OFFSET", "REPEAT_OFFSET", 0, 0))
 case("cycles_vector_ends", [k(10, 1.0, lt="VECTOR", rt="VECTOR"), k(16, 6.0), k(22, -2.0), k(30, 4.0, lt="VECTOR", rt="VECTOR")],
      cycles=("REPEAT", "REPEAT", 0, 0))
 
