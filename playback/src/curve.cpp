@@ -139,14 +139,14 @@ Curve Curve::build(const RawCurve& raw) {
   curve.first_value_ = raw.keys.front().value;
   curve.last_value_ = raw.keys.back().value;
   curve.cycles_ = raw.cycles;
-  curve.build_segments(raw);
-  curve.build_extrapolation(raw);
+  const std::vector<ResolvedHandles> handles = compute_handles(raw);
+  curve.build_segments(raw, handles);
+  curve.build_extrapolation(raw, handles);
   return curve;
 }
 
-void Curve::build_segments(const RawCurve& raw) {
+void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
   const std::size_t n = raw.keys.size();
-  const std::vector<ResolvedHandles> handles = compute_handles(raw);
   segments_.reserve(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const RawKey& k = raw.keys[i];
@@ -235,9 +235,8 @@ void Curve::build_segments(const RawCurve& raw) {
 // key with constant interpolation, holds; an end key with linear interpolation continues the
 // line to its neighbour; Bezier and easing end keys follow their outer handle. avar's splines
 // continue with the slope of the curve at the end.
-void Curve::build_extrapolation(const RawCurve& raw) {
+void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
   if (raw.extrapolation == Extrapolation::constant) return;
-  const std::vector<ResolvedHandles> handles = compute_handles(raw);
   const std::size_t n = raw.keys.size();
   const auto slope_at = [&](bool before) -> double {
     const std::size_t i = before ? 0 : n - 1;

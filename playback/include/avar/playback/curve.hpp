@@ -119,6 +119,8 @@ struct RawCurve {
   Cycles cycles;
 };
 
+struct ResolvedHandles;  // handles.hpp
+
 /// Where sequential sampling left off: one per curve per sampler, owned by the caller.
 struct CurveCursor {
   std::size_t segment = 0;
@@ -183,8 +185,8 @@ class Curve {
 
   static void tabulate_inverse(Segment& segment, std::vector<InversePiece>& table);
   static double refine(const Segment& s, const InversePiece& p, double w, double x, double& residual) noexcept;
-  void build_segments(const RawCurve& raw);
-  void build_extrapolation(const RawCurve& raw);
+  void build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
+  void build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   double evaluate_in(std::size_t segment, double t) const noexcept;
   double evaluate_bezier_closed(const Segment& s, double normalised_time) const noexcept;
   std::size_t find_segment(double t) const noexcept;
