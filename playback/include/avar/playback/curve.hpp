@@ -88,7 +88,7 @@ struct RawKey {
   std::optional<HandleType> right_type;
   Easing easing = Easing::automatic;  ///< easing families only
   double back = 1.70158;              ///< back: overshoot (Blender's default)
-  double amplitude = 0;               ///< elastic: channel units; 0 = Blender's default (the change)
+  double amplitude = 0;               ///< elastic: channel units; below |change| Blender's blend scales the wave
   double period = 0;                  ///< elastic: seconds; 0 = Blender's default (0.3 of the segment)
   std::optional<double> in_slope;     ///< hermite: slope arriving at this key (units per second)
   std::optional<double> out_slope;    ///< hermite: slope leaving this key (units per second)
