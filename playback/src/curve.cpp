@@ -5,10 +5,13 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "avar/core/format.hpp"
 #include "avar/playback/bezier_time_solve.hpp"
+#include "avar/playback/easing.hpp"
+#include "avar/playback/handles.hpp"
 
 namespace avar::playback {
 namespace {
@@ -45,8 +48,16 @@ double invert_increasing(const Cubic& s, double target) noexcept {
 
 std::string seconds(double t) { return format_number(t) + " s"; }
 
+void require_finite(const RawKey& k, double x, const char* what) {
+  if (!std::isfinite(x))
+    throw InputError(k.where, std::string("the ") + what + " of the key at " + seconds(k.time) + " is " + format_number(x) +
+                                  "; expected a finite number");
+}
+
 void validate(const RawCurve& raw) {
   if (raw.keys.empty()) throw InputError(raw.where, "the track has no keys; expected at least one key");
+  if (raw.cycles.before_count < 0 || raw.cycles.after_count < 0)
+    throw InputError(raw.where, "a cycle count is negative; expected 0 (forever) or more cycles");
   for (std::size_t i = 0; i < raw.keys.size(); ++i) {
     const RawKey& k = raw.keys[i];
     if (!std::isfinite(k.time))
@@ -61,35 +72,61 @@ void validate(const RawCurve& raw) {
         throw InputError(k.where, std::string("the ") + side + " handle of the key at " + seconds(k.time) + " is [" +
                                       format_number((*handle)->time) + ", " + format_number((*handle)->value) +
                                       "]; expected a finite [time, value]");
+    for (const auto& [type, handle, side] : {std::tuple{k.left_type, k.left.has_value(), "left"}, std::tuple{k.right_type, k.right.has_value(), "right"}})
+      if (type && (*type == HandleType::free || *type == HandleType::aligned) && !handle)
+        throw InputError(k.where, std::string("the ") + side + " handle of the key at " + seconds(k.time) + " is " + to_string(*type) +
+                                      " but not given; expected " + side + ": [time, value], or " + side +
+                                      "_type auto, auto_clamped or vector to compute it");
+    require_finite(k, k.back, "back");
+    require_finite(k, k.amplitude, "amplitude");
+    require_finite(k, k.period, "period");
+    require_finite(k, k.tension, "tension");
+    require_finite(k, k.continuity, "continuity");
+    require_finite(k, k.bias, "bias");
+    if (k.in_slope) require_finite(k, *k.in_slope, "in_slope");
+    if (k.out_slope) require_finite(k, *k.out_slope, "out_slope");
   }
   for (std::size_t i = 0; i + 1 < raw.keys.size(); ++i) {
     const RawKey& k = raw.keys[i];
     const RawKey& next = raw.keys[i + 1];
-    if (k.interpolation != Interpolation::bezier) continue;
-    if (!k.right)
-      throw InputError(k.where, "the key at " + seconds(k.time) + " starts a bezier segment but has no right handle; expected right: [time, value]");
-    if (!next.left)
-      throw InputError(next.where, "the key at " + seconds(next.time) + " ends a bezier segment but has no left handle; expected left: [time, value]");
+    if (k.interpolation != Interpolation::hermite) continue;
+    if (!k.out_slope)
+      throw InputError(k.where, "the key at " + seconds(k.time) + " starts a hermite segment but has no out_slope; expected out_slope: <units per second>");
+    if (!next.in_slope)
+      throw InputError(next.where, "the key at " + seconds(next.time) + " ends a hermite segment but has no in_slope; expected in_slope: <units per second>");
   }
 }
+
+// Chord slopes around key i (units per second); a missing side takes the other's.
+std::pair<double, double> chord_slopes(const RawCurve& raw, std::size_t i) {
+  const auto& k = raw.keys;
+  const auto slope = [&](std::size_t a) { return (k[a + 1].value - k[a].value) / (k[a + 1].time - k[a].time); };
+  if (k.size() < 2) return {0, 0};
+  const double before = i > 0 ? slope(i - 1) : slope(i);
+  const double after = i + 1 < k.size() ? slope(i) : slope(i - 1);
+  return {before, after};
+}
+
+// Kochanek-Bartels tangents of key i from its own tension, continuity and bias, in units per
+// second: the chords' slopes weighted as in the TCB formulas. Zero parameters give the mean of
+// the two chord slopes (Catmull-Rom); continuity 0 makes both tangents equal (C1).
+std::pair<double, double> tcb_tangents(const RawCurve& raw, std::size_t i) {
+  const RawKey& k = raw.keys[i];
+  const auto [before, after] = chord_slopes(raw, i);
+  const double t = k.tension, c = k.continuity, b = k.bias;
+  const double in = (1 - t) / 2 * ((1 + b) * (1 - c) * before + (1 - b) * (1 + c) * after);
+  const double out = (1 - t) / 2 * ((1 + b) * (1 + c) * before + (1 - b) * (1 - c) * after);
+  return {in, out};
+}
+
+double handle_slope(const Handle& h, const RawKey& k) {
+  const double dt = k.time - h.time;
+  return dt == 0 ? 0.0 : (k.value - h.value) / dt;
+}
+
+double finite_or(double x, double fallback) noexcept { return std::isfinite(x) ? x : fallback; }
 
 }  // namespace
-
-std::optional<Interpolation> interpolation_from_name(std::string_view name) {
-  if (name == "step") return Interpolation::step;
-  if (name == "linear") return Interpolation::linear;
-  if (name == "bezier") return Interpolation::bezier;
-  return std::nullopt;
-}
-
-const char* to_string(Interpolation interpolation) {
-  switch (interpolation) {
-    case Interpolation::step: return "step";
-    case Interpolation::linear: return "linear";
-    case Interpolation::bezier: return "bezier";
-  }
-  return "linear";
-}
 
 Curve Curve::build(const RawCurve& raw) {
   validate(raw);
@@ -101,26 +138,67 @@ Curve Curve::build(const RawCurve& raw) {
   curve.end_ = raw.keys.back().time;
   curve.first_value_ = raw.keys.front().value;
   curve.last_value_ = raw.keys.back().value;
-  curve.segments_.reserve(n - 1);
+  curve.cycles_ = raw.cycles;
+  const std::vector<ResolvedHandles> handles = compute_handles(raw);
+  curve.build_segments(raw, handles);
+  curve.build_extrapolation(raw, handles);
+  return curve;
+}
+
+void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
+  const std::size_t n = raw.keys.size();
+  segments_.reserve(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const RawKey& k = raw.keys[i];
     const RawKey& next = raw.keys[i + 1];
     const double duration = next.time - k.time;
+    const double change = next.value - k.value;
     Segment s;
     s.t0 = k.time;
     s.inv_duration = 1.0 / duration;
     s.v0 = k.value;
+    s.family = k.interpolation;
+    const auto hermite = [&](double m0, double m1) {
+      s.shape = Shape::polynomial;
+      s.e1 = duration * m0;
+      s.e2 = 3 * change - 2 * duration * m0 - duration * m1;
+      s.e3 = -2 * change + duration * m0 + duration * m1;
+    };
     switch (k.interpolation) {
       case Interpolation::step: s.shape = Shape::step; break;
       case Interpolation::linear:
         s.shape = Shape::linear;
-        s.e1 = next.value - k.value;
+        s.e1 = change;
         break;
+      case Interpolation::hermite: hermite(*k.out_slope, *next.in_slope); break;
+      case Interpolation::catmull_rom:
+      case Interpolation::cardinal:
+      case Interpolation::kochanek_bartels: hermite(tcb_tangents(raw, i).second, tcb_tangents(raw, i + 1).first); break;
+      case Interpolation::bspline: {
+        // Control points P[i-1..i+2]; beyond the ends the key sequence is reflected (2 P0 - P1),
+        // which makes the spline start and end exactly on the first and last keys.
+        const auto p = [&](std::ptrdiff_t j) {
+          const auto last = static_cast<std::ptrdiff_t>(n) - 1;
+          const auto v = [&](std::ptrdiff_t m) { return raw.keys[static_cast<std::size_t>(m)].value; };
+          if (j < 0) return 2 * v(0) - v(1);
+          if (j > last) return 2 * v(last) - v(last - 1);
+          return v(j);
+        };
+        const auto at = static_cast<std::ptrdiff_t>(i);
+        const double a = p(at - 1), b = p(at), c = p(at + 1), d = p(at + 2);
+        s.shape = Shape::polynomial;
+        s.v0 = (a + 4 * b + c) / 6;
+        s.e1 = (c - a) / 2;
+        s.e2 = (a - 2 * b + c) / 2;
+        s.e3 = (-a + 3 * b - 3 * c + d) / 6;
+        break;
+      }
       case Interpolation::bezier: {
-        double time[4] = {k.time, k.right->time, next.left->time, next.time};
-        double value[4] = {k.value, k.right->value, next.left->value, next.value};
-        // Blender's shortcut, tested on the handles as authored: four equal values (to float
-        // precision) make the segment constant.
+        const Handle right = *handles[i].right, left = *handles[i + 1].left;
+        double time[4] = {k.time, right.time, left.time, next.time};
+        double value[4] = {k.value, right.value, left.value, next.value};
+        // Blender's shortcut, tested on the handles before correction: four equal values (to
+        // float precision) make the segment constant.
         if (std::abs(value[0] - value[3]) < FLT_EPSILON && std::abs(value[1] - value[2]) < FLT_EPSILON &&
             std::abs(value[2] - value[3]) < FLT_EPSILON) {
           s.shape = Shape::constant;
@@ -136,16 +214,58 @@ Curve Curve::build(const RawCurve& raw) {
         s.e1 = v_of_u.c1, s.e2 = v_of_u.c2, s.e3 = v_of_u.c3;
         if (min_slope_on_window(s_of_u) >= kMinTableSlope) {
           s.shape = Shape::bezier_table;
-          tabulate_inverse(s, curve.inverse_);
+          tabulate_inverse(s, inverse_);
         } else {
           s.shape = Shape::bezier_closed;
         }
         break;
       }
+      default:  // Blender's easing families
+        s.shape = Shape::easing;
+        s.easing = resolved_easing(k.interpolation, k.easing);
+        s.e1 = change;
+        s.k1 = k.back, s.k2 = k.amplitude, s.k3 = k.period;
+        break;
     }
-    curve.segments_.push_back(s);
+    segments_.push_back(s);
   }
-  return curve;
+}
+
+// Blender's slope rules (fcurve_eval_keyframes_extrapolate): constant extrapolation, or an end
+// key with constant interpolation, holds; an end key with linear interpolation continues the
+// line to its neighbour; Bezier and easing end keys follow their outer handle. avar's splines
+// continue with the slope of the curve at the end.
+void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
+  if (raw.extrapolation == Extrapolation::constant) return;
+  const std::size_t n = raw.keys.size();
+  const auto slope_at = [&](bool before) -> double {
+    const std::size_t i = before ? 0 : n - 1;
+    const RawKey& k = raw.keys[i];
+    switch (k.interpolation) {
+      case Interpolation::step: return 0;
+      case Interpolation::linear: {
+        if (n == 1) return 0;
+        const RawKey& other = raw.keys[before ? 1 : n - 2];
+        return (other.value - k.value) / (other.time - k.time);
+      }
+      case Interpolation::hermite:
+      case Interpolation::catmull_rom:
+      case Interpolation::cardinal:
+      case Interpolation::kochanek_bartels:
+      case Interpolation::bspline: {
+        if (segments_.empty()) return 0;
+        const Segment& s = before ? segments_.front() : segments_.back();
+        if (s.shape != Shape::polynomial && s.shape != Shape::linear) return 0;
+        return (before ? s.e1 : s.e1 + 2 * s.e2 + 3 * s.e3) * s.inv_duration;
+      }
+      default: {
+        const std::optional<Handle>& h = before ? handles[i].left : handles[i].right;
+        return h ? handle_slope(*h, k) : 0;
+      }
+    }
+  };
+  slope_before_ = slope_at(true);
+  slope_after_ = slope_at(false);
 }
 
 // The inverse u(s) of a strictly increasing time cubic, as kTablePieces cubic Hermite pieces: on
@@ -220,6 +340,7 @@ double Curve::evaluate_in(std::size_t i, double t) const noexcept {
     case Shape::step:
     case Shape::constant: return s.v0;
     case Shape::linear: return s.v0 + x * s.e1;
+    case Shape::polynomial: return s.v0 + x * (s.e1 + x * (s.e2 + x * s.e3));
     case Shape::bezier_table: {
       const double scaled = x * kTablePieces;
       const int j = std::min(static_cast<int>(scaled), kTablePieces - 1);
@@ -230,6 +351,10 @@ double Curve::evaluate_in(std::size_t i, double t) const noexcept {
       return s.v0 + u * (s.e1 + u * (s.e2 + u * s.e3));
     }
     case Shape::bezier_closed: return evaluate_bezier_closed(s, x);
+    case Shape::easing: {
+      const double duration = 1.0 / s.inv_duration;
+      return ease(s.family, s.easing, t - s.t0, s.v0, s.e1, duration, EasingParams{s.k1, s.k2, s.k3});
+    }
   }
   return s.v0;
 }
@@ -240,10 +365,59 @@ std::size_t Curve::find_segment(double t) const noexcept {
   return static_cast<std::size_t>(after - times_.begin()) - 1;
 }
 
-double Curve::evaluate(double t, CurveCursor& cursor) const noexcept {
-  if (!(t > start_)) return first_value_;
-  if (t >= end_) return last_value_;
-  std::size_t i = cursor.segment;
+double Curve::extrapolate(double t) const noexcept {
+  const bool before = !(t > start_);
+  const double value = before ? first_value_ : last_value_;
+  const double slope = before ? slope_before_ : slope_after_;
+  if (slope == 0 || !std::isfinite(t)) return value;
+  const double result = value + slope * (t - (before ? start_ : end_));
+  return std::clamp(finite_or(result, value), -DBL_MAX, DBL_MAX);
+}
+
+// Blender's fcm_cycles_time, in doubles: map t outside the keys into them, cycle by cycle.
+double Curve::cycle_time(double t, double& offset) const noexcept {
+  offset = 0;
+  int side = 0;
+  CycleMode mode = CycleMode::none;
+  int count = 0;
+  double from = 0;
+  if (t < start_ && cycles_.before != CycleMode::none) {
+    side = -1, mode = cycles_.before, count = cycles_.before_count, from = start_;
+  } else if (t > end_ && cycles_.after != CycleMode::none) {
+    side = 1, mode = cycles_.after, count = cycles_.after_count, from = end_;
+  }
+  const double dx = end_ - start_;
+  if (side == 0 || dx == 0 || !std::isfinite(t)) return t;
+  // Blender works in frames, where cycle boundaries fall on exact numbers; in seconds they carry
+  // rounding, so a time within 1e-9 cycles of a boundary counts as on it.
+  double cycle = side * (t - from) / dx;  // >= 0
+  const double nearest = std::round(cycle);
+  const bool on_boundary = std::abs(cycle - nearest) <= 1e-9 * std::max(1.0, nearest);
+  if (on_boundary) cycle = nearest;
+  const double within = on_boundary ? 0.0 : std::fmod(t - from, dx);
+  if (count != 0 && cycle > count) return t;
+  if (mode == CycleMode::repeat_offset) {
+    const double signed_cycles = side * cycle;
+    const double whole = side < 0 ? std::floor(signed_cycles) : std::ceil(signed_cycles);
+    offset = whole * (last_value_ - first_value_);
+  }
+  const auto odd = [](double c) { return std::fmod(std::floor(c), 2.0) == 1.0; };
+  double mapped;
+  if (within == 0) {
+    mapped = side == 1 ? end_ : start_;
+    if (mode == CycleMode::mirror && odd(cycle)) mapped = side == 1 ? start_ : end_;
+  } else if (mode == CycleMode::mirror && odd(cycle + 1)) {
+    mapped = (side < 0 ? start_ : end_) - within;
+  } else {
+    mapped = start_ + within;
+  }
+  if (mapped < start_) mapped += dx;
+  return mapped;
+}
+
+double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
+  if (!(t > start_) || t >= end_) return extrapolate(t);
+  std::size_t i = cursor ? cursor->segment : segments_.size();
   if (i >= segments_.size() || t < times_[i]) {
     i = find_segment(t);
   } else if (t >= times_[i + 1]) {
@@ -253,14 +427,29 @@ double Curve::evaluate(double t, CurveCursor& cursor) const noexcept {
     while (t >= times_[i + 1] && ++steps < 4);
     if (t >= times_[i + 1]) i = find_segment(t);
   }
-  cursor.segment = i;
+  if (cursor) cursor->segment = i;
   return evaluate_in(i, t);
 }
 
+double Curve::evaluate(double t, CurveCursor& cursor) const noexcept {
+  // The tick's common case: t still inside the cursor's segment (key times themselves take the
+  // general path, which decides which segment owns them).
+  if (const std::size_t i = cursor.segment; i < segments_.size() && t > times_[i] && t < times_[i + 1]) return evaluate_in(i, t);
+  if (times_.empty()) return 0;
+  if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, &cursor);
+  double offset = 0;
+  const double mapped = cycle_time(t, offset);
+  const double base = evaluate_keys(mapped, &cursor);
+  return std::clamp(finite_or(base + offset, base), -DBL_MAX, DBL_MAX);
+}
+
 double Curve::evaluate(double t) const noexcept {
-  if (!(t > start_)) return first_value_;
-  if (t >= end_) return last_value_;
-  return evaluate_in(find_segment(t), t);
+  if (times_.empty()) return 0;
+  if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, nullptr);
+  double offset = 0;
+  const double mapped = cycle_time(t, offset);
+  const double base = evaluate_keys(mapped, nullptr);
+  return std::clamp(finite_or(base + offset, base), -DBL_MAX, DBL_MAX);
 }
 
 }  // namespace avar::playback

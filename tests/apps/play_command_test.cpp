@@ -203,7 +203,7 @@ TEST(PlayCommand, MalformedYamlIsRejectedBeforeAnythingIsSent) {
 }
 
 TEST(PlayCommand, UnknownInterpolationIsRejectedBeforeAnythingIsSent) {
-  expect_rejected(bundled_show_with("{time: 6.8, value: 18}", "{time: 6.8, value: 18, interpolation: cubic}"),
+  expect_rejected(bundled_show_with("{time: 6.8, value: 18}", "{time: 6.8, value: 18, interpolation: cubical}"),
                   "interpolation");
 }
 

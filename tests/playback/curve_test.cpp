@@ -22,9 +22,14 @@ constexpr Interpolation kLinear = Interpolation::linear;
 constexpr Interpolation kBezier = Interpolation::bezier;
 
 TEST(Interpolation, NamesRoundTrip) {
-  for (Interpolation i : {kStep, kLinear, kBezier}) EXPECT_EQ(interpolation_from_name(to_string(i)), i);
+  for (int i = 0; i <= static_cast<int>(Interpolation::bspline); ++i) {
+    const auto interpolation = static_cast<Interpolation>(i);
+    EXPECT_EQ(interpolation_from_name(to_string(interpolation)), interpolation);
+  }
   EXPECT_EQ(std::string(to_string(kBezier)), "bezier");
-  EXPECT_FALSE(interpolation_from_name("cubic"));
+  EXPECT_EQ(std::string(to_string(kStep)), "constant");
+  EXPECT_EQ(interpolation_from_name("step"), kStep);
+  EXPECT_FALSE(interpolation_from_name("cubic_bezier"));
   EXPECT_FALSE(interpolation_from_name("Linear"));
   EXPECT_FALSE(interpolation_from_name(""));
 }
@@ -117,14 +122,31 @@ TEST(Curve, RejectsBadKeysAtTheirLocation) {
             "test.yaml:7:5: key time nan is not a number of seconds; expected a finite time");
   EXPECT_EQ(error_of(raw_curve({key(0, 0), key(0.5, inf, kLinear, {}, {}, 8)})),
             "test.yaml:8:5: key value inf at 0.5 s is not finite; expected a finite value");
-  EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier, {}, {}, 2), key(1, 1, kLinear, Handle{0.5, 1}, {}, 3)})),
-            "test.yaml:2:5: the key at 0 s starts a bezier segment but has no right handle; expected right: [time, value]");
-  EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier, {}, Handle{0.5, 0}, 2), key(1, 1, kLinear, {}, {}, 3)})),
-            "test.yaml:3:5: the key at 1 s ends a bezier segment but has no left handle; expected left: [time, value]");
+  RawKey free_without_handle = key(0, 0, kBezier, {}, {}, 2);
+  free_without_handle.right_type = HandleType::free;
+  EXPECT_EQ(error_of(raw_curve({free_without_handle, key(1, 1, kLinear, Handle{0.5, 1}, {}, 3)})),
+            "test.yaml:2:5: the right handle of the key at 0 s is free but not given; expected right: [time, value], or right_type "
+            "auto, auto_clamped or vector to compute it");
+  RawKey aligned_without_handle = key(1, 1, kLinear, {}, {}, 3);
+  aligned_without_handle.left_type = HandleType::aligned;
+  EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier, {}, Handle{0.5, 0}, 2), aligned_without_handle})),
+            "test.yaml:3:5: the left handle of the key at 1 s is aligned but not given; expected left: [time, value], or left_type "
+            "auto, auto_clamped or vector to compute it");
+  RawKey hermite = key(0, 0, Interpolation::hermite, {}, {}, 2);
+  EXPECT_EQ(error_of(raw_curve({hermite, key(1, 1, kLinear, {}, {}, 3)})),
+            "test.yaml:2:5: the key at 0 s starts a hermite segment but has no out_slope; expected out_slope: <units per second>");
+  hermite.out_slope = 1;
+  EXPECT_EQ(error_of(raw_curve({hermite, key(1, 1, kLinear, {}, {}, 3)})),
+            "test.yaml:3:5: the key at 1 s ends a hermite segment but has no in_slope; expected in_slope: <units per second>");
+  // Without handles or types, Bezier keys get Blender's default auto_clamped handles.
+  EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier), key(1, 1)})), "");
   EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier, {}, Handle{nan, 0}, 2), key(1, 1, kLinear, Handle{0.5, 1}, {}, 3)})),
             "test.yaml:2:5: the right handle of the key at 0 s is [nan, 0]; expected a finite [time, value]");
   EXPECT_EQ(error_of(raw_curve({key(0, 0, kBezier, {}, Handle{0.5, 0}, 2), key(1, 1, kLinear, Handle{0.5, -inf}, {}, 3)})),
             "test.yaml:3:5: the left handle of the key at 1 s is [0.5, -inf]; expected a finite [time, value]");
+  RawCurve negative_cycles = raw_curve({key(0, 0), key(1, 1)});
+  negative_cycles.cycles.after_count = -1;
+  EXPECT_EQ(error_of(negative_cycles), "test.yaml:1:3: a cycle count is negative; expected 0 (forever) or more cycles");
   // Handles are not needed where no Bezier segment uses them, and then not checked for shape.
   EXPECT_EQ(error_of(raw_curve({key(0, 0, kLinear, {}, Handle{-3, 0}), key(1, 1, kStep)})), "");
 }

@@ -22,7 +22,12 @@ inline RawKey key(double t, double v, Interpolation i = Interpolation::linear, s
   return k;
 }
 
-inline RawCurve raw_curve(std::vector<RawKey> keys) { return RawCurve{std::move(keys), {"test.yaml", 1, 3}}; }
+inline RawCurve raw_curve(std::vector<RawKey> keys) {
+  RawCurve raw;
+  raw.keys = std::move(keys);
+  raw.where = {"test.yaml", 1, 3};
+  return raw;
+}
 
 inline Curve build(std::vector<RawKey> keys) { return Curve::build(raw_curve(std::move(keys))); }
 

@@ -125,10 +125,24 @@ TEST(Sampler, SamplingAllocatesNothing) {
       keys.push_back(key(k, c + k % 7, Interpolation::bezier, Handle{k - 0.3, c + k % 7 - 1.0}, Handle{k + 0.3, c + k % 7 + 1.0}));
     show.tracks.push_back(track("c" + std::to_string(c), keys));
   }
-  Sampler sampler(show, std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7}, std::vector<double>(10, 0));
+  // Every other interpolation, with linear extrapolation and Cycles, on the remaining channels.
+  for (int c = 0; c < 2; ++c) {
+    std::vector<RawKey> keys;
+    for (int k = 0; k <= 60; ++k) {
+      RawKey rk = key(k, (k * 37 % 11) - 5.0, static_cast<Interpolation>(k % (static_cast<int>(Interpolation::bspline) + 1)));
+      rk.in_slope = 1, rk.out_slope = -1;
+      keys.push_back(rk);
+    }
+    RawCurve raw = testing::raw_curve(keys);
+    raw.extrapolation = Extrapolation::linear;
+    raw.cycles = Cycles{CycleMode::mirror, CycleMode::repeat_offset, 0, 0};
+    Curve curve = Curve::build(raw);
+    show.tracks.push_back(Track{"e" + std::to_string(c), std::move(raw), std::move(curve), {}});
+  }
+  Sampler sampler(show, std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, std::vector<double>(10, 0));
   std::vector<double> frame(10);
   const long before = avar::testing::allocations.load();
-  for (int tick = 0; tick < 200000; ++tick) sampler.sample(tick * 0.001, frame);
+  for (int tick = -20000; tick < 200000; ++tick) sampler.sample(tick * 0.001, frame);
   EXPECT_EQ(avar::testing::allocations.load(), before);
 }
 

@@ -1,28 +1,74 @@
 #pragma once
 // Keyframe curves. A RawCurve is the editable form (keys as loaded or authored); Curve::build
 // validates it once and precomputes what evaluation needs, giving an immutable runtime curve.
-// Evaluation follows Blender's F-curves: a key's interpolation shapes the segment that STARTS at
-// that key; Bezier segments correct their handles as Blender does, solve the time cubic for the
-// curve parameter (Blender's root when there are several) and evaluate the value cubic there.
-// Outside the keys the curve holds the first / last key's value. Times in seconds, values in
-// channel units.
+//
+// Evaluation follows Blender's F-curves (Blender 3.x/4.x, blenkernel fcurve.cc): a key's
+// interpolation shapes the segment that STARTS at that key; Bezier segments correct their
+// handles as Blender does, solve the time cubic for the curve parameter and evaluate the value
+// cubic there; easing segments use Blender's easing equations; handles given only by their types
+// (auto, auto_clamped, vector, aligned) are computed as Blender computes them, including its
+// "continuous acceleration" auto smoothing and cycle-aware handles; outside the keys the curve
+// extrapolates (constant or linear, Blender's slope rules) or repeats through a Cycles modifier.
+// avar adds Hermite (explicit slopes), Catmull-Rom, cardinal, Kochanek-Bartels and uniform cubic
+// B-spline segments. Times in seconds, values in channel units.
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "avar/core/input_error.hpp"
 
 namespace avar::playback {
 
-enum class Interpolation { step, linear, bezier };
+/// How the segment that starts at a key is shaped. `step` is Blender's CONSTANT.
+enum class Interpolation : std::uint8_t {
+  step, linear, bezier,
+  // Blender's easing families (Robert Penner's equations as blenlib easing.cc has them).
+  sine, quad, cubic, quart, quint, expo, circ, back, bounce, elastic,
+  // avar's own cubic splines.
+  hermite,           ///< cubic Hermite with the keys' explicit out_slope / in_slope (units per second)
+  catmull_rom,       ///< tangent at a key: mean of the slopes of its two neighbouring chords
+  cardinal,          ///< Catmull-Rom tangents scaled by (1 - tension)
+  kochanek_bartels,  ///< tension, continuity, bias (TCB) tangents
+  bspline,           ///< uniform cubic B-spline with the key values as control points
+};
 
-/// "step", "linear" or "bezier"; nullopt for anything else.
+/// Which end of an easing segment eases. `automatic` is Blender's AUTO: ease_out for back,
+/// bounce and elastic, ease_in for the others.
+enum class Easing : std::uint8_t { automatic, ease_in, ease_out, ease_in_out };
+
+/// Blender's Bezier handle types, per side of a key.
+enum class HandleType : std::uint8_t { free, aligned, vector, automatic, auto_clamped };
+
+/// Outside the keys: hold the end value, or continue along the end slope (Blender's rules).
+enum class Extrapolation : std::uint8_t { constant, linear };
+
+/// Blender's auto-handle smoothing: none, or "continuous acceleration".
+enum class AutoSmoothing : std::uint8_t { none, continuous_acceleration };
+
+/// One side of a Cycles modifier.
+enum class CycleMode : std::uint8_t { none, repeat, repeat_offset, mirror };
+
+/// "constant" (also "step"), "linear", "bezier", "sine", ... "bspline"; nullopt for anything else.
 std::optional<Interpolation> interpolation_from_name(std::string_view name);
-/// The name interpolation_from_name accepts.
+std::optional<Easing> easing_from_name(std::string_view name);            ///< auto, ease_in, ease_out, ease_in_out
+std::optional<HandleType> handle_type_from_name(std::string_view name);   ///< free, aligned, vector, auto, auto_clamped
+std::optional<Extrapolation> extrapolation_from_name(std::string_view name);  ///< constant, linear
+std::optional<AutoSmoothing> auto_smoothing_from_name(std::string_view name);  ///< none, continuous_acceleration
+std::optional<CycleMode> cycle_mode_from_name(std::string_view name);     ///< none, repeat, repeat_offset, mirror
+/// The names the *_from_name functions accept (the canonical one where there are aliases).
 const char* to_string(Interpolation interpolation);
+const char* to_string(Easing easing);
+const char* to_string(HandleType type);
+const char* to_string(Extrapolation extrapolation);
+const char* to_string(AutoSmoothing smoothing);
+const char* to_string(CycleMode mode);
+/// Every accepted name, comma separated, for error messages.
+const char* interpolation_names();
+bool is_easing_family(Interpolation interpolation);
 
 /// A Bezier handle, absolute: (seconds, channel units).
 struct Handle {
@@ -34,15 +80,46 @@ struct RawKey {
   double time = 0;   ///< seconds
   double value = 0;  ///< channel units
   Interpolation interpolation = Interpolation::linear;  ///< of the segment from this key to the next
-  std::optional<Handle> left;                           ///< needed when the previous segment is Bezier
-  std::optional<Handle> right;                          ///< needed when this key's segment is Bezier
+  /// Handles. A side without a type is `free` when its handle is given and `auto_clamped`
+  /// (Blender's default) when not; free and aligned sides need their handle, the others compute it.
+  std::optional<Handle> left;
+  std::optional<Handle> right;
+  std::optional<HandleType> left_type;
+  std::optional<HandleType> right_type;
+  Easing easing = Easing::automatic;  ///< easing families only
+  double back = 1.70158;              ///< back: overshoot (Blender's default)
+  double amplitude = 0;               ///< elastic: channel units; below |change| Blender's blend scales the wave
+  double period = 0;                  ///< elastic: seconds; 0 = Blender's default (0.3 of the segment)
+  std::optional<double> in_slope;     ///< hermite: slope arriving at this key (units per second)
+  std::optional<double> out_slope;    ///< hermite: slope leaving this key (units per second)
+  double tension = 0;                 ///< cardinal, kochanek_bartels: this key's tangent
+  double continuity = 0;              ///< kochanek_bartels
+  double bias = 0;                    ///< kochanek_bartels
   SourceLocation where;
 };
 
+/// Blender's Cycles F-modifier: how each side repeats the keyed range, and how many times
+/// (0 = forever). Past the count the curve extrapolates from the real time, as in Blender.
+struct Cycles {
+  CycleMode before = CycleMode::none;
+  CycleMode after = CycleMode::none;
+  int before_count = 0;
+  int after_count = 0;
+  bool any() const noexcept { return before != CycleMode::none || after != CycleMode::none; }
+};
+
 struct RawCurve {
+  RawCurve() = default;
+  RawCurve(std::vector<RawKey> keys_in, SourceLocation where_in) : keys(std::move(keys_in)), where(std::move(where_in)) {}
+
   std::vector<RawKey> keys;
   SourceLocation where;
+  Extrapolation extrapolation = Extrapolation::constant;
+  AutoSmoothing auto_smoothing = AutoSmoothing::none;
+  Cycles cycles;
 };
+
+struct ResolvedHandles;  // handles.hpp
 
 /// Where sequential sampling left off: one per curve per sampler, owned by the caller.
 struct CurveCursor {
@@ -56,18 +133,17 @@ class Curve {
 
   /// Validates the whole curve and builds it. Throws InputError at the offending key (at
   /// raw.where when there are no keys), saying what was found and what was expected: no keys,
-  /// non-finite times or values, times not strictly increasing, a Bezier segment without the
-  /// start key's right handle or the end key's left handle, non-finite handles. Load-time only:
-  /// allocates.
+  /// non-finite times, values, handles or parameters, times not strictly increasing, a free or
+  /// aligned handle side used by a Bezier segment without its handle, a Hermite segment without
+  /// its slopes, negative cycle counts. Load-time only: allocates.
   static Curve build(const RawCurve& raw);
 
-  /// Value at t (seconds). At or before the first key: the first key's value; at or after the
-  /// last: the last key's value (also for a NaN t, which counts as before the start). Sequential
-  /// calls whose t moves forward by less than a few segments cost O(1) thanks to the cursor; any
-  /// other t (backwards, far ahead) falls back to a binary search, and the result never depends
-  /// on the cursor: it equals evaluate(t) bit for bit. Real-time safe: no allocation, exception
-  /// or lock. The curve is immutable, so many threads may evaluate it at once, each with its own
-  /// cursor.
+  /// Value at t (seconds), extrapolated or cycled outside the keys; a NaN t counts as before
+  /// the start. Sequential calls whose t moves forward by less than a few segments cost O(1)
+  /// thanks to the cursor; any other t falls back to a binary search, and the result never
+  /// depends on the cursor: it equals evaluate(t) bit for bit. Always finite. Real-time safe:
+  /// no allocation, exception or lock. The curve is immutable, so many threads may evaluate it
+  /// at once, each with its own cursor.
   double evaluate(double t, CurveCursor& cursor) const noexcept;
   /// Random access (binary search over the keys). Real-time safe, thread-safe.
   double evaluate(double t) const noexcept;
@@ -79,20 +155,24 @@ class Curve {
  private:
   enum class Shape : std::uint8_t {
     step,             ///< the start key's value
-    linear,           ///< start + s (end - start)
+    linear,           ///< v0 + s e1
+    polynomial,       ///< v0 + s (e1 + s (e2 + s e3)) in the normalised time s (Hermite-family splines, B-spline)
     constant,         ///< a Bezier segment whose four values agree (Blender's shortcut)
     bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse + refinement
     bezier_closed,    ///< Bezier with handles that let time stall or run backwards: Blender's solve
+    easing,           ///< one of Blender's easing equations
   };
   /// Segment i runs from key i to key i+1. Times are normalised: s = (t - t0) / (t1 - t0).
   struct Segment {
     double t0 = 0;
     double inv_duration = 0;
     double v0 = 0;
-    double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic in u (linear: e1 = v1 - v0, in s)
-    double k1 = 0, k2 = 0, k3 = 0;  ///< normalised time cubic s(u) = k1 u + k2 u^2 + k3 u^3
+    double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic (in u for Bezier, in s otherwise)
+    double k1 = 0, k2 = 0, k3 = 0;  ///< Bezier: normalised time cubic s(u); easing: back, amplitude, period
     std::uint32_t table = 0;        ///< first entry of this segment's inverse table
     Shape shape = Shape::step;
+    Interpolation family = Interpolation::step;  ///< easing segments
+    Easing easing = Easing::automatic;           ///< easing segments
   };
   /// Cubic Hermite piece of the inverse u(s) on one of kTablePieces equal intervals of s, in the
   /// local coordinate w in [0, 1): u = a0 + a1 w + a2 w^2 + a3 w^3, then `refinements` steps.
@@ -105,15 +185,23 @@ class Curve {
 
   static void tabulate_inverse(Segment& segment, std::vector<InversePiece>& table);
   static double refine(const Segment& s, const InversePiece& p, double w, double x, double& residual) noexcept;
+  void build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
+  void build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   double evaluate_in(std::size_t segment, double t) const noexcept;
   double evaluate_bezier_closed(const Segment& s, double normalised_time) const noexcept;
   std::size_t find_segment(double t) const noexcept;
+  double extrapolate(double t) const noexcept;
+  /// Blender's Cycles time map: the time inside the keys to evaluate, and the value offset.
+  double cycle_time(double t, double& offset) const noexcept;
+  double evaluate_keys(double t, CurveCursor* cursor) const noexcept;
 
   std::vector<double> times_;         ///< key times
   std::vector<Segment> segments_;     ///< times_.size() - 1 of them
   std::vector<InversePiece> inverse_; ///< kTablePieces per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
+  double slope_before_ = 0, slope_after_ = 0;  ///< units per second; 0 for constant extrapolation
+  Cycles cycles_;
 };
 
 }  // namespace avar::playback
