@@ -86,6 +86,13 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   for (auto* link : figure.links()) saturated += link->saturated_pulses();
   out << "\nticks " << run.ticks << ", deadline misses " << run.deadline_misses << ", pulses saturated by calibration "
       << saturated << ", bytes sent " << figure.bytes_sent() << '\n';
+  if (const control::IkStage* ik = controller.ik()) {
+    const control::IkStats& k = ik->stats();
+    out << "inverse kinematics: " << k.converged << " solves converged, " << k.degraded
+        << " degraded (target out of reach: closest pose used), " << k.failed << " failed; worst residual "
+        << fixed(k.worst_position_error * 1000.0, 3) << " mm, " << fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3)
+        << "°\n";
+  }
   if (realtime) {
     const auto us = [](std::int64_t ns) { return fixed(static_cast<double>(ns) / 1000.0, 1); };
     out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 " << us(run.lateness.percentile_ns(0.99))

@@ -60,6 +60,31 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
     for (std::size_t k = 0; k + 1 < keys.size(); ++k)
       if (keys[k].interpolation == playback::Interpolation::bezier) check_segment_overshoot(track, k, c, result.warnings);
   }
+  // Targets: the rig must have the effector; the joints that move it drive their channels, which
+  // must not also have tracks.
+  for (const playback::TargetTrack& target : show.targets) {
+    if (!rig.kinematics) {
+      result.errors.push_back({target.where, "target '" + target.effector + "' needs inverse kinematics, but rig '" + rig.name +
+                                                 "' has no kinematics section; expected a rig with joints and effectors"});
+      continue;
+    }
+    const auto effector = rig.kinematics->model.find_effector(target.effector);
+    if (!effector) {
+      std::string names;
+      for (const kinematics::Effector& e : rig.kinematics->model.effectors()) names += (names.empty() ? "" : ", ") + e.name;
+      result.errors.push_back({target.where, "unknown effector '" + target.effector + "'; expected one of the rig's effectors: " +
+                                                 (names.empty() ? "(none)" : names)});
+      continue;
+    }
+    for (std::size_t b : control::bindings_moving(*rig.kinematics, *effector)) {
+      const std::size_t channel = rig.kinematics->bindings[b].channel;
+      for (const playback::Track& track : show.tracks)
+        if (track.channel == rig.channels[channel].name)
+          result.errors.push_back({track.where, "channel '" + track.channel + "' is moved by target '" + target.effector +
+                                                    "' (inverse kinematics) and also has a track; expected one or the other"});
+      driven[channel] = true;
+    }
+  }
   for (std::size_t i = 0; i < rig.channels.size(); ++i)
     if (!driven[i])
       result.warnings.push_back({show.where, "no track drives channel '" + rig.channels[i].name + "'; it holds its rest pose " +

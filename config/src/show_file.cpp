@@ -128,12 +128,58 @@ playback::Track read_track(const YamlRef& name, const YamlRef& body, double dura
   return track;
 }
 
+/// A constant one-key curve, for a static target point.
+playback::Curve constant_curve(double value, const SourceLocation& where, playback::RawCurve& raw) {
+  playback::RawKey key;
+  key.value = value;
+  key.where = where;
+  raw.keys = {key};
+  raw.where = where;
+  return playback::Curve::build(raw);
+}
+
+/// targets: {effector: {aim: [x, y, z]?, point: [x, y, z] | x: track, y: track, z: track}}
+playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, double duration) {
+  playback::TargetTrack target;
+  target.effector = name.as_string("an effector name");
+  target.where = name.where();
+  const std::string what = "target '" + target.effector + "'";
+  body.expect_map(what + " ({point: [x, y, z]} or {x: keys, y: keys, z: keys}, and optionally aim: [x, y, z])");
+  body.expect_only_keys({"aim", "point", "x", "y", "z"}, what);
+  const auto vector3 = [&](const YamlRef& node, const std::string& vwhat) {
+    node.expect_sequence(vwhat + " ([x, y, z])");
+    if (node.size() != 3) node.fail("expected " + vwhat + " to have 3 numbers [x, y, z], found " + std::to_string(node.size()));
+    return std::array<double, 3>{node[0].as_double(vwhat + " x"), node[1].as_double(vwhat + " y"), node[2].as_double(vwhat + " z")};
+  };
+  if (auto aim = body.find("aim")) {
+    target.kind = playback::TargetKind::aim;
+    target.aim_axis = vector3(*aim, "the aim axis of " + what + " (in the effector's frame)");
+    if (target.aim_axis[0] == 0 && target.aim_axis[1] == 0 && target.aim_axis[2] == 0)
+      aim->fail("expected the aim axis of " + what + " to be a non-zero direction, found [0, 0, 0]");
+  }
+  const char* axes[3] = {"x", "y", "z"};
+  if (auto point = body.find("point")) {
+    for (const char* axis : axes)
+      if (body.find(axis)) body.at(axis, "").fail(what + " has both point and " + axis + "; expected a static point or three curves");
+    const std::array<double, 3> p = vector3(*point, "the point of " + what + " (m)");
+    for (std::size_t i = 0; i < 3; ++i) target.xyz[i] = constant_curve(p[i], point->where(), target.raw[i]);
+    return target;
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    const YamlRef curve = body.at(axes[i], what + " (a static point, or x, y and z curves in metres)");
+    playback::Track track = read_track(YamlRef{YAML::Node(target.effector + "." + axes[i]), name.file}, curve, duration);
+    target.raw[i] = std::move(track.raw);
+    target.xyz[i] = std::move(track.curve);
+  }
+  return target;
+}
+
 }  // namespace
 
 playback::Show load_show_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets"}, "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -144,7 +190,10 @@ playback::Show load_show_file(const std::string& path) {
   if (show.duration <= 0) duration.fail("expected the duration to be more than 0 seconds, found " + duration.describe());
   if (auto loop = root.find("loop")) show.loop = loop->as_bool("loop");
 
-  const YamlRef tracks = root.at("tracks", "the show file");
+  // Targets for inverse kinematics may stand in for tracks.
+  const auto targets = root.find("targets");
+  const YamlRef tracks = targets && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
+                                                        : root.at("tracks", "the show file");
   tracks.expect_map("tracks (a map of channel name to a list of keys, or to {extrapolation, cycles, auto_smoothing, keys})");
   std::set<std::string> seen;
   for (auto it = tracks.node.begin(); it != tracks.node.end(); ++it) {
@@ -152,6 +201,16 @@ playback::Show load_show_file(const std::string& path) {
     const std::string channel = name.as_string("a channel name");
     if (!seen.insert(channel).second) name.fail("channel '" + channel + "' has two tracks; expected one track per channel");
     show.tracks.push_back(read_track(name, YamlRef{it->second, &path}, show.duration));
+  }
+  if (targets) {
+    targets->expect_map("targets (a map of effector name to its target point or x, y, z curves)");
+    std::set<std::string> effectors;
+    for (auto it = targets->node.begin(); it != targets->node.end(); ++it) {
+      const YamlRef name{it->first, &path};
+      if (!effectors.insert(name.as_string("an effector name")).second)
+        name.fail("effector '" + name.node.Scalar() + "' has two targets; expected one target per effector");
+      show.targets.push_back(read_target(name, YamlRef{it->second, &path}, show.duration));
+    }
   }
   return show;
 }

@@ -16,7 +16,7 @@ IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, st
       q_(kinematics.model.dof(), 0.0),
       q_next_(kinematics.model.dof(), 0.0) {
   const kinematics::Model& model = kinematics.model;
-  std::vector<char> on_path(model.dof(), 0);
+  std::vector<char> moved(kinematics.bindings.size(), 0);
   for (const playback::TargetTrack& target : show.targets) {
     const auto effector = model.find_effector(target.effector);
     if (!effector) throw std::invalid_argument("the rig's kinematics has no effector '" + target.effector + "'");
@@ -25,12 +25,10 @@ IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, st
     goal.kind = target.kind == playback::TargetKind::aim ? kinematics::IkGoalKind::aim : kinematics::IkGoalKind::position;
     goal.aim_axis = Eigen::Vector3d(target.aim_axis[0], target.aim_axis[1], target.aim_axis[2]);
     goals_.push_back(goal);
-    // Every movable joint between the effector and the base moves for this goal.
-    for (std::size_t j = model.effector(*effector).joint; j != kinematics::Joint::kNoParent; j = model.joint(j).parent)
-      if (model.joint(j).movable()) on_path[model.joint(j).q_index] = 1;
+    for (std::size_t b : bindings_moving(kinematics, *effector)) moved[b] = 1;
   }
   for (std::size_t b = 0; b < kinematics.bindings.size(); ++b)
-    if (on_path[kinematics.bindings[b].q_index]) {
+    if (moved[b]) {
       driven_bindings_.push_back(b);
       driven_channels_.push_back(kinematics.bindings[b].channel);
     }

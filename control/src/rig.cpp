@@ -22,6 +22,17 @@ const char* to_string(Protocol p) noexcept {
   return "unknown";
 }
 
+std::vector<std::size_t> bindings_moving(const RigKinematics& kinematics, std::size_t effector) {
+  const kinematics::Model& model = kinematics.model;
+  std::vector<char> on_path(model.dof(), 0);
+  for (std::size_t j = model.effector(effector).joint; j != kinematics::Joint::kNoParent; j = model.joint(j).parent)
+    if (model.joint(j).movable()) on_path[model.joint(j).q_index] = 1;
+  std::vector<std::size_t> out;
+  for (std::size_t b = 0; b < kinematics.bindings.size(); ++b)
+    if (on_path[kinematics.bindings[b].q_index]) out.push_back(b);
+  return out;
+}
+
 std::optional<std::size_t> Rig::find_channel(std::string_view wanted) const {
   for (std::size_t i = 0; i < channels.size(); ++i)
     if (channels[i].name == wanted) return i;

@@ -140,6 +140,33 @@ TEST(PlayCommand, PlaysAMixedMaestroDynamixelAndDmxFigureInOneShow) {
   EXPECT_TRUE(seen);
 }
 
+TEST(PlayCommand, PlaysATargetThroughInverseKinematics) {
+  const std::string trace = testing::temp_path("trace.csv");
+  const Result r = avar({"play", AVAR_SOURCE_DIR "/examples/shows/look-around.yaml", "--rig",
+                         AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml", "--fast", "--no-progress", "--trace", trace});
+  ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
+  EXPECT_NE(r.out.find("0 degraded (target out of reach: closest pose used), 0 failed"), std::string::npos) << r.out;
+  // The head turned both ways and looked up, following the target.
+  std::ifstream csv(trace);
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_NE(header.find("ik_us"), std::string::npos);
+  double pan_lo = 0, pan_hi = 0, tilt_hi = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> cells;
+    std::stringstream in(line);
+    std::string cell;
+    for (int i = 0; std::getline(in, cell, ','); ++i)
+      cells.push_back(i == 1 || cell.empty() ? 0.0 : std::stod(cell));
+    pan_lo = std::min(pan_lo, cells[8]);  // neck_pan.command
+    pan_hi = std::max(pan_hi, cells[8]);
+    tilt_hi = std::max(tilt_hi, cells[11]);  // neck_tilt.command
+  }
+  EXPECT_LT(pan_lo, -30);
+  EXPECT_GT(pan_hi, 30);
+  EXPECT_GT(tilt_hi, 15);
+}
+
 TEST(PlayCommand, FastRunsAreDeterministic) {
   const std::string a = testing::temp_path("a.csv");
   const std::string b = testing::temp_path("b.csv");

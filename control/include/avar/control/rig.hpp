@@ -122,6 +122,10 @@ struct RigKinematics {
   SourceLocation where;
 };
 
+/// Indices into RigKinematics::bindings of the joints that move an effector (every movable joint
+/// between it and the base).
+std::vector<std::size_t> bindings_moving(const RigKinematics& kinematics, std::size_t effector);
+
 struct Rig {
   std::string name;
   std::string file;

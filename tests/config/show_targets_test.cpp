@@ -1,0 +1,93 @@
+// Targets in show files: points for the rig's effectors, solved by inverse kinematics, and the
+// checks that tie them to a rig.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "../support/temp_file.hpp"
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_check.hpp"
+#include "avar/config/show_file.hpp"
+
+namespace avar::config {
+namespace {
+
+const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
+
+const std::string kShow = R"(name: look
+duration: 4
+targets:
+  eyes:
+    aim: [1, 0, 0]
+    x: [{time: 0, value: 1}]
+    y: [{time: 0, value: -0.5}, {time: 4, value: 0.5}]
+    z: {extrapolation: linear, keys: [{time: 0, value: 0.3}, {time: 2, value: 0.5}]}
+tracks:
+  jaw: [{time: 0, value: 0}, {time: 1, value: 10}]
+)";
+
+std::string load_error(const std::string& text) {
+  try {
+    load_show_file(avar::testing::write_temp_file("show.yaml", text));
+    return "";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    return m.substr(m.find(".yaml") + 5);
+  }
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(ShowTargets, CurvesAndStaticPointsLoad) {
+  const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kShow));
+  ASSERT_EQ(show.targets.size(), 1u);
+  const playback::TargetTrack& t = show.targets[0];
+  EXPECT_EQ(t.effector, "eyes");
+  EXPECT_EQ(t.kind, playback::TargetKind::aim);
+  EXPECT_DOUBLE_EQ(t.xyz[0].evaluate(3), 1);
+  EXPECT_DOUBLE_EQ(t.xyz[1].evaluate(2), 0);
+  EXPECT_DOUBLE_EQ(t.xyz[2].evaluate(3), 0.6);  // linear extrapolation
+  const playback::Show still = load_show_file(avar::testing::write_temp_file(
+      "still.yaml", "duration: 1\ntargets:\n  eyes: {point: [1, 0.2, 0.4]}\n"));
+  ASSERT_EQ(still.targets.size(), 1u);
+  EXPECT_EQ(still.targets[0].kind, playback::TargetKind::position);
+  EXPECT_DOUBLE_EQ(still.targets[0].xyz[2].evaluate(0.5), 0.4);
+  EXPECT_TRUE(still.tracks.empty());
+}
+
+TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
+  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
+            ":5:10: expected the aim axis of target 'eyes' to be a non-zero direction, found [0, 0, 0]");
+  EXPECT_EQ(load_error(replace(kShow, "    x: [{time: 0, value: 1}]\n", "")),
+            ":5:5: missing field 'x' in target 'eyes' (a static point, or x, y and z curves in metres)");
+  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
+            ":7:8: target 'eyes' has both point and x; expected a static point or three curves");
+  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
+            ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z");
+}
+
+TEST(ShowTargets, TheRigMustHaveTheEffectorAndTracksMustNotFightTheSolver) {
+  const control::Rig rig = load_rig_file(kRig);
+  const auto check = [&](const std::string& text) {
+    return check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", text)), rig);
+  };
+  EXPECT_TRUE(check(kShow).ok());
+  const ShowCheck unknown = check(replace(kShow, "  eyes:", "  nose:"));
+  ASSERT_EQ(unknown.errors.size(), 1u);
+  EXPECT_NE(unknown.errors[0].message.find("unknown effector 'nose'; expected one of the rig's effectors: eyes"), std::string::npos);
+  const ShowCheck both = check(replace(kShow, "  jaw:", "  neck_pan: [{time: 0, value: 0}]\n  jaw:"));
+  ASSERT_EQ(both.errors.size(), 1u);
+  EXPECT_EQ(both.errors[0].message,
+            "channel 'neck_pan' is moved by target 'eyes' (inverse kinematics) and also has a track; expected one or the other");
+  const control::Rig plain = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  const ShowCheck no_kinematics = check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", kShow)), plain);
+  ASSERT_FALSE(no_kinematics.ok());
+  EXPECT_NE(no_kinematics.errors.back().message.find("has no kinematics section"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace avar::config
