@@ -54,11 +54,11 @@ Attempt run_damped_least_squares(const Model& model, IkWorkspace& ik, std::span<
     ik.A.noalias() = J.transpose() * J;
     ik.g.noalias() = J.transpose() * ik.e.head(rows);
     ik.A.diagonal().array() += boost * (kErrorDamping * 2 * at.cost + kDampingFloor);
-    ik.ldlt.compute(ik.A);
-    ik.dq = ik.ldlt.solve(ik.g);
+    ik.llt.compute(ik.A);
+    ik.dq = ik.llt.solve(ik.g);
     if (freeze_blocked(model, ik)) {
-      ik.ldlt.compute(ik.A);
-      ik.dq = ik.ldlt.solve(ik.g);
+      ik.llt.compute(ik.A);
+      ik.dq = ik.llt.solve(ik.g);
     }
     ik.q_trial = ik.q + ik.dq;
     clamp_to_limits(model, ik.q_trial);
