@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(cmake ninja-build g++ pkg-config make
           libserial-dev libyaml-cpp-dev libcli11-dev libeigen3-dev
+          liburdfdom-dev libtinyxml-dev
           libgtest-dev libgmock-dev libbenchmark-dev "$@")
 
 missing=()

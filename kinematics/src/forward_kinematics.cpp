@@ -15,7 +15,13 @@ Status forward_kinematics(const Model& model, std::span<const double> q, Workspa
   for (std::size_t i = 0; i < model.joint_count(); ++i) {
     const Joint& joint = model.joint(i);
     Eigen::Isometry3d pose = joint.on_base() ? joint.origin : ws.joint_poses_[joint.parent] * joint.origin;
-    if (joint.type == JointType::revolute)
+    if (joint.type == JointType::revolute && joint.axis == Eigen::Vector3d::UnitZ()) {
+      // The common case (every DH joint, most URDF joints): R RotZ(q) mixes only two columns.
+      const double c = std::cos(q[joint.q_index]), s = std::sin(q[joint.q_index]);
+      const Eigen::Vector3d x = pose.linear().col(0), y = pose.linear().col(1);
+      pose.linear().col(0) = c * x + s * y;
+      pose.linear().col(1) = c * y - s * x;
+    } else if (joint.type == JointType::revolute)
       pose.linear() = pose.linear() * Eigen::AngleAxisd(q[joint.q_index], joint.axis).toRotationMatrix();
     else if (joint.type == JointType::prismatic)
       pose.translation() += pose.linear() * (q[joint.q_index] * joint.axis);

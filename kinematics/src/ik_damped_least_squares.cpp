@@ -51,14 +51,15 @@ Attempt run_damped_least_squares(const Model& model, IkWorkspace& ik, std::span<
   GoalErrors trial_errors;
   while (!(at.converged = within_tolerance(at.errors, options)) && at.iterations < options.max_iterations) {
     const auto J = ik.J.topRows(rows);
-    ik.A.noalias() = J.transpose() * J;
-    ik.g.noalias() = J.transpose() * ik.e.head(rows);
+    // Coefficient-wise products: for a handful of rows and joints the blocked GEMM path costs more.
+    ik.A.noalias() = J.transpose().lazyProduct(J);
+    ik.g.noalias() = J.transpose().lazyProduct(ik.e.head(rows));
     ik.A.diagonal().array() += boost * (kErrorDamping * 2 * at.cost + kDampingFloor);
-    ik.ldlt.compute(ik.A);
-    ik.dq = ik.ldlt.solve(ik.g);
+    ik.llt.compute(ik.A);
+    ik.dq = ik.llt.solve(ik.g);
     if (freeze_blocked(model, ik)) {
-      ik.ldlt.compute(ik.A);
-      ik.dq = ik.ldlt.solve(ik.g);
+      ik.llt.compute(ik.A);
+      ik.dq = ik.llt.solve(ik.g);
     }
     ik.q_trial = ik.q + ik.dq;
     clamp_to_limits(model, ik.q_trial);

@@ -113,6 +113,18 @@ bool descend_along(const Model& model, IkWorkspace& ik, std::span<const IkGoal> 
   return false;
 }
 
+bool nearly_stationary(const Model& model, IkWorkspace& ik, std::span<const IkGoal> goals) noexcept {
+  constexpr double kRelativeGradient = 1e-3;
+  const Eigen::Index rows = stacked_rows(goals);
+  GoalErrors errors;
+  evaluate(model, ik, goals, ik.q, errors);
+  fill_jacobian(model, ik, goals);
+  const auto J = ik.J.topRows(rows);
+  ik.g.noalias() = J.transpose().lazyProduct(ik.e.head(rows));
+  drop_blocked(model, ik.q, ik.g);
+  return ik.g.norm() <= kRelativeGradient * J.norm() * ik.e.head(rows).norm();
+}
+
 void clamp_to_limits(const Model& model, Eigen::VectorXd& q) noexcept {
   const auto lower = model.lower_limits();
   const auto upper = model.upper_limits();

@@ -58,6 +58,12 @@ void drop_blocked(const Model& model, const Eigen::VectorXd& q, Eigen::VectorXd&
 bool descend_along(const Model& model, IkWorkspace& ik, std::span<const IkGoal> goals, const IkOptions& options,
                    Attempt& at) noexcept;
 
+/// Whether ik.q is, to first order, a local minimum of the weighted error within the limits: the
+/// gradient J^T e (less the parts that push joints on a limit past it) is tiny against |J| |e|.
+/// For runs that end on their iteration budget while still creeping toward such a point (the
+/// closest reachable pose to an unreachable target is usually singular, where progress is slow).
+bool nearly_stationary(const Model& model, IkWorkspace& ik, std::span<const IkGoal> goals) noexcept;
+
 // The numeric methods: each runs from ik.q (within limits) and leaves its best configuration there.
 Attempt run_damped_least_squares(const Model& model, IkWorkspace& ik, std::span<const IkGoal> goals,
                                  const IkOptions& options) noexcept;

@@ -79,6 +79,10 @@ IkResult solve_ik(const Model& model, IkWorkspace& ik, std::span<const IkGoal> g
       ik.q_best = ik.q;
     }
   }
+  if (!best.converged && !best.stationary) {
+    ik.q = ik.q_best;
+    best.stationary = detail::nearly_stationary(model, ik, goals);
+  }
   write(ik.q_best, out);
   const IkStatus status = best.converged ? IkStatus::converged : best.stationary ? IkStatus::degraded : IkStatus::failed;
   return {status, iterations, best.errors.position, best.errors.orientation};

@@ -14,7 +14,7 @@ IkWorkspace::IkWorkspace(const Model& model, std::size_t max_goals, std::uint64_
       q(static_cast<Eigen::Index>(model.dof())),
       q_trial(static_cast<Eigen::Index>(model.dof())),
       q_best(static_cast<Eigen::Index>(model.dof())),
-      ldlt(static_cast<Eigen::Index>(model.dof())),
+      llt(static_cast<Eigen::Index>(model.dof())),
       svd(static_cast<Eigen::Index>(6 * max_goals), static_cast<Eigen::Index>(model.dof()),
           Eigen::ComputeThinU | Eigen::ComputeThinV),
       moves(model.joint_count() * model.effector_count(), 0),

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -99,6 +100,49 @@ TEST_F(IkBenchChains, DefaultSolverTracksRandomPosesOfTheReferenceArms) {
 TEST_F(IkBenchChains, ColdStartWithRestartsReachesRandomPosesFromTheZeroPose) {
   expect_round_trips(7, 100, 98, cold_start_ik_options(),
                      [](const Model& m, const std::vector<double>&, std::mt19937_64&) { return std::vector<double>(m.dof(), 0.0); });
+}
+
+TEST_F(IkBenchChains, WarmStartedTicksFollowAPathWithSmallJointSteps) {
+  // A circle of 0.08 m radius traced in 500 ticks with a fixed hand orientation, each tick seeded
+  // with the previous tick's answer, as the control loop does. The start bends every joint
+  // (1.2, -1.5, ...), well inside the workspace and away from the arms' singular stretched and
+  // wrist-aligned poses.
+  for (const DhChain& chain : chains) {
+    SCOPED_TRACE(chain.name);
+    const Model m = chain_from_standard_dh(chain.rows);
+    IkWorkspace ik(m);
+    std::vector<double> q(m.dof()), next(m.dof());
+    for (std::size_t k = 0; k < q.size(); ++k) q[k] = k % 2 == 0 ? 1.2 : -1.5;
+    const Eigen::Isometry3d start = pose_at(m, q, 0);
+    for (int tick = 0; tick <= 500; ++tick) {
+      const double angle = 2 * std::numbers::pi * tick / 500;
+      Eigen::Isometry3d target = start;
+      target.translation() += Eigen::Vector3d(0.08 * (std::cos(angle) - 1), 0.08 * std::sin(angle), 0);
+      const IkResult r = solve_ik(m, ik, Goals{IkGoal::at_pose(0, target)}, q, next);
+      ASSERT_EQ(r.status, IkStatus::converged) << "tick " << tick << ": " << r.position_error << " m, " << r.orientation_error << " rad, " << r.iterations << " iterations";
+      for (std::size_t k = 0; k < q.size(); ++k) EXPECT_LT(std::abs(next[k] - q[k]), 0.1) << "tick " << tick << ", joint " << k;
+      q = next;
+    }
+  }
+}
+
+TEST_F(IkBenchChains, OutOfReachTargetStretchesTheArmAndIsDegraded) {
+  for (const DhChain& chain : chains) {
+    SCOPED_TRACE(chain.name);
+    const Model m = chain_from_standard_dh(chain.rows);
+    IkWorkspace ik(m);
+    const Eigen::Vector3d far(1.5, 1.0, 0.8);  // about 2 m away; neither arm reaches 1.3 m
+    std::vector<double> out(m.dof());
+    const IkResult r = solve_ik(m, ik, Goals{IkGoal::at_position(0, far)}, std::vector<double>(m.dof(), 0.3), out,
+                                cold_start_ik_options());
+    EXPECT_EQ(r.status, IkStatus::degraded);
+    expect_within_limits(m, out);
+    const Eigen::Vector3d reached = pose_at(m, out, 0).translation();
+    EXPECT_NEAR(r.position_error, (far - reached).cwiseAbs().maxCoeff(), 1e-9);
+    // The closest reachable point lies toward the target: moving it any further along the line
+    // of sight is not possible, so the remaining error points along that line.
+    EXPECT_GT((far - reached).normalized().dot(far.normalized()), 0.9);
+  }
 }
 
 TEST(IkSolver, EveryMethodReachesPositionsOfTheBranchedFigureWithinLimits) {

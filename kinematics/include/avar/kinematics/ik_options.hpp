@@ -10,6 +10,8 @@ enum class IkMethod {
   /// Levenberg-Marquardt damped least squares: dq = (J^T J + lambda I)^-1 J^T e, the damping
   /// adapted to the error (Sugihara) and raised after any step that does not lower it, so it
   /// stays well-conditioned near singularities and takes Gauss-Newton steps near the solution.
+  /// A joint on a limit that the step would push past it is taken out of that step, so the
+  /// other joints make up for it (this matters on redundant arms with tight limits).
   damped_least_squares,
   /// Pseudo-inverse through the SVD (singular values below a floor are dropped) with a secondary
   /// task in the null space: pull toward IkOptions::preferred, dq += (I - J+ J) gain (preferred - q).

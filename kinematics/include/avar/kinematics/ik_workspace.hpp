@@ -36,7 +36,7 @@ class IkWorkspace {
   Eigen::VectorXd e_kept;                    ///< the error at q while a trial step overwrites e
   Eigen::MatrixXd A;                         ///< dof x dof normal matrix
   Eigen::VectorXd g, dq, q, q_trial, q_best;
-  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::LLT<Eigen::MatrixXd> llt;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   std::vector<char> moves;  ///< moves[joint * effectors + effector]: the joint is on the effector's path
   std::mt19937_64 rng;
