@@ -1,6 +1,9 @@
 #include "avar/config/rig_kinematics.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <tuple>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -9,7 +12,9 @@
 #include <vector>
 
 #include "avar/core/format.hpp"
+#include "avar/kinematics/denavit_hartenberg.hpp"
 #include "avar/kinematics/model_builder.hpp"
+#include "avar/kinematics/urdf_import.hpp"
 
 namespace avar::config {
 namespace {
@@ -55,11 +60,132 @@ struct PendingJoint {
   YamlRef node;
 };
 
+/// Reads how a movable joint is driven: {channel, scale, offset} from `node`, the scale from the
+/// channel's unit when not given. Returns the binding (q_index left for the caller).
+control::JointBinding read_binding(const control::Rig& rig, const YamlRef& node, const std::string& what,
+                                   kinematics::JointType type) {
+  control::JointBinding binding;
+  const YamlRef channel = node.at("channel", what + " (the channel that drives it)");
+  const std::string channel_name = channel.as_string("the channel of " + what);
+  const auto ci = rig.find_channel(channel_name);
+  if (!ci) channel.fail("unknown channel '" + channel_name + "'; expected one of the rig's channels: " + rig.channel_names());
+  const control::ChannelSpec& ch = rig.channels[*ci];
+  binding.channel = *ci;
+  const bool revolute = type == kinematics::JointType::revolute;
+  if (auto scale = node.find("scale")) {
+    binding.scale = scale->as_double("the scale of " + what);
+    if (binding.scale == 0) scale->fail("expected the scale of " + what + " to be non-zero (joint units per channel unit)");
+  } else if (auto s = scale_for_unit(ch.unit, type)) {
+    binding.scale = *s;
+  } else {
+    channel.fail("channel '" + channel_name + "' is in '" + ch.unit + "', which " + what + " cannot convert; expected the channel's unit to be " +
+                 (revolute ? "deg or rad" : "m, cm or mm") + ", or a scale (joint " + (revolute ? "radians" : "metres") +
+                 " per channel unit)");
+  }
+  if (auto offset = node.find("offset")) binding.offset = offset->as_double("the offset of " + what);
+  return binding;
+}
+
+/// The channel's range as joint limits.
+std::pair<double, double> channel_limits(const control::Rig& rig, const control::JointBinding& b) {
+  const control::ChannelSpec& ch = rig.channels[b.channel];
+  const double lo = b.to_joint(ch.min), hi = b.to_joint(ch.max);
+  return {std::min(lo, hi), std::max(lo, hi)};
+}
+
+/// A model imported from URDF or DH, bound to channels by `joints: {joint: {channel, scale,
+/// offset}}`; every movable joint needs a channel, and its limits become the intersection of its
+/// own and its channel's, so the solver never asks for what the channel cannot do.
+control::RigKinematics bind_imported(const control::Rig& rig, const kinematics::Model& imported, const YamlRef& joints,
+                                     const YamlRef& section) {
+  joints.expect_map("joints (a map of joint name to {channel, scale, offset})");
+  std::string names;
+  for (const kinematics::Joint& j : imported.joints())
+    if (j.movable()) names += (names.empty() ? "" : ", ") + j.name;
+  for (auto it = joints.node.begin(); it != joints.node.end(); ++it) {
+    const YamlRef name{it->first, joints.file};
+    const auto j = imported.find_joint(name.as_string("a joint name"));
+    if (!j || !imported.joint(*j).movable())
+      name.fail("unknown movable joint '" + name.node.Scalar() + "'; expected one of: " + names);
+  }
+  kinematics::ModelBuilder builder;
+  std::vector<control::JointBinding> bindings;
+  for (const kinematics::Joint& j : imported.joints()) {
+    kinematics::JointSpec spec{j.name, j.type, j.on_base() ? std::string() : imported.joint(j.parent).name, j.origin, j.axis,
+                               j.lower, j.upper};
+    if (j.movable()) {
+      const std::string what = "joint '" + j.name + "'";
+      const auto entry = joints.find(j.name);
+      if (!entry) joints.fail(what + " has no channel; expected " + j.name + ": {channel: ...} among the joints");
+      entry->expect_only_keys({"channel", "scale", "offset"}, what);
+      control::JointBinding b = read_binding(rig, *entry, what, j.type);
+      const auto [lo, hi] = channel_limits(rig, b);
+      spec.lower = std::max(j.lower, lo);
+      spec.upper = std::min(j.upper, hi);
+      if (spec.lower > spec.upper)
+        entry->fail("the limits of " + what + " [" + format_number(j.lower) + ", " + format_number(j.upper) +
+                    "] and of its channel [" + format_number(lo) + ", " + format_number(hi) + "] do not overlap");
+      b.q_index = bindings.size();
+      bindings.push_back(b);
+    }
+    builder.add_joint(spec, j.where);
+  }
+  for (const kinematics::Effector& e : imported.effectors())
+    builder.add_effector({e.name, imported.joint(e.joint).name, e.tool}, e.where);
+  return control::RigKinematics{builder.build(), std::move(bindings), section.where()};
+}
+
+/// dh: {convention: standard | modified, rows: [{a, alpha, d, theta}], tool: {xyz, rpy}}
+kinematics::Model read_dh(const YamlRef& node) {
+  node.expect_map("the DH chain ({convention, rows, tool})");
+  node.expect_only_keys({"convention", "rows", "tool"}, "the DH chain");
+  bool modified = false;
+  if (auto c = node.find("convention")) {
+    const std::string name = c->as_string("the DH convention");
+    if (name == "modified") modified = true;
+    else if (name != "standard") c->fail("unknown DH convention " + c->describe() + "; expected one of: standard, modified");
+  }
+  const YamlRef rows = node.at("rows", "the DH chain");
+  rows.expect_sequence("the DH rows ([{a, alpha, d, theta}, ...], metres and radians)");
+  if (rows.size() == 0) rows.fail("expected at least one DH row");
+  std::vector<kinematics::DhRow> dh;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const YamlRef r = rows[i];
+    const std::string what = "DH row " + std::to_string(i + 1);
+    r.expect_only_keys({"a", "alpha", "d", "theta"}, what);
+    kinematics::DhRow row;
+    const auto get = [&](const char* key) { return r.find(key) ? r.at(key, what).as_double(std::string(key) + " of " + what) : 0.0; };
+    row.a = get("a");
+    row.alpha = get("alpha");
+    row.d = get("d");
+    row.theta = get("theta");
+    // Revolute DH joints turn all the way; the channels bound to them set the real limits.
+    row.lower = -2 * std::numbers::pi;
+    row.upper = 2 * std::numbers::pi;
+    row.where = r.where();
+    dh.push_back(row);
+  }
+  const Eigen::Isometry3d tool = read_origin(node.find("tool"), "the tool of the DH chain");
+  return modified ? kinematics::chain_from_modified_dh(dh, tool) : kinematics::chain_from_standard_dh(dh, tool);
+}
+
 }  // namespace
 
 control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRef& node) {
-  node.expect_map("the kinematics section ({joints: ..., effectors: ...})");
-  node.expect_only_keys({"joints", "effectors"}, "the kinematics section");
+  node.expect_map("the kinematics section ({joints: ..., effectors: ...}, or urdf: FILE / dh: {...} with joints)");
+  node.expect_only_keys({"joints", "effectors", "urdf", "dh"}, "the kinematics section");
+  if (node.find("urdf") && node.find("dh")) node.fail("the kinematics section names both urdf and dh; expected one geometry");
+  if (auto urdf = node.find("urdf")) {
+    if (node.find("effectors")) node.at("effectors", "").fail("a URDF's effectors are its links; expected no effectors section");
+    // A relative path is relative to the rig file.
+    std::filesystem::path path = urdf->as_string("the URDF file");
+    if (path.is_relative()) path = std::filesystem::path(*node.file).parent_path() / path;
+    return bind_imported(rig, kinematics::model_from_urdf_file(path.string()), node.at("joints", "the kinematics section"), node);
+  }
+  if (auto dh = node.find("dh")) {
+    if (node.find("effectors")) node.at("effectors", "").fail("a DH chain's effector is its tip; expected no effectors section");
+    return bind_imported(rig, read_dh(*dh), node.at("joints", "the kinematics section (joint1..jointN: {channel})"), node);
+  }
   const YamlRef joints = node.at("joints", "the kinematics section");
   joints.expect_map("joints (a map of joint name to its type, parent, axis, origin and channel)");
   if (joints.size() == 0) joints.fail("expected at least one joint");
@@ -133,29 +259,9 @@ control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRe
     control::JointBinding binding;
     if (movable) {
       spec.axis = read_vector(j.node.at("axis", what), "the axis of " + what);
-      const YamlRef channel = j.node.at("channel", what + " (the channel that drives it)");
-      const std::string channel_name = channel.as_string("the channel of " + what);
-      const auto ci = rig.find_channel(channel_name);
-      if (!ci) channel.fail("unknown channel '" + channel_name + "'; expected one of the rig's channels: " + rig.channel_names());
-      const control::ChannelSpec& ch = rig.channels[*ci];
-      binding.channel = *ci;
-      if (auto scale = j.node.find("scale")) {
-        binding.scale = scale->as_double("the scale of " + what);
-        if (binding.scale == 0) scale->fail("expected the scale of " + what + " to be non-zero (joint units per channel unit)");
-      } else if (auto s = scale_for_unit(ch.unit, spec.type)) {
-        binding.scale = *s;
-      } else {
-        channel.fail("channel '" + channel_name + "' is in '" + ch.unit + "', which " + what +
-                     " cannot convert; expected the channel's unit to be " +
-                     (spec.type == kinematics::JointType::revolute ? "deg or rad" : "m, cm or mm") +
-                     ", or a scale (joint " + (spec.type == kinematics::JointType::revolute ? "radians" : "metres") +
-                     " per channel unit)");
-      }
-      if (auto offset = j.node.find("offset")) binding.offset = offset->as_double("the offset of " + what);
+      binding = read_binding(rig, j.node, what, spec.type);
       // The joint's limits are its channel's: IK never asks for what the channel cannot do.
-      const double a = binding.to_joint(ch.min), b = binding.to_joint(ch.max);
-      spec.lower = std::min(a, b);
-      spec.upper = std::max(a, b);
+      std::tie(spec.lower, spec.upper) = channel_limits(rig, binding);
     } else {
       for (const char* key : {"axis", "channel", "scale", "offset"})
         if (auto extra = j.node.find(key)) extra->fail(std::string(key) + " does not apply to the fixed " + what);

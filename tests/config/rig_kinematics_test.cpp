@@ -98,5 +98,49 @@ TEST(RigKinematics, RejectsBadTreesWithWhereAndWhat) {
             ":14:41: expected the axis of joint 'neck_tilt' to have 3 numbers [x, y, z], found 2");
 }
 
+const std::string kImported = R"(name: imported
+links:
+  head: {port: sim, maestro: {model: mini12}}
+channels:
+  pan:  {unit: deg, min: -60, max: 60, rest: 0}
+  tilt: {unit: deg, min: -20, max: 60, rest: 0}
+actuators:
+  - {channel: pan, link: head, device_channel: 0, calibration: {min_us: 1000, max_us: 2000}}
+  - {channel: tilt, link: head, device_channel: 1, calibration: {min_us: 1000, max_us: 2000}}
+kinematics:
+  urdf: )" AVAR_SOURCE_DIR R"(/tests/kinematics/fixtures/pan_tilt_head.urdf
+  joints:
+    pan: {channel: pan}
+    tilt: {channel: tilt}
+)";
+
+TEST(RigKinematics, AUrdfBindsItsJointsToChannelsWithTheNarrowerLimits) {
+  const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kImported));
+  ASSERT_TRUE(rig.kinematics);
+  const kinematics::Model& m = rig.kinematics->model;
+  ASSERT_EQ(m.dof(), 2u);
+  EXPECT_TRUE(m.find_effector("eye"));
+  // pan: URDF ±1.5 rad, channel ±60° = ±1.047 rad; tilt: URDF [-0.6, 0.8], channel [-20°, 60°].
+  EXPECT_NEAR(m.lower_limits()[0], -60 * std::numbers::pi / 180, 1e-12);
+  EXPECT_NEAR(m.upper_limits()[1], 0.8, 1e-12);
+  EXPECT_NEAR(m.lower_limits()[1], -20 * std::numbers::pi / 180, 1e-12);
+  EXPECT_EQ(error_of(replace(kImported, "    tilt: {channel: tilt}\n", "")),
+            ":13:5: joint 'tilt' has no channel; expected tilt: {channel: ...} among the joints");
+  EXPECT_EQ(error_of(replace(kImported, "    tilt: {channel: tilt}", "    tilt: {channel: tilt}\n    roll: {channel: pan}")),
+            ":15:5: unknown movable joint 'roll'; expected one of: pan, tilt");
+}
+
+TEST(RigKinematics, ADenavitHartenbergChainBindsJoint1ToN) {
+  const std::string dh = replace(replace(kImported, "  urdf: " AVAR_SOURCE_DIR "/tests/kinematics/fixtures/pan_tilt_head.urdf",
+                                         "  dh:\n    convention: standard\n    rows: [{d: 0.1, alpha: -1.5707963267948966}, {a: 0.2}]"),
+                                 "    pan: {channel: pan}\n    tilt: {channel: tilt}", "    joint1: {channel: pan}\n    joint2: {channel: tilt}");
+  const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", dh));
+  ASSERT_TRUE(rig.kinematics);
+  EXPECT_EQ(rig.kinematics->model.dof(), 2u);
+  EXPECT_TRUE(rig.kinematics->model.find_effector("tip"));
+  EXPECT_NE(error_of(replace(dh, "convention: standard", "convention: craig")).find("unknown DH convention 'craig'; expected one of: standard, modified"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace avar::config
