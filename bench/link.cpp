@@ -17,7 +17,9 @@
 
 #include "avar/firmware_iface/dynamixel_codec.hpp"
 #include "avar/firmware_iface/dynamixel_link.hpp"
+#include "avar/firmware_iface/feetech_link.hpp"
 #include "avar/sim/sim_dynamixel.hpp"
+#include "avar/sim/sim_feetech.hpp"
 #include "avar/sim/sim_wire.hpp"
 
 namespace {
@@ -94,6 +96,28 @@ Measured dynamixel(const Case& c) {
   return run(link, wire, c.actuators);
 }
 
+Measured feetech(const Case& c) {
+  sim::SimFeetechConfig bus;
+  bus.baud = c.baud;
+  firmware_iface::FeetechLinkConfig config;
+  config.baud = c.baud;
+  config.readback = c.readback ? firmware_iface::FeetechReadback::position : firmware_iface::FeetechReadback::none;
+  for (int i = 0; i < c.actuators; ++i) {
+    sim::SimFeetechServo s;
+    s.id = static_cast<std::uint8_t>(i + 1);
+    bus.servos.push_back(s);
+    firmware_iface::FeetechActuator a;
+    a.channel = static_cast<std::size_t>(i);
+    a.id = s.id;
+    a.calibration = {-90, 90, 1024, 3072, false, 0};
+    config.actuators.push_back(a);
+  }
+  sim::SimFeetech device(bus);
+  sim::SimWire wire(device, c.baud);
+  firmware_iface::FeetechLink link(wire, config);
+  return run(link, wire, c.actuators);
+}
+
 }  // namespace
 
 int main() {
@@ -106,6 +130,14 @@ int main() {
       const double write = 14 + 5.0 * n;
       const double read = readback ? (14 + n) + 15.0 * n : 0;
       cases.push_back({{"dynamixel", n, 1'000'000, readback, write + read}, dynamixel});
+    }
+  for (int n : {16, 32})
+    for (bool readback : {false, true}) {
+      // Feetech STS: Sync Write of 2-byte goals = 8 + 3n; Sync Read of 2-byte positions =
+      // request 8 + n, replies 8 each.
+      const double write = 8 + 3.0 * n;
+      const double read = readback ? (8 + n) + 8.0 * n : 0;
+      cases.push_back({{"feetech", n, 1'000'000, readback, write + read}, feetech});
     }
   for (const auto& [c, measure] : cases) {
     const Measured m = measure(c);
