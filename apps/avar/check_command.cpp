@@ -6,6 +6,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
 #include "avar/exit_codes.hpp"
 
 namespace avar::app {
@@ -41,7 +42,7 @@ int run_check(const std::string& show_path, const std::string& rig_path, const s
         << "; " << jumps << " step jump(s), shaped by the limiter\n";
     if (!retime_path.empty()) {
       const playback::Show retimed = config::retime(show, rig);
-      config::write_show_file(retime_path, retimed);
+      config::write_show_file(retime_path, retimed, "written by avar check --retime");
       out << "retimed show: " << retime_path << " (" << retimed.duration << " s, was " << show.duration << " s)\n";
     }
     return kExitOk;

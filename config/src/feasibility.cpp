@@ -1,10 +1,8 @@
 #include "avar/config/feasibility.hpp"
 
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include "avar/core/format.hpp"
 
@@ -169,33 +167,6 @@ playback::Show retime(const playback::Show& show, const control::Rig& rig) {
     out.duration = warp(out.duration);
   }
   return out;
-}
-
-void write_show_file(const std::string& path, const playback::Show& show) {
-  YAML::Emitter y;
-  y << YAML::BeginMap;
-  y << YAML::Key << "name" << YAML::Value << show.name;
-  y << YAML::Key << "duration" << YAML::Value << show.duration;
-  y << YAML::Key << "loop" << YAML::Value << show.loop;
-  y << YAML::Key << "tracks" << YAML::Value << YAML::BeginMap;
-  for (const playback::Track& track : show.tracks) {
-    y << YAML::Key << track.channel << YAML::Value << YAML::BeginSeq;
-    for (const playback::RawKey& key : track.raw.keys) {
-      y << YAML::Flow << YAML::BeginMap << YAML::Key << "time" << YAML::Value << key.time << YAML::Key << "value" << YAML::Value
-        << key.value;
-      if (key.interpolation != playback::Interpolation::linear)
-        y << YAML::Key << "interpolation" << YAML::Value << playback::to_string(key.interpolation);
-      if (key.left) y << YAML::Key << "left" << YAML::Value << YAML::Flow << std::vector<double>{key.left->time, key.left->value};
-      if (key.right)
-        y << YAML::Key << "right" << YAML::Value << YAML::Flow << std::vector<double>{key.right->time, key.right->value};
-      y << YAML::EndMap;
-    }
-    y << YAML::EndSeq;
-  }
-  y << YAML::EndMap << YAML::EndMap;
-  std::ofstream file(path);
-  file << "# written by avar check --retime\n" << y.c_str() << '\n';
-  if (!file) throw InputError({path, 0, 0}, "cannot write the retimed show");
 }
 
 }  // namespace avar::config

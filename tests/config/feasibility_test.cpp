@@ -4,6 +4,7 @@
 
 #include "../support/temp_file.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
 
 namespace avar::config {
 namespace {
@@ -90,7 +91,7 @@ TEST(Feasibility, RetimeStretchesJustEnoughAndKeepsTheRestOfTheTiming) {
 TEST(Feasibility, RetimedShowWritesAndReadsBack) {
   const playback::Show retimed = retime(show(), rig());
   const std::string path = testing::temp_path("retimed.yaml");
-  write_show_file(path, retimed);
+  write_show_file(path, retimed, "written by avar check --retime");
   const playback::Show back = load_show_file(path);
   ASSERT_EQ(back.tracks.size(), 2u);
   EXPECT_NEAR(back.duration, retimed.duration, 1e-9);

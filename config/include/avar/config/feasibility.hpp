@@ -35,7 +35,5 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const cont
 /// (later keys shift by the added time). Jumps and range problems are left as they are.
 playback::Show retime(const playback::Show& show, const control::Rig& rig);
 
-/// Writes a show file (the format load_show_file reads). Throws InputError naming the path.
-void write_show_file(const std::string& path, const playback::Show& show);
 
 }  // namespace avar::config

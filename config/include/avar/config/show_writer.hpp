@@ -1,0 +1,16 @@
+#pragma once
+// Writing a show file (YAML) that load_show_file reads back to the same curves: every key field,
+// handle type, easing parameter, extrapolation and Cycles setting, and the targets, each written
+// only where its interpolation uses it. Load time only.
+
+#include <string>
+
+#include "avar/playback/show.hpp"
+
+namespace avar::config {
+
+/// Writes `show` to `path`, with `comment` as the first line (after "# "). Throws InputError
+/// naming the path when it cannot be written.
+void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment);
+
+}  // namespace avar::config

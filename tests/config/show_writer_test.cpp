@@ -1,0 +1,59 @@
+// A written show reads back to the same curves: every interpolation, handle type, easing
+// parameter, extrapolation and Cycles setting of Blender's golden set, and targets.
+#include "avar/config/show_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "../support/temp_file.hpp"
+#include "avar/config/show_file.hpp"
+
+namespace avar::config {
+namespace {
+
+void expect_same_curve(const playback::Curve& a, const playback::Curve& b, const std::string& what) {
+  for (double t = -3; t <= 13; t += 0.0173) ASSERT_EQ(a.evaluate(t), b.evaluate(t)) << what << " at " << t;
+}
+
+void round_trip(const std::string& path) {
+  const playback::Show original = load_show_file(path);
+  const std::string copy = avar::testing::temp_path("copy.yaml");
+  write_show_file(copy, original, "round trip");
+  const playback::Show again = load_show_file(copy);
+  EXPECT_EQ(again.name, original.name);
+  EXPECT_EQ(again.duration, original.duration);
+  EXPECT_EQ(again.loop, original.loop);
+  ASSERT_EQ(again.tracks.size(), original.tracks.size());
+  for (std::size_t i = 0; i < original.tracks.size(); ++i) {
+    EXPECT_EQ(again.tracks[i].channel, original.tracks[i].channel);
+    expect_same_curve(original.tracks[i].curve, again.tracks[i].curve, original.tracks[i].channel);
+  }
+  ASSERT_EQ(again.targets.size(), original.targets.size());
+  for (std::size_t i = 0; i < original.targets.size(); ++i) {
+    EXPECT_EQ(again.targets[i].kind, original.targets[i].kind);
+    EXPECT_EQ(again.targets[i].aim_axis, original.targets[i].aim_axis);
+    for (std::size_t a = 0; a < 3; ++a) expect_same_curve(original.targets[i].xyz[a], again.targets[i].xyz[a], original.targets[i].effector);
+  }
+}
+
+TEST(ShowWriter, EveryCurveFieldOfBlendersGoldenSetSurvivesARoundTrip) {
+  round_trip(AVAR_SOURCE_DIR "/tests/playback/golden/blender_curves.yaml");
+}
+
+TEST(ShowWriter, ExamplesWithTargetsAndAvarSplinesSurviveARoundTrip) {
+  round_trip(AVAR_SOURCE_DIR "/examples/shows/look-around.yaml");
+  round_trip(AVAR_SOURCE_DIR "/examples/shows/curves-tour.yaml");
+  round_trip(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
+}
+
+TEST(ShowWriter, AnUnwritablePathIsNamed) {
+  const playback::Show show = load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
+  try {
+    write_show_file("/nonexistent/dir/show.yaml", show, "x");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/show.yaml"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace avar::config
