@@ -2,11 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/input_errors.hpp"
 #include "../support/temp_file.hpp"
 #include <string>
 
 namespace avar::config {
 namespace {
+
+std::string error_of(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig_under_test.yaml"); }
+using avar::testing::replace;
+
 
 std::string write_temp(const std::string& name, const std::string& text) { return testing::write_temp_file(name, text); }
 
@@ -20,25 +25,6 @@ actuators:
   - {channel: jaw, protocol: maestro, link: head, device_channel: 0, calibration: {min_us: 1200, max_us: 1650}}
   - {channel: pan, protocol: maestro, link: head, device_channel: 3, calibration: {min_us: 1000, max_us: 2000, reverse: true, trim_us: 12}, speed: 120}
 )";
-
-/// Loads `text` as a rig and returns the error message ("" if it loaded).
-std::string error_of(const std::string& text) {
-  const std::string path = write_temp("rig_under_test.yaml", text);
-  try {
-    load_rig_file(path);
-    return "";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.rfind(path, 0), 0u) << "message must start with the file name: " << msg;
-    return msg.substr(path.size());
-  }
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
 
 TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
   const control::Rig rig = load_rig_file(write_temp("good_rig.yaml", kGoodRig));

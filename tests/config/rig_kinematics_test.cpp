@@ -6,12 +6,17 @@
 #include <numbers>
 #include <string>
 
+#include "../support/input_errors.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/kinematics/forward_kinematics.hpp"
 #include "avar/kinematics/workspace.hpp"
 
 namespace avar::config {
 namespace {
+
+std::string error_of(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig.yaml"); }
+using avar::testing::replace;
+
 
 const std::string kHead = R"(name: head
 links:
@@ -33,23 +38,6 @@ kinematics:
   effectors:
     gaze: {joint: skull, origin: {xyz: [0.08, 0, 0]}}
 )";
-
-std::string error_of(const std::string& text) {
-  const std::string path = avar::testing::write_temp_file("rig.yaml", text);
-  try {
-    load_rig_file(path);
-    return "";
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    return m.substr(m.find(".yaml") + 5);
-  }
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? text : text.replace(at, from.size(), to);
-}
 
 TEST(RigKinematics, JointsInAnyOrderBindToTheirChannelsWithTheChannelsLimits) {
   const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kHead));

@@ -8,25 +8,17 @@
 #include <sstream>
 #include <vector>
 
+#include "../support/input_errors.hpp"
 #include "../support/temp_file.hpp"
 
 namespace avar::config {
 namespace {
 
-std::string write_temp(const std::string& text) { return testing::write_temp_file("show.yaml", text); }
+std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+using avar::testing::replace;
 
-/// The error for a show text, without the file name ("" when it loads).
-std::string error_of(const std::string& text) {
-  const std::string path = write_temp(text);
-  try {
-    load_show_file(path);
-    return "";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
-    return msg.substr(path.size());
-  }
-}
+
+std::string write_temp(const std::string& text) { return testing::write_temp_file("show.yaml", text); }
 
 TEST(ShowFile, LoadsTracksKeysInterpolationsAndHandles) {
   const playback::Show show = load_show_file(write_temp(R"(name: s

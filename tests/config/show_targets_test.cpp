@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "../support/input_errors.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
@@ -11,6 +12,10 @@
 
 namespace avar::config {
 namespace {
+
+std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+using avar::testing::replace;
+
 
 const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
 
@@ -25,22 +30,6 @@ targets:
 tracks:
   jaw: [{time: 0, value: 0}, {time: 1, value: 10}]
 )";
-
-std::string load_error(const std::string& text) {
-  try {
-    load_show_file(avar::testing::write_temp_file("show.yaml", text));
-    return "";
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    return m.substr(m.find(".yaml") + 5);
-  }
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? text : text.replace(at, from.size(), to);
-}
 
 TEST(ShowTargets, CurvesAndStaticPointsLoad) {
   const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kShow));
@@ -60,13 +49,13 @@ TEST(ShowTargets, CurvesAndStaticPointsLoad) {
 }
 
 TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
-  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
+  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
             ":5:10: expected the aim axis of target 'eyes' to be a non-zero direction, found [0, 0, 0]");
-  EXPECT_EQ(load_error(replace(kShow, "    x: [{time: 0, value: 1}]\n", "")),
+  EXPECT_EQ(error_of(replace(kShow, "    x: [{time: 0, value: 1}]\n", "")),
             ":5:5: missing field 'x' in target 'eyes' (a static point, or x, y and z curves in metres)");
-  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
+  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
             ":7:8: target 'eyes' has both point and x; expected a static point or three curves");
-  EXPECT_EQ(load_error(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
+  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
             ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z");
 }
 

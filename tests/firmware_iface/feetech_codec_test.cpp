@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/encode.hpp"
+
 #include <array>
 #include <random>
 #include <vector>
@@ -11,13 +13,11 @@
 namespace avar::firmware_iface::feetech {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using avar::testing::Bytes;
 
 template <class F>
 Bytes encode(F&& f) {
-  std::array<std::uint8_t, kMaxPacketSize> buf{};
-  const std::size_t n = f(std::span<std::uint8_t>(buf));
-  return Bytes(buf.begin(), buf.begin() + static_cast<long>(n));
+  return avar::testing::encode_into<kMaxPacketSize>(f);
 }
 
 TEST(FeetechCodec, F1_Ping) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/encode.hpp"
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -14,13 +16,11 @@
 namespace avar::firmware_iface::maestro {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using avar::testing::Bytes;
 
 template <class F>
 Bytes encode(F&& f) {
-  std::array<std::uint8_t, kMaxPacketSize> buf{};
-  const std::size_t n = f(std::span<std::uint8_t>(buf));
-  return Bytes(buf.begin(), buf.begin() + static_cast<long>(n));
+  return avar::testing::encode_into<kMaxPacketSize>(f);
 }
 
 const Framing kCompact{};

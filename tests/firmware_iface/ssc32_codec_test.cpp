@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/encode.hpp"
+
 #include <random>
 #include <string>
 #include <vector>
@@ -11,13 +13,11 @@
 namespace avar::firmware_iface::ssc32 {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using avar::testing::Bytes;
 
 template <class F>
 Bytes encode(F&& f) {
-  std::array<std::uint8_t, kMaxLineSize> buf{};
-  const std::size_t n = f(std::span<std::uint8_t>(buf));
-  return Bytes(buf.begin(), buf.begin() + static_cast<long>(n));
+  return avar::testing::encode_into<kMaxLineSize>(f);
 }
 
 ParseResult parse(const std::string& text, Command* c) {
