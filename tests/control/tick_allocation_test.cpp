@@ -9,6 +9,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
+#include "avar/kinematics/model_builder.hpp"
 
 #include <atomic>
 #include <memory>
@@ -76,6 +77,60 @@ Scene scene() {
     show.tracks.push_back({"ch" + std::to_string(i), raw, std::move(curve), {}});
   }
   return sc;
+}
+
+/// The scene with channels 0 and 1 as the pan and tilt of a head whose eye follows a moving
+/// target through inverse kinematics (their tracks removed).
+Scene scene_with_targets() {
+  Scene sc = scene();
+  kinematics::ModelBuilder b;
+  b.add_joint({"pan", kinematics::JointType::revolute, "", Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitZ(), -0.78, 0.78});
+  b.add_joint({"tilt", kinematics::JointType::revolute, "pan", Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitY(), -0.78, 0.78});
+  b.add_effector({"eye", "tilt", Eigen::Isometry3d::Identity()});
+  const double deg = 3.141592653589793 / 180;
+  sc.rig.kinematics = RigKinematics{b.build(), {{0, 0, deg, 0}, {1, 1, deg, 0}}, {}};
+  sc.show.tracks.erase(sc.show.tracks.begin(), sc.show.tracks.begin() + 2);
+  playback::TargetTrack target;
+  target.effector = "eye";
+  target.kind = playback::TargetKind::aim;
+  const double ends[3][2] = {{1, 1}, {-0.5, 0.5}, {-0.3, 0.4}};
+  for (std::size_t a = 0; a < 3; ++a) {
+    playback::RawKey k0, k1;
+    k0.value = ends[a][0];
+    k1.time = 4;
+    k1.value = ends[a][1];
+    k0.interpolation = playback::Interpolation::sine;
+    target.raw[a].keys = {k0, k1};
+    target.xyz[a] = playback::Curve::build(target.raw[a]);
+  }
+  sc.show.targets.push_back(std::move(target));
+  return sc;
+}
+
+TEST(TickAllocation, NoAllocationWithInverseKinematicsAndDeviceTelemetry) {
+  const Scene sc = scene_with_targets();
+  CountingTransport transport;
+  firmware_iface::MaestroLink link(transport, sc.link_config);
+  Controller controller(sc.rig, sc.show, {&link}, {.tick_period_s = 0.001});
+  controller.begin(0.0, sc.rig.rest_frame());
+  std::vector<firmware_iface::ChannelTelemetry> telemetry(sc.rig.channels.size());
+
+  const long before = testing::allocations.load();
+  int k = 0;
+  for (; controller.active() && k < 100000; ++k) {
+    controller.tick(k * 0.001);
+    for (std::size_t c = 0; c < telemetry.size(); ++c) {
+      telemetry[c].position = controller.commanded()[c];
+      telemetry[c].temperature_c = 40;
+      ++telemetry[c].updates;
+    }
+    controller.feed_telemetry(telemetry);
+  }
+  const long after = testing::allocations.load();
+  EXPECT_GT(k, 3000);
+  ASSERT_NE(controller.ik(), nullptr);
+  EXPECT_GT(controller.ik()->stats().converged, 3000u);
+  EXPECT_EQ(after - before, 0) << "allocations during " << k << " ticks";
 }
 
 TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
