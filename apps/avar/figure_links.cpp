@@ -349,6 +349,13 @@ std::string FigureLinks::describe(std::size_t link) const {
   return (e.simulated ? "simulated " : "") + e.link->describe();
 }
 
+firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
+
+bool FigureLinks::reports_telemetry(std::size_t link) const {
+  const control::Protocol p = rig_.links[link].protocol;
+  return (p == control::Protocol::dynamixel || p == control::Protocol::feetech) && rig_.links[link].bus.readback != control::Readback::none;
+}
+
 void FigureLinks::read_telemetry(std::span<firmware_iface::ChannelTelemetry> telemetry) const {
   for (const auto& e : entries_) e->outer()->read_telemetry(telemetry);
 }

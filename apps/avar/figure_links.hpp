@@ -58,6 +58,12 @@ class FigureLinks {
   /// writes their positions in channel units to measured[channel] (known[channel] = true).
   void step_simulation(double dt_s, std::span<double> measured, std::span<bool> known);
 
+  std::size_t link_count() const { return entries_.size(); }
+  /// One link's wire counters (ActuatorLink::counters), any thread.
+  firmware_iface::LinkCounters counters(std::size_t link) const;
+  /// Whether a link's devices report telemetry (smart servo buses).
+  bool reports_telemetry(std::size_t link) const;
+
   /// Every link's newest device telemetry into telemetry[channel] (see ActuatorLink).
   void read_telemetry(std::span<firmware_iface::ChannelTelemetry> telemetry) const;
 

@@ -110,11 +110,27 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   }
 }
 
-void write_trace(const std::string& path, const control::Rig& rig, const PlayRecorder& r) {
+void write_trace(const std::string& path, const control::Rig& rig, const FigureLinks& figure, const PlayRecorder& r) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
+  // Channels on smart buses also get what their devices report; smart buses, their wire counters.
+  std::vector<char> reported(rig.channels.size(), 0);
+  for (const control::ActuatorSpec& a : rig.actuators)
+    if (figure.reports_telemetry(a.link)) reported[a.channel] = 1;
+  std::vector<std::size_t> counted_links;
+  for (std::size_t l = 0; l < rig.links.size(); ++l)
+    if (figure.reports_telemetry(l)) counted_links.push_back(l);
   csv << "seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us";
-  for (const auto& c : rig.channels) csv << ',' << c.name << ".target," << c.name << ".command," << c.name << ".measured";
+  for (std::size_t i = 0; i < rig.channels.size(); ++i) {
+    const std::string& c = rig.channels[i].name;
+    csv << ',' << c << ".target," << c << ".command," << c << ".measured";
+    if (reported[i]) csv << ',' << c << ".load," << c << ".temperature_c," << c << ".device_faults";
+  }
+  for (std::size_t l : counted_links) {
+    const std::string& name = rig.links[l].name;
+    csv << ',' << name << ".replies," << name << ".crc_errors," << name << ".framing_errors," << name << ".timeouts," << name
+        << ".retries," << name << ".reconnects";
+  }
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();
   for (std::size_t k = 0; k < r.seconds().size(); ++k) {
@@ -128,6 +144,18 @@ void write_trace(const std::string& path, const control::Rig& rig, const PlayRec
       csv << ',' << r.targets()[k * n + i] << ',' << r.commands()[k * n + i] << ',';
       const double m = r.measured()[k * n + i];
       if (!std::isnan(m)) csv << m;
+      if (!reported[i]) continue;
+      const firmware_iface::ChannelTelemetry& t = r.telemetry()[k * n + i];
+      csv << ',';
+      if (std::isfinite(t.load)) csv << t.load;
+      csv << ',';
+      if (std::isfinite(t.temperature_c)) csv << t.temperature_c;
+      csv << ',' << t.faults;
+    }
+    for (std::size_t l : counted_links) {
+      const firmware_iface::LinkCounters& w = r.link_counters()[k * rig.links.size() + l];
+      csv << ',' << w.replies << ',' << w.crc_errors << ',' << w.framing_errors << ',' << w.timeouts << ',' << w.retries << ','
+          << w.reconnects;
     }
     csv << '\n';
   }
@@ -228,7 +256,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate);
   try {
     if (options.trace_path) {
-      write_trace(*options.trace_path, rig, recorder);
+      write_trace(*options.trace_path, rig, *figure, recorder);
       out << "trace: " << *options.trace_path << '\n';
     }
     if (options.plot_path) {

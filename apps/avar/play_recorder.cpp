@@ -30,6 +30,8 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
     targets_.reserve(expected_ticks * channels);
     commands_.reserve(expected_ticks * channels);
     measured_rows_.reserve(expected_ticks * channels);
+    telemetry_rows_.reserve(expected_ticks * channels);
+    counter_rows_.reserve(expected_ticks * figure_.link_count());
   }
 }
 
@@ -72,6 +74,8 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double l
     commands_.insert(commands_.end(), command.begin(), command.end());
     for (std::size_t i = 0; i < channels_; ++i)
       measured_rows_.push_back(known[i] ? measured_[i] : std::numeric_limits<double>::quiet_NaN());
+    telemetry_rows_.insert(telemetry_rows_.end(), telemetry_.begin(), telemetry_.end());
+    for (std::size_t l = 0; l < figure_.link_count(); ++l) counter_rows_.push_back(figure_.counters(l));
   }
   if (progress_ && now_s >= next_progress_s_) {
     draw_progress(now_s, controller);

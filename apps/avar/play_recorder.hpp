@@ -44,6 +44,10 @@ class PlayRecorder final : public control::TickObserver {
   const std::vector<double>& lateness() const { return lateness_rows_; }  ///< seconds, per tick
   /// Stage costs per tick, kStageCount values a tick, nanoseconds.
   const std::vector<std::int64_t>& stage_ns() const { return stage_rows_; }
+  /// Device telemetry per tick, `channels` entries a tick (the newest report at that tick).
+  const std::vector<firmware_iface::ChannelTelemetry>& telemetry() const { return telemetry_rows_; }
+  /// Wire counters per tick, one entry per link a tick.
+  const std::vector<firmware_iface::LinkCounters>& link_counters() const { return counter_rows_; }
 
  private:
   void draw_progress(double now_s, const control::Controller& controller);
@@ -66,6 +70,8 @@ class PlayRecorder final : public control::TickObserver {
   std::vector<double> seconds_, targets_, commands_, measured_rows_, lateness_rows_;
   std::vector<control::Phase> phase_rows_;
   std::vector<std::int64_t> stage_rows_;
+  std::vector<firmware_iface::ChannelTelemetry> telemetry_rows_;
+  std::vector<firmware_iface::LinkCounters> counter_rows_;
 };
 
 }  // namespace avar::app

@@ -88,12 +88,41 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
 }
 
 TEST(PlayCommand, PlaysTheDynamixelArmOnTheSimulatedBusAndReportsTheWire) {
+  const std::string trace = testing::temp_path("trace.csv");
   const Result r = avar({"play", AVAR_SOURCE_DIR "/examples/shows/arm-wave.yaml", "--rig",
-                         AVAR_SOURCE_DIR "/examples/rigs/dynamixel-arm.yaml", "--fast", "--no-progress"});
+                         AVAR_SOURCE_DIR "/examples/rigs/dynamixel-arm.yaml", "--fast", "--no-progress", "--trace", trace});
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   EXPECT_NE(r.out.find("simulated DYNAMIXEL 2.0 (4 servos)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" 0 CRC errors, 0 framing errors, 0 timeouts"), std::string::npos) << r.out;  // simulated links wait long enough
   for (const char* channel : {"base", "shoulder", "elbow", "wrist"}) EXPECT_NE(r.out.find(channel), std::string::npos);
+  // The trace carries what the servos reported and the wire's counters, tick by tick.
+  std::ifstream csv(trace);
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",wrist.measured,wrist.load,wrist.temperature_c,wrist.device_faults"), std::string::npos) << header;
+  EXPECT_NE(header.find(",arm.replies,arm.crc_errors,arm.framing_errors,arm.timeouts,arm.retries,arm.reconnects"), std::string::npos);
+  while (std::getline(csv, line)) last = line;
+  std::vector<std::string> names, cells;
+  std::stringstream h(header), l(last);
+  for (std::string cell; std::getline(h, cell, ',');) names.push_back(cell);
+  for (std::string cell; std::getline(l, cell, ',');) cells.push_back(cell);
+  ASSERT_EQ(names.size(), cells.size());
+  const auto at = [&](const std::string& name) { return cells[static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin())]; };
+  EXPECT_NEAR(std::stod(at("base.temperature_c")), 25, 3);
+  EXPECT_EQ(at("base.device_faults"), "0");
+  EXPECT_GT(std::stoul(at("arm.replies")), 3000u);
+}
+
+TEST(PlayCommand, PlaysTheBundledShowThroughAnSsc32) {
+  // The hello-head figure rewired to a Lynxmotion SSC-32: same channels, same pulse windows.
+  std::string rig = read_file(kRig);
+  rig.replace(rig.find("maestro: {model: mini12}"), 24, "ssc32: {}");
+  for (std::string::size_type at; (at = rig.find("protocol: maestro, ")) != std::string::npos;) rig.erase(at, 19);
+  const std::string path = write_temp("ssc32-head.yaml", rig);
+  const Result r = avar({"play", kShow, "--rig", path, "--fast", "--no-progress"});
+  ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
+  EXPECT_NE(r.out.find("simulated SSC-32"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("jaw "), std::string::npos);
 }
 
 TEST(PlayCommand, PlaysTheFeetechArmOnTheSimulatedBus) {
