@@ -138,39 +138,63 @@ playback::Curve constant_curve(double value, const SourceLocation& where, playba
   return playback::Curve::build(raw);
 }
 
-/// targets: {effector: {aim: [x, y, z]?, point: [x, y, z] | x: track, y: track, z: track}}
+/// Three curves of a target from `names` (x, y, z or roll, pitch, yaw), or a static `vector`.
+void read_triple(const YamlRef& name, const YamlRef& body, double duration, const std::string& what, const char* vector,
+                 const char* const (&names)[3], const char* unit, std::array<playback::RawCurve, 3>& raw,
+                 std::array<playback::Curve, 3>& curves) {
+  if (auto v = body.find(vector)) {
+    for (const char* axis : names)
+      if (body.find(axis))
+        body.at(axis, "").fail(what + " has both " + vector + " and " + axis + "; expected a static " + vector + " or three curves");
+    const std::string vwhat = "the " + std::string(vector) + " of " + what + " (" + unit + ")";
+    v->expect_sequence(vwhat + " ([a, b, c])");
+    if (v->size() != 3) v->fail("expected " + vwhat + " to have 3 numbers, found " + std::to_string(v->size()));
+    for (std::size_t i = 0; i < 3; ++i)
+      curves[i] = constant_curve((*v)[i].as_double(vwhat + " " + names[i]), v->where(), raw[i]);
+    return;
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    const YamlRef curve = body.at(names[i], what + " (a static " + vector + ", or " + names[0] + ", " + names[1] + " and " +
+                                                 names[2] + " curves in " + unit + ")");
+    playback::Track track =
+        read_track(YamlRef{YAML::Node(name.node.Scalar() + "." + names[i]), name.file}, curve, duration);
+    raw[i] = std::move(track.raw);
+    curves[i] = std::move(track.curve);
+  }
+}
+
+/// targets: {effector: {point: [x, y, z] | x, y, z curves; aim: [x, y, z]; orientation:
+/// [roll, pitch, yaw] | roll, pitch, yaw curves}}
 playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, double duration) {
   playback::TargetTrack target;
   target.effector = name.as_string("an effector name");
   target.where = name.where();
   const std::string what = "target '" + target.effector + "'";
-  body.expect_map(what + " ({point: [x, y, z]} or {x: keys, y: keys, z: keys}, and optionally aim: [x, y, z])");
-  body.expect_only_keys({"aim", "point", "x", "y", "z"}, what);
-  const auto vector3 = [&](const YamlRef& node, const std::string& vwhat) {
-    node.expect_sequence(vwhat + " ([x, y, z])");
-    if (node.size() != 3) node.fail("expected " + vwhat + " to have 3 numbers [x, y, z], found " + std::to_string(node.size()));
-    return std::array<double, 3>{node[0].as_double(vwhat + " x"), node[1].as_double(vwhat + " y"), node[2].as_double(vwhat + " z")};
-  };
+  body.expect_map(what + " (a point {point | x, y, z}, optionally aim: [x, y, z]; and/or an orientation {orientation | "
+                         "roll, pitch, yaw})");
+  body.expect_only_keys({"aim", "point", "x", "y", "z", "orientation", "roll", "pitch", "yaw"}, what);
+  const bool point = body.has("point") || body.has("x") || body.has("y") || body.has("z");
+  const bool orientation = body.has("orientation") || body.has("roll") || body.has("pitch") || body.has("yaw");
+  if (!point && !orientation)
+    body.fail("expected " + what + " to give a point (point: [x, y, z] or x, y, z curves) or an orientation (orientation: "
+                                   "[roll, pitch, yaw] or roll, pitch, yaw curves)");
   if (auto aim = body.find("aim")) {
-    target.kind = playback::TargetKind::aim;
-    target.aim_axis = vector3(*aim, "the aim axis of " + what + " (in the effector's frame)");
+    if (orientation) aim->fail(what + " both aims and sets an orientation; expected one or the other");
+    target.aim_axis = {0, 0, 0};
+    aim->expect_sequence("the aim axis of " + what + " ([x, y, z] in the effector's frame)");
+    if (aim->size() != 3) aim->fail("expected the aim axis of " + what + " to have 3 numbers [x, y, z], found " + std::to_string(aim->size()));
+    for (std::size_t i = 0; i < 3; ++i) target.aim_axis[i] = (*aim)[i].as_double("the aim axis of " + what);
     if (target.aim_axis[0] == 0 && target.aim_axis[1] == 0 && target.aim_axis[2] == 0)
       aim->fail("expected the aim axis of " + what + " to be a non-zero direction, found [0, 0, 0]");
   }
-  const char* axes[3] = {"x", "y", "z"};
-  if (auto point = body.find("point")) {
-    for (const char* axis : axes)
-      if (body.find(axis)) body.at(axis, "").fail(what + " has both point and " + axis + "; expected a static point or three curves");
-    const std::array<double, 3> p = vector3(*point, "the point of " + what + " (m)");
-    for (std::size_t i = 0; i < 3; ++i) target.xyz[i] = constant_curve(p[i], point->where(), target.raw[i]);
-    return target;
-  }
-  for (std::size_t i = 0; i < 3; ++i) {
-    const YamlRef curve = body.at(axes[i], what + " (a static point, or x, y and z curves in metres)");
-    playback::Track track = read_track(YamlRef{YAML::Node(target.effector + "." + axes[i]), name.file}, curve, duration);
-    target.raw[i] = std::move(track.raw);
-    target.xyz[i] = std::move(track.curve);
-  }
+  static const char* const kXyz[3] = {"x", "y", "z"};
+  static const char* const kRpy[3] = {"roll", "pitch", "yaw"};
+  if (point) read_triple(name, body, duration, what, "point", kXyz, "m", target.raw, target.xyz);
+  if (orientation) read_triple(name, body, duration, what, "orientation", kRpy, "rad", target.raw_rpy, target.rpy);
+  target.kind = !point                 ? playback::TargetKind::orientation
+                : orientation          ? playback::TargetKind::pose
+                : body.has("aim")      ? playback::TargetKind::aim
+                                       : playback::TargetKind::position;
   return target;
 }
 

@@ -88,9 +88,14 @@ void write_show_file(const std::string& path, const playback::Show& show, const 
         y << YAML::Key << "aim" << YAML::Value << YAML::Flow
           << std::vector<double>{target.aim_axis[0], target.aim_axis[1], target.aim_axis[2]};
       const char* axes[3] = {"x", "y", "z"};
-      for (std::size_t i = 0; i < 3; ++i) {
+      const char* angles[3] = {"roll", "pitch", "yaw"};
+      for (std::size_t i = 0; i < 3 && target.has_point(); ++i) {
         y << YAML::Key << axes[i] << YAML::Value;
         write_curve(y, target.raw[i]);
+      }
+      for (std::size_t i = 0; i < 3 && target.has_orientation(); ++i) {
+        y << YAML::Key << angles[i] << YAML::Value;
+        write_curve(y, target.raw_rpy[i]);
       }
       y << YAML::EndMap;
     }

@@ -12,7 +12,7 @@ IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, st
     : kinematics_(kinematics),
       show_(show),
       workspace_(kinematics.model, std::max<std::size_t>(1, show.targets.size())),
-      cursors_(3 * show.targets.size()),
+      cursors_(6 * show.targets.size()),
       q_(kinematics.model.dof(), 0.0),
       q_next_(kinematics.model.dof(), 0.0) {
   const kinematics::Model& model = kinematics.model;
@@ -22,7 +22,12 @@ IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, st
     if (!effector) throw std::invalid_argument("the rig's kinematics has no effector '" + target.effector + "'");
     kinematics::IkGoal goal;
     goal.effector = *effector;
-    goal.kind = target.kind == playback::TargetKind::aim ? kinematics::IkGoalKind::aim : kinematics::IkGoalKind::position;
+    switch (target.kind) {
+      case playback::TargetKind::position: goal.kind = kinematics::IkGoalKind::position; break;
+      case playback::TargetKind::aim: goal.kind = kinematics::IkGoalKind::aim; break;
+      case playback::TargetKind::orientation: goal.kind = kinematics::IkGoalKind::orientation; break;
+      case playback::TargetKind::pose: goal.kind = kinematics::IkGoalKind::pose; break;
+    }
     goal.aim_axis = Eigen::Vector3d(target.aim_axis[0], target.aim_axis[1], target.aim_axis[2]);
     goals_.push_back(goal);
     for (std::size_t b : bindings_moving(kinematics, *effector)) moved[b] = 1;
@@ -45,10 +50,16 @@ void IkStage::reseed(std::span<const double> frame) noexcept {
 kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept {
   if (goals_.empty()) return {kinematics::IkStatus::converged, 0, 0, 0};
   const double local = show_.local_time(t);
+  double rpy[3] = {0, 0, 0};
   for (std::size_t i = 0; i < goals_.size(); ++i) {
     const playback::TargetTrack& target = show_.targets[i];
-    for (int axis = 0; axis < 3; ++axis)
-      goals_[i].position[axis] = target.xyz[static_cast<std::size_t>(axis)].evaluate(local, cursors_[3 * i + static_cast<std::size_t>(axis)]);
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (target.has_point()) goals_[i].position[static_cast<Eigen::Index>(a)] = target.xyz[a].evaluate(local, cursors_[6 * i + a]);
+      if (target.has_orientation()) rpy[a] = target.rpy[a].evaluate(local, cursors_[6 * i + 3 + a]);
+    }
+    if (target.has_orientation())
+      goals_[i].orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                              Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
   }
   const kinematics::IkOptions options = cold_ ? kinematics::cold_start_ik_options() : kinematics::default_ik_options();
   const kinematics::IkResult result = kinematics::solve_ik(kinematics_.model, workspace_, goals_, q_, q_next_, options);

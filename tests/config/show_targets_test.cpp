@@ -48,15 +48,36 @@ TEST(ShowTargets, CurvesAndStaticPointsLoad) {
   EXPECT_TRUE(still.tracks.empty());
 }
 
+TEST(ShowTargets, OrientationsAndPosesLoad) {
+  const playback::Show show = load_show_file(avar::testing::write_temp_file(
+      "pose.yaml", R"(duration: 2
+targets:
+  hand:
+    point: [0.3, 0.1, 0.2]
+    roll: [{time: 0, value: 0}, {time: 2, value: 1}]
+    pitch: [{time: 0, value: 0.5}]
+    yaw: [{time: 0, value: -0.5}]
+  wrist: {orientation: [0, 1.5707963267948966, 0]}
+)"));
+  ASSERT_EQ(show.targets.size(), 2u);
+  EXPECT_EQ(show.targets[0].kind, playback::TargetKind::pose);
+  EXPECT_DOUBLE_EQ(show.targets[0].rpy[0].evaluate(1), 0.5);
+  EXPECT_DOUBLE_EQ(show.targets[0].xyz[1].evaluate(1), 0.1);
+  EXPECT_EQ(show.targets[1].kind, playback::TargetKind::orientation);
+  EXPECT_DOUBLE_EQ(show.targets[1].rpy[1].evaluate(0), 1.5707963267948966);
+}
+
 TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
             ":5:10: expected the aim axis of target 'eyes' to be a non-zero direction, found [0, 0, 0]");
   EXPECT_EQ(error_of(replace(kShow, "    x: [{time: 0, value: 1}]\n", "")),
-            ":5:5: missing field 'x' in target 'eyes' (a static point, or x, y and z curves in metres)");
+            ":5:5: missing field 'x' in target 'eyes' (a static point, or x, y and z curves in m)");
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
             ":7:8: target 'eyes' has both point and x; expected a static point or three curves");
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
-            ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z");
+            ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z, orientation, roll, pitch, yaw");
+  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    orientation: [0, 0, 1]")),
+            ":5:10: target 'eyes' both aims and sets an orientation; expected one or the other");
 }
 
 TEST(ShowTargets, TheRigMustHaveTheEffectorAndTracksMustNotFightTheSolver) {

@@ -91,6 +91,25 @@ TEST(IkStage, AnUnreachableAimStaysWithinTheChannelLimitsAndIsDegraded) {
   EXPECT_EQ(stage.stats().degraded, 1u);
 }
 
+TEST(IkStage, AnOrientationTargetTurnsTheHeadAndAPoseTargetPlacesTheHand) {
+  const Rig rig = head_rig();
+  playback::Show show;
+  show.name = "turn";
+  show.duration = 1;
+  playback::TargetTrack t;
+  t.effector = "gaze";
+  t.kind = playback::TargetKind::orientation;
+  const double rpy[3] = {0, -20 * kDeg, 30 * kDeg};  // pitch -20° about y: the gaze tilts up; yaw 30°: left
+  for (std::size_t i = 0; i < 3; ++i) t.rpy[i] = constant(rpy[i], t.raw_rpy[i]);
+  show.targets.push_back(std::move(t));
+  IkStage stage(*rig.kinematics, show, rig.rest_frame());
+  std::vector<double> frame{0, 0, 0};
+  const kinematics::IkResult r = stage.apply(0, frame);
+  EXPECT_EQ(r.status, kinematics::IkStatus::converged);
+  EXPECT_NEAR(frame[0], 30, 1e-3);
+  EXPECT_NEAR(frame[1], -20, 1e-3);
+}
+
 TEST(IkStage, TheControllerHomesToTheSolvedPoseAndPlaysIt) {
   const Rig rig = head_rig();
   const playback::Show show = look_at(1.0, -0.5, 0.2);

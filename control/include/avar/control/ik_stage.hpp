@@ -54,7 +54,7 @@ class IkStage {
   const playback::Show& show_;
   kinematics::IkWorkspace workspace_;
   std::vector<kinematics::IkGoal> goals_;
-  std::vector<playback::CurveCursor> cursors_;  ///< 3 per target
+  std::vector<playback::CurveCursor> cursors_;  ///< 6 per target: x, y, z, roll, pitch, yaw
   std::vector<double> q_, q_next_;
   std::vector<std::size_t> driven_bindings_;  ///< indices into kinematics_.bindings
   std::vector<std::size_t> driven_channels_;

@@ -19,22 +19,30 @@ struct Track {
   SourceLocation where;
 };
 
-/// What an effector of the rig's kinematics is asked to do with a target point.
+/// What an effector of the rig's kinematics is asked to do.
 enum class TargetKind {
-  position,  ///< bring the effector's origin to the point
-  aim,       ///< point the effector-frame axis `aim_axis` at the point (eyes, heads, lights)
+  position,     ///< bring the effector's origin to the point
+  aim,          ///< point the effector-frame axis `aim_axis` at the point (eyes, heads, lights)
+  orientation,  ///< turn the effector frame to the orientation
+  pose,         ///< both the point and the orientation
 };
 
-/// A target in space for one effector, solved by inverse kinematics every tick: the point's
-/// x, y and z (metres, in the rig's base frame) are keyframe curves (a static point is three
-/// one-key curves).
+/// A target for one effector, solved by inverse kinematics every tick. The point's x, y and z
+/// (metres, in the rig's base frame) and the orientation's roll, pitch and yaw (radians: the
+/// effector frame turned about the base's fixed x, then y, then z axes, as URDF's rpy) are
+/// keyframe curves; a static value is a one-key curve.
 struct TargetTrack {
   std::string effector;  ///< effector name in the rig's kinematics
   TargetKind kind = TargetKind::position;
   std::array<double, 3> aim_axis{1, 0, 0};  ///< effector frame, any non-zero length (aim only)
-  std::array<RawCurve, 3> raw;              ///< x, y, z as authored
+  std::array<RawCurve, 3> raw;              ///< x, y, z as authored (position, aim, pose)
   std::array<Curve, 3> xyz;                 ///< built from raw
+  std::array<RawCurve, 3> raw_rpy;          ///< roll, pitch, yaw as authored (orientation, pose)
+  std::array<Curve, 3> rpy;                 ///< built from raw_rpy
   SourceLocation where;
+
+  bool has_point() const noexcept { return kind != TargetKind::orientation; }
+  bool has_orientation() const noexcept { return kind == TargetKind::orientation || kind == TargetKind::pose; }
 };
 
 struct Show {
