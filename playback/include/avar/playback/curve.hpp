@@ -180,7 +180,7 @@ class Curve {
     double a0 = 0, a1 = 0, a2 = 0, a3 = 0;
     int refinements = 0;
   };
-  static constexpr int kTablePieces = 16;
+  static constexpr int kTablePieces = 32;
   static constexpr int kMaxRefinements = 2;
 
   static void tabulate_inverse(Segment& segment, std::vector<InversePiece>& table);
