@@ -153,9 +153,10 @@ CLI::App* add_fit_subcommand(CLI::App& app, FitOptions& o) {
   cmd->add_option("--corner-angle", o.corner_angle_deg, "Turn (degrees) above which a sample is kept as a sharp corner (default 60)")
       ->check(CLI::Range(0.0, 180.0));
   cmd->footer(
-      "Every channel becomes a track of Bezier keys with free handles, the fewest the greedy split finds\n"
-      "such that the show, sampled at every input time, stays within --tolerance of the input (of the\n"
-      "smoothed input with --smooth). End points and sharp corners (steps, kinks) are kept as keys.\n"
+      "Every channel becomes a track of Bezier keys with free handles: split at the worst sample until\n"
+      "the show, sampled at every input time, stays within --tolerance of the input (of the smoothed\n"
+      "input with --smooth), then every key the others can do without is dropped. End points and sharp\n"
+      "corners (steps, kinks) are kept as keys.\n"
       "Per channel it prints samples in, keys out and the largest error of the written show.\n"
       "Examples:\n"
       "  avar sample examples/shows/hello-head.yaml --rate 100 --out head.csv\n"

@@ -149,6 +149,23 @@ double hermite_at(std::span<const double> t, std::span<const double> v, const Ke
          duration * (s3 - s2) * keys.in_slope[k + 1];
 }
 
+/// Solves the slopes of `keys`; when the Hermite pieces are within the tolerance, builds the
+/// curve into `result` and checks it as playback evaluates it. Returns the samples to split at
+/// (one per segment over the tolerance), empty when `result` holds a curve within it.
+std::vector<std::size_t> over_tolerance(std::span<const double> t, std::span<const double> v, Keys& keys, double tolerance,
+                                        const SourceLocation& where, CurveFitResult& result) {
+  keys.in_slope.assign(keys.sample.size(), 0.0);
+  keys.out_slope.assign(keys.sample.size(), 0.0);
+  if (keys.sample.size() > 1) solve_slopes(t, v, keys);
+  // Aim a hair inside the tolerance with the pieces, then check the curve that will play.
+  double error = 0;
+  auto splits = worst_over(v, keys, tolerance * (1 - 1e-6), [&](std::size_t k, std::size_t j) { return hermite_at(t, v, keys, k, j); }, error);
+  if (!splits.empty()) return splits;
+  result.curve = to_raw_curve(t, v, keys, where);
+  const Curve built = Curve::build(result.curve);
+  return worst_over(v, keys, tolerance, [&](std::size_t, std::size_t j) { return built.evaluate(t[j]); }, result.max_error);
+}
+
 }  // namespace
 
 std::vector<std::size_t> find_corners(std::span<const double> t, std::span<const double> v, const CurveFitOptions& options) {
@@ -186,22 +203,28 @@ CurveFitResult fit_curve(std::span<const double> t, std::span<const double> v, c
     keys.sample.push_back(n - 1);
     keys.corner.push_back(false);
   }
-  // Aim a hair inside the tolerance when fitting, then check the curve that will play.
-  const double target = options.tolerance * (1 - 1e-6);
+  // Split until within the tolerance, then drop every key the others can do without.
   for (;;) {
-    keys.in_slope.assign(keys.sample.size(), 0.0);
-    keys.out_slope.assign(keys.sample.size(), 0.0);
-    if (keys.sample.size() > 1) solve_slopes(t, v, keys);
-    double error = 0;
-    auto splits = worst_over(v, keys, target, [&](std::size_t k, std::size_t j) { return hermite_at(t, v, keys, k, j); }, error);
-    if (splits.empty()) {
-      result.curve = to_raw_curve(t, v, keys, where);
-      const Curve built = Curve::build(result.curve);
-      splits = worst_over(v, keys, options.tolerance, [&](std::size_t, std::size_t j) { return built.evaluate(t[j]); },
-                          result.max_error);
-      if (splits.empty()) break;
-    }
+    const auto splits = over_tolerance(t, v, keys, options.tolerance, where, result);
+    if (splits.empty()) break;
     insert_keys(keys, splits);
+  }
+  for (std::size_t k = 1; k + 1 < keys.sample.size();) {
+    if (keys.corner[k]) {
+      ++k;
+      continue;
+    }
+    Keys fewer = keys;
+    fewer.sample.erase(fewer.sample.begin() + static_cast<std::ptrdiff_t>(k));
+    fewer.corner.erase(fewer.corner.begin() + static_cast<std::ptrdiff_t>(k));
+    CurveFitResult attempt;
+    if (over_tolerance(t, v, fewer, options.tolerance, where, attempt).empty()) {
+      keys = std::move(fewer);
+      result.curve = std::move(attempt.curve);
+      result.max_error = attempt.max_error;
+    } else {
+      ++k;
+    }
   }
   result.key_samples = keys.sample;
   return result;

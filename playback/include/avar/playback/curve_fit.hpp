@@ -2,7 +2,8 @@
 // Fitting time-stamped samples with few Bezier keys (Parent, Computer Animation, 3.4; in the
 // spirit of Schneider's "An algorithm for automatically fitting digitized curves"): start from
 // the end points (and the sharp corners), fit, and split every segment whose worst sample is
-// over the tolerance at that sample, until every sample is within it.
+// over the tolerance at that sample, until every sample is within it; then drop, one by one, every
+// key (other than the ends and corners) without which the curve still stays within it.
 //
 // Shape of the result: keys sit on samples (value = the sample's value), every key is Bezier
 // with free handles a third of the segment away in time, so time runs linearly inside every
