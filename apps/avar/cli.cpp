@@ -6,6 +6,7 @@
 
 #include "avar/check_command.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/fit_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
@@ -26,6 +27,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      validate both files and list what the rig cannot do, without moving anything\n"
       "  avar sample SHOW --rate 100 --channels neck_pan,jaw\n"
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
+      "  avar fit recording.csv --tolerance 0.1 --out take.yaml [--smooth butterworth --cutoff 4]\n"
+      "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
@@ -73,6 +76,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   SampleOptions sample;
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
+  FitOptions fit;
+  CLI::App* fit_cmd = add_fit_subcommand(app, fit);
 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
@@ -130,6 +135,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   }
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
+  if (*fit_cmd) return run_fit(fit, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);
