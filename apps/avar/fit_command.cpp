@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "avar/config/feasibility.hpp"
+#include "avar/config/show_writer.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
@@ -203,7 +203,7 @@ int run_fit(const FitOptions& options, std::ostream& out, std::ostream& err) {
       track.curve = playback::Curve::build(track.raw);
       show.tracks.push_back(std::move(track));
     }
-    config::write_show_file(options.out_path, show);
+    config::write_show_file(options.out_path, show, "written by avar fit");
     const playback::Show written = config::load_show_file(options.out_path);
     for (std::size_t c = 0; c < written.tracks.size(); ++c) {
       const auto& track = written.tracks[c];
