@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_run.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/cli.hpp"
 #include "avar/exit_codes.hpp"
@@ -24,20 +25,8 @@ namespace {
 const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
 const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
 
-struct Result {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-Result avar(std::vector<std::string> args) {
-  args.insert(args.begin(), "avar");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {code, out.str(), err.str()};
-}
+using Result = testing::CliResult;
+Result avar(std::vector<std::string> args) { return testing::run_avar(std::move(args)); }
 
 std::string write_temp(const std::string& name, const std::string& text) { return testing::write_temp_file(name, text); }
 

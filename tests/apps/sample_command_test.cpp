@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../support/child_process.hpp"
+#include "../support/cli_run.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/cli.hpp"
 #include "avar/config/show_file.hpp"
@@ -31,19 +32,10 @@ tracks:
     - {time: 1.0, value: -2}
 )";
 
-struct Result {
-  int code;
-  std::string out;
-  std::string err;
-};
-
+using Result = testing::CliResult;
 Result sample(std::vector<std::string> args) {
-  args.insert(args.begin(), {"avar", "sample"});
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {code, out.str(), err.str()};
+  args.insert(args.begin(), "sample");
+  return testing::run_avar(std::move(args));
 }
 
 std::vector<std::vector<std::string>> rows_of(const std::string& csv) {
