@@ -162,11 +162,7 @@ void run_kdl(const Problem& p) {
 }
 #endif
 
-std::string default_chain_file() {
-  for (const char* candidate : {AVAR_SOURCE_DIR "/../shared/bench/ik-chains.txt", AVAR_SOURCE_DIR "/../../shared/bench/ik-chains.txt"})
-    if (std::filesystem::exists(candidate)) return candidate;
-  return AVAR_SOURCE_DIR "/../shared/bench/ik-chains.txt";
-}
+std::string default_chain_file() { return AVAR_SOURCE_DIR "/bench/data/ik-chains.txt"; }
 
 }  // namespace
 

@@ -17,13 +17,8 @@
 
 namespace avar::kinematics::test {
 
-/// The IK benchmark's reference chains (UR5, iiwa7), beside the repository (one level further
-/// up for a worktree under wt/).
-inline const std::string kBenchChainsPath = [] {
-  const std::string beside = AVAR_SOURCE_DIR "/../shared/bench/ik-chains.txt";
-  const std::string above = AVAR_SOURCE_DIR "/../../shared/bench/ik-chains.txt";
-  return std::filesystem::exists(beside) || !std::filesystem::exists(above) ? beside : above;
-}();
+/// The IK benchmark's reference chains (UR5, iiwa7), committed beside the benchmark.
+inline const std::string kBenchChainsPath = AVAR_SOURCE_DIR "/bench/data/ik-chains.txt";
 
 /// Skips the test, naming the file, when the shared reference chains are not there.
 class BenchChains : public ::testing::Test {
