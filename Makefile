@@ -27,10 +27,11 @@ demo: build
 	$(AVAR) play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml \
 	  --plot $(BUILD)/hello-head.svg --trace $(BUILD)/hello-head.csv
 
-# Every test on the normal build, then again under AddressSanitizer + UndefinedBehaviorSanitizer,
-# then under ThreadSanitizer for the suites whose code runs threads (I/O threads and mailboxes,
-# the simulators' pty hosts, signals, the serial link).
-test: test-fast test-sanitize test-tsan
+# Every test under AddressSanitizer + UndefinedBehaviorSanitizer, then the suites whose code runs
+# threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link) under
+# ThreadSanitizer. `make test-fast` runs every test on the optimised build instead.
+TSAN_SUITES = control sim firmware_iface
+test: test-sanitize test-tsan
 
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -43,8 +44,8 @@ test-sanitize: deps
 
 test-tsan: deps
 	@cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-	  -DAVAR_TSAN=ON -DAVAR_BUILD_BENCH=OFF -DAVAR_TEST_MODULES="control;sim;firmware_iface;apps" >/dev/null
-	@cmake --build $(TSAN_BUILD) -j $(JOBS)
+	  -DAVAR_TSAN=ON -DAVAR_BUILD_BENCH=OFF -DAVAR_TEST_MODULES="$(TSAN_SUITES)" >/dev/null
+	@cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(patsubst %,avar_%_tests,$(TSAN_SUITES))
 	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
 # KDL is the IK benchmark's peer; installing it before configuring lets avar-bench-ik find it.
