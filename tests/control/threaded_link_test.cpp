@@ -129,9 +129,10 @@ TEST(ThreadedLink, BringsTheInnerLinksTelemetryToTheTickThreadForItsChannelsOnly
   const std::vector<double> frame{0, 30, -30};
   // Enough exchanges (about 1 ms of simulated bus time each) for the servos to arrive.
   for (int i = 0; i < 50000 && !(telemetry[1].updates > 800 && telemetry[2].updates > 800); ++i) {
+    const std::uint64_t done = link.completed_sends();
     ASSERT_EQ(link.send(frame), Status::ok);
+    while (link.completed_sends() == done) std::this_thread::yield();  // the I/O thread's exchange
     link.read_telemetry(telemetry);
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   EXPECT_GT(telemetry[1].updates, 50u);
   EXPECT_GT(telemetry[2].updates, 50u);
