@@ -20,12 +20,12 @@ namespace avar::kinematics::test {
 /// The IK benchmark's reference chains (UR5, iiwa7), committed beside the benchmark.
 inline const std::string kBenchChainsPath = AVAR_SOURCE_DIR "/bench/data/ik-chains.txt";
 
-/// Skips the test, naming the file, when the shared reference chains are not there.
+/// Skips the test, naming the file, when the reference chains are not there.
 class BenchChains : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!std::filesystem::exists(kBenchChainsPath))
-      GTEST_SKIP() << "the shared reference chain file is missing: " << kBenchChainsPath;
+      GTEST_SKIP() << "the reference chain file (bench/data/ik-chains.txt) is missing: " << kBenchChainsPath;
     chains = read_dh_chains(kBenchChainsPath);
   }
   std::vector<DhChain> chains;
