@@ -1,0 +1,30 @@
+#pragma once
+// Reading the tracks of a show file: keys, handles, easing, extrapolation and cycles. Internal to
+// config/: every reader of a show-file section that holds keyframe curves uses these, so one
+// curve is written the same way wherever it appears. Load time: allocates, throws InputError.
+
+#include <string>
+#include <string_view>
+
+#include "avar/config/yaml_support.hpp"
+#include "avar/playback/show.hpp"
+
+namespace avar::config::detail {
+
+/// A name from one of the vocabularies (interpolation, easing, ...), parsed by `parse` (returns
+/// an optional), or a failure at the node listing the accepted names.
+template <typename Parse>
+auto read_name(const YamlRef& node, std::string_view what, Parse parse, std::string_view accepted) {
+  const auto parsed = parse(node.as_string(what));
+  if (!parsed) node.fail("unknown " + std::string(what) + " " + node.describe() + "; expected one of: " + std::string(accepted));
+  return *parsed;
+}
+
+/// One track: `name` is the channel (the YAML key), `body` a list of keys or a map {extrapolation,
+/// cycles, auto_smoothing, keys}; key times must lie in [0, duration] seconds.
+playback::Track read_track(const YamlRef& name, const YamlRef& body, double duration);
+
+/// A constant one-key curve of `value`, for a static quantity; `raw` receives its keys.
+playback::Curve constant_curve(double value, const SourceLocation& where, playback::RawCurve& raw);
+
+}  // namespace avar::config::detail
