@@ -26,7 +26,7 @@ int run_check(const std::string& show_path, const std::string& rig_path, const s
     std::size_t keys = 0;
     for (const auto& t : show.tracks) keys += t.raw.keys.size();
     out << "ok: show '" << show.name << "' (" << show.duration << " s, " << show.tracks.size() << " tracks, " << keys
-        << " keys" << (show.targets.empty() ? "" : ", " + std::to_string(show.targets.size()) + " IK targets") << (show.loop ? ", looping" : "") << ") fits rig '" << rig.name << "' (" << rig.channels.size()
+        << " keys" << (show.targets.empty() ? "" : ", " + std::to_string(show.targets.size()) + " IK targets") << (show.layered() ? ", " + std::to_string(show.clips.size()) + " clips on " + std::to_string(show.layers.size()) + " layers" : "") << (show.loop ? ", looping" : "") << ") fits rig '" << rig.name << "' (" << rig.channels.size()
         << " channels, " << rig.actuators.size() << " actuators, " << rig.links.size() << " link(s))";
     if (!check.warnings.empty()) out << " with " << check.warnings.size() << " warning(s)";
     out << '\n';

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -9,7 +10,10 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/playback/sampler.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
 
@@ -75,45 +79,104 @@ void append_number(std::string& line, double value) {
   line.append(buf.data(), result.ptr);
 }
 
-/// The tracks to print, in column order.
-std::vector<const playback::Track*> columns_for(const playback::Show& show, const std::vector<std::string>& channels) {
-  std::vector<const playback::Track*> columns;
+/// The channels the show drives, in file order: its tracks, then those its layers touch.
+std::vector<std::string> driven_channels(const playback::Show& show) {
+  std::vector<std::string> names;
+  const auto add = [&](const std::string& name) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  };
+  for (const auto& track : show.tracks) add(track.channel);
+  for (const auto& layer : show.layers)
+    for (const auto& placement : layer.placements)
+      for (const auto& track : show.clips[placement.clip].tracks)
+        if (layer.touches(track.channel)) add(track.channel);
+  return names;
+}
+
+/// Indices into `available` of the columns to print, in column order.
+std::vector<std::size_t> columns_for(const std::vector<std::string>& available, const std::vector<std::string>& channels) {
+  std::vector<std::size_t> columns;
   if (channels.empty()) {
-    for (const auto& track : show.tracks) columns.push_back(&track);
+    for (std::size_t i = 0; i < available.size(); ++i) columns.push_back(i);
     return columns;
   }
   for (const auto& name : channels) {
-    const playback::Track* found = nullptr;
-    for (const auto& track : show.tracks)
-      if (track.channel == name) found = &track;
-    if (!found) {
-      std::string available;
-      for (const auto& track : show.tracks) available += (available.empty() ? "" : ", ") + track.channel;
-      throw OptionError("unknown channel '" + name + "' in --channels; the show has: " + available);
+    const auto found = std::find(available.begin(), available.end(), name);
+    if (found == available.end()) {
+      std::string list;
+      for (const auto& a : available) list += (list.empty() ? "" : ", ") + a;
+      throw OptionError("unknown channel '" + name + "' in --channels; the show has: " + list);
     }
-    for (const auto* column : columns)
-      if (column == found) throw OptionError("channel '" + name + "' is listed twice in --channels; expected each once");
-    columns.push_back(found);
+    const auto index = static_cast<std::size_t>(found - available.begin());
+    if (std::find(columns.begin(), columns.end(), index) != columns.end())
+      throw OptionError("channel '" + name + "' is listed twice in --channels; expected each once");
+    columns.push_back(index);
   }
   return columns;
 }
 
-void write_csv(const std::vector<const playback::Track*>& columns, const Grid& grid, std::ostream& out) {
+/// Writes the header and one row per grid time; `values(t, row)` fills one value per column.
+template <typename Values>
+void write_csv(const std::vector<std::string>& header, const Grid& grid, std::ostream& out, Values values) {
   std::string line = "seconds";
-  for (const auto* track : columns) line += "," + track->channel;
+  for (const auto& name : header) line += "," + name;
   out << line << '\n';
-  std::vector<playback::CurveCursor> cursors(columns.size());
+  std::vector<double> row(header.size());
   for (std::size_t i = 0; i < grid.rows; ++i) {
     const double t = sample_time(grid, i);
+    values(t, row);
     line.clear();
     append_number(line, t);
-    for (std::size_t c = 0; c < columns.size(); ++c) {
+    for (double v : row) {
       line += ',';
-      append_number(line, columns[c]->curve.evaluate(t, cursors[c]));
+      append_number(line, v);
     }
     line += '\n';
     out << line;
   }
+}
+
+/// The CSV of a show: a plain show's curves evaluated directly (a looping show is not wrapped);
+/// a layered show composed as it plays, on the rig's channels and rest pose when a rig is given,
+/// else over 0 for channels without a show track.
+void write_show_csv(const playback::Show& show, const std::optional<control::Rig>& rig, const Grid& grid,
+                    const std::vector<std::string>& wanted, std::ostream& out) {
+  const std::vector<std::string> available = driven_channels(show);
+  const std::vector<std::size_t> columns = columns_for(available, wanted);
+  std::vector<std::string> header;
+  for (std::size_t c : columns) header.push_back(available[c]);
+  if (!show.layered()) {
+    std::vector<playback::CurveCursor> cursors(columns.size());
+    write_csv(header, grid, out, [&](double t, std::vector<double>& row) {
+      for (std::size_t c = 0; c < columns.size(); ++c) row[c] = show.tracks[columns[c]].curve.evaluate(t, cursors[c]);
+    });
+    return;
+  }
+  std::vector<std::string> frame_channels = available;
+  std::vector<double> defaults(available.size(), 0.0);
+  if (rig) {
+    frame_channels.clear();
+    for (const auto& c : rig->channels) frame_channels.push_back(c.name);
+    defaults = rig->rest_frame();
+  }
+  std::vector<std::size_t> slot;
+  for (const auto& name : header)
+    slot.push_back(static_cast<std::size_t>(std::find(frame_channels.begin(), frame_channels.end(), name) - frame_channels.begin()));
+  playback::Sampler sampler(show, frame_channels, defaults);
+  std::vector<double> frame(frame_channels.size());
+  write_csv(header, grid, out, [&](double t, std::vector<double>& row) {
+    sampler.sample(t, frame);
+    for (std::size_t c = 0; c < slot.size(); ++c) row[c] = frame[slot[c]];
+  });
+}
+
+/// The rig of --rig, checked against the show (a channel it lacks is refused with its place).
+std::optional<control::Rig> rig_for(const SampleOptions& o, const playback::Show& show) {
+  if (!o.rig_path) return std::nullopt;
+  control::Rig rig = config::load_rig_file(*o.rig_path);
+  const config::ShowCheck check = config::check_show_against_rig(show, rig);
+  if (!check.ok()) throw InputError(check.errors.front().where, check.errors.front().message);
+  return rig;
 }
 
 }  // namespace
@@ -129,10 +192,14 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
   cmd->add_option("--channels", o.channels, "Only these channels, in this order, comma-separated (default: all, in file order)")
       ->delimiter(',');
   cmd->add_option("--out", o.out_path, "Write the CSV to this file instead of standard output");
+  cmd->add_option("--rig", o.rig_path,
+                  "Rig file: a layered show is composed over the rig's rest pose (default: over 0 where no show track drives)");
   cmd->footer(
       "Output: a header `seconds,<channel>,...`, then one row per sample time from --from to --to\n"
       "(inclusive when it falls on the grid). Each curve is evaluated as it is defined outside its keys too\n"
       "(held or extrapolated); a looping show is not wrapped. Numbers read back exactly.\n"
+      "A show with layers of clips prints every channel its tracks and layers drive, composed as it plays\n"
+      "(a looping one wraps); under the layers lie its tracks, else the --rig rest pose, else 0.\n"
       "Examples:\n"
       "  avar sample examples/shows/hello-head.yaml --rate 50 > hello-head.csv\n"
       "      every channel at 50 Hz over the whole show\n"
@@ -147,14 +214,14 @@ int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& er
   try {
     const playback::Show show = config::load_show_file(options.show_path);
     const Grid grid = grid_for(options, show.duration);
-    const std::vector<const playback::Track*> columns = columns_for(show, options.channels);
+    const std::optional<control::Rig> rig = rig_for(options, show);
     if (!options.out_path) {
-      write_csv(columns, grid, out);
+      write_show_csv(show, rig, grid, options.channels, out);
       return kExitOk;
     }
     std::ofstream file(*options.out_path);
     if (!file) throw OptionError("cannot write --out " + *options.out_path + "; expected a writable file path");
-    write_csv(columns, grid, file);
+    write_show_csv(show, rig, grid, options.channels, file);
     file.close();
     if (!file) throw OptionError("writing " + *options.out_path + " failed; expected a writable file path with free space");
     return kExitOk;

@@ -21,6 +21,7 @@ struct SampleOptions {
   std::optional<double> to_s;             ///< last sample time (s); default the show's duration
   std::vector<std::string> channels;      ///< columns in this order; empty: every track, in file order
   std::optional<std::string> out_path;    ///< write the CSV here instead of `out`
+  std::optional<std::string> rig_path;    ///< a layered show is composed over this rig's rest pose
 };
 
 inline constexpr double kDefaultSampleRateHz = 100;
@@ -37,7 +38,9 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& options);
 /// the CSV: header `seconds,<channel>...`, one row per sample time t_i = from + i * step (rounded
 /// to the nanosecond), from `from` up to and including `to` (when it falls on the grid). Each
 /// column is the channel's curve at t_i as the curve defines it outside its keys: a looping show
-/// is not wrapped. Numbers are the shortest text that reads back to the same double. Returns
+/// is not wrapped. A layered show's columns are every channel its tracks and layers drive,
+/// composed by playback::Sampler (a looping show wraps) over its tracks, else the rig's rest pose
+/// (options.rig_path, whose channels must include the show's), else 0. Numbers are the shortest text that reads back to the same double. Returns
 /// kExitOk, or kExitBadInput after one line on `err` naming the problem.
 int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& err);
 

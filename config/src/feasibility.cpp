@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 
 #include "avar/core/format.hpp"
+#include "avar/playback/sampler.hpp"
 
 namespace avar::config {
 namespace {
@@ -17,25 +20,169 @@ struct Demand {
   double low = 0, high = 0;
 };
 
-/// Largest |first| and |second| finite differences of the curve inside one segment.
-Demand measure(const playback::Curve& curve, double t0, double t1) {
+/// Largest |first| and |second| finite differences, and the extremes, of each of the `n` values
+/// that `fill(t, values)` writes, inside one segment [t0, t1].
+template <typename Fill>
+std::vector<Demand> measure_values(std::size_t n, Fill fill, double t0, double t1) {
   const double h = (t1 - t0) / kSamples;
-  Demand d;
-  double prev = curve.evaluate(t0), prev_speed = 0;
-  d.low = d.high = prev;
+  std::vector<Demand> d(n);
+  std::vector<double> prev(n), prev_speed(n, 0), v(n);
+  fill(t0, prev);
+  for (std::size_t c = 0; c < n; ++c) d[c].low = d[c].high = prev[c];
   for (int i = 1; i <= kSamples; ++i) {
     // Stay just inside the segment at its end: the next key may jump (step).
     const double t = i == kSamples ? t1 - 1e-9 * (t1 - t0) : t0 + i * h;
-    const double v = curve.evaluate(t);
-    const double speed = (v - prev) / (t - (t0 + (i - 1) * h));
-    d.speed = std::max(d.speed, std::abs(speed));
-    if (i > 1) d.acceleration = std::max(d.acceleration, std::abs(speed - prev_speed) / h);
-    d.low = std::min(d.low, v);
-    d.high = std::max(d.high, v);
-    prev = v;
-    prev_speed = speed;
+    fill(t, v);
+    for (std::size_t c = 0; c < n; ++c) {
+      const double speed = (v[c] - prev[c]) / (t - (t0 + (i - 1) * h));
+      d[c].speed = std::max(d[c].speed, std::abs(speed));
+      if (i > 1) d[c].acceleration = std::max(d[c].acceleration, std::abs(speed - prev_speed[c]) / h);
+      d[c].low = std::min(d[c].low, v[c]);
+      d[c].high = std::max(d[c].high, v[c]);
+      prev[c] = v[c];
+      prev_speed[c] = speed;
+    }
   }
   return d;
+}
+
+Demand measure(const playback::Curve& curve, double t0, double t1) {
+  return measure_values(1, [&](double t, std::vector<double>& v) { v[0] = curve.evaluate(t); }, t0, t1)[0];
+}
+
+/// The findings of one segment's demand against its channel's limits.
+void report(const Demand& d, const Infeasible& base, const control::ChannelSpec& c, std::vector<Infeasible>& found) {
+  if (d.speed > c.max_velocity * (1 + 1e-9)) {
+    Infeasible f = base;
+    f.required = d.speed, f.allowed = c.max_velocity;
+    found.push_back(f);
+  }
+  if (d.acceleration > c.max_acceleration * (1 + 1e-9)) {
+    Infeasible f = base;
+    f.kind = Infeasible::Kind::acceleration;
+    f.required = d.acceleration, f.allowed = c.max_acceleration;
+    found.push_back(f);
+  }
+  if (d.low < c.min || d.high > c.max) {
+    Infeasible f = base;
+    f.kind = Infeasible::Kind::range;
+    f.required = d.high > c.max ? d.high : d.low;
+    f.allowed = d.high > c.max ? c.max : c.min;
+    found.push_back(f);
+  }
+}
+
+/// Show times where the composed motion of a layered show may have a corner or a jump: the
+/// show's key times, every placement's start, end and fade edges, and the show times at which a
+/// placement reaches one of its clip's key times (or its ends), through its time warp and mode.
+std::vector<double> composed_breakpoints(const playback::Show& show) {
+  std::vector<double> b{0, show.duration};
+  for (const playback::Track& track : show.tracks)
+    for (const playback::RawKey& key : track.raw.keys) b.push_back(key.time);
+  for (const playback::Layer& layer : show.layers) {
+    for (const playback::Placement& p : layer.placements) {
+      const playback::Clip& clip = show.clips[p.clip];
+      b.insert(b.end(), {p.start, p.end, p.start + p.fade_in, p.end - p.fade_out});
+      std::vector<double> keys{0, clip.duration};
+      for (const playback::Track& track : clip.tracks)
+        for (const playback::RawKey& key : track.raw.keys) keys.push_back(key.time);
+      const double d = clip.duration;
+      const double u0 = p.offset, u1 = p.offset + (p.end - p.start) * p.speed;  // clip seconds played
+      const auto at = [&](double u) {
+        if (u >= u0 && u <= u1) b.push_back(p.start + (u - u0) / p.speed);
+      };
+      for (double key : keys) {
+        const double k = p.reverse ? d - key : key;  // where the played time meets the key
+        if (clip.mode == playback::ClipMode::hold) {
+          at(k);
+          continue;
+        }
+        const double period = clip.mode == playback::ClipMode::loop ? d : 2 * d;
+        for (double n = std::floor((u0 - 2 * d) / period); n * period <= u1 + 2 * d; ++n) {
+          at(k + n * period);
+          if (clip.mode == playback::ClipMode::ping_pong) at(2 * d - k + n * period);
+        }
+      }
+    }
+  }
+  std::sort(b.begin(), b.end());
+  std::vector<double> unique;
+  for (double t : b)
+    if (t >= 0 && t <= show.duration && (unique.empty() || t - unique.back() > 1e-9 * show.duration)) unique.push_back(t);
+  return unique;
+}
+
+/// Where to point for a channel's composed motion at show time t: the top placement that moves
+/// it then, else the show's own track, else the show.
+SourceLocation composed_source(const playback::Show& show, const std::string& channel, double t) {
+  for (auto layer = show.layers.rbegin(); layer != show.layers.rend(); ++layer) {
+    if (!layer->touches(channel)) continue;
+    for (const playback::Placement& p : layer->placements)
+      if (p.weight(t) > 0)
+        for (const playback::Track& track : show.clips[p.clip].tracks)
+          if (track.channel == channel) return p.where;
+  }
+  for (const playback::Track& track : show.tracks)
+    if (track.channel == channel) return track.where;
+  return show.where;
+}
+
+/// Adds a finding, or extends the same finding of the piece just before.
+void add_merged(const Infeasible& f, std::vector<Infeasible>& found) {
+  for (std::size_t back = 0; back < std::min<std::size_t>(found.size(), 16); ++back) {
+    Infeasible& g = found[found.size() - 1 - back];
+    if (g.kind == f.kind && g.channel == f.channel && g.t1 == f.t0 && to_string(g.where) == to_string(f.where)) {
+      g.t1 = f.t1;
+      g.required = f.kind == Infeasible::Kind::range && f.required < f.allowed ? std::min(g.required, f.required)
+                                                                                : std::max(g.required, f.required);
+      return;
+    }
+  }
+  found.push_back(f);
+}
+
+/// A layered show is checked on its composed motion, as the sampler plays it on this rig: between
+/// consecutive breakpoints (composed_breakpoints) the motion is smooth and is measured as a
+/// segment is; at a breakpoint a jump (a cut without a fade, a step key) is listed as a jump.
+std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, const control::Rig& rig) {
+  std::vector<std::string> names;
+  for (const control::ChannelSpec& c : rig.channels) names.push_back(c.name);
+  const std::vector<double> rest = rig.rest_frame();
+  std::optional<playback::Sampler> sampler;
+  try {
+    sampler.emplace(show, names, rest);
+  } catch (const std::invalid_argument&) {
+    return {};  // a channel the rig does not have: check_show_against_rig reports it
+  }
+  const std::size_t n = names.size();
+  const auto fill = [&](double t, std::vector<double>& frame) { sampler->sample(t, frame); };
+  const std::vector<double> b = composed_breakpoints(show);
+  std::vector<Infeasible> found;
+  std::vector<double> before(n), after(n);
+  for (std::size_t i = 1; i + 1 < b.size(); ++i) {
+    constexpr double kJumpProbe = 1e-7;  // seconds either side of a breakpoint
+    fill(b[i] - kJumpProbe, before);
+    fill(b[i] + kJumpProbe, after);
+    for (std::size_t c = 0; c < n; ++c) {
+      const double jump = std::abs(after[c] - before[c]);
+      // Ten times what the channel could move at its top speed across the probe is no smooth motion.
+      if (jump > 20 * kJumpProbe * rig.channels[c].max_velocity)
+        found.push_back({Infeasible::Kind::jump, names[c], rig.channels[c].unit, b[i], b[i], jump, 0,
+                         composed_source(show, names[c], b[i] + kJumpProbe)});
+    }
+  }
+  for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+    const double t0 = b[i], t1 = b[i + 1];
+    const std::vector<Demand> demand = measure_values(n, fill, t0 + 1e-9 * (t1 - t0), t1);
+    for (std::size_t c = 0; c < n; ++c) {
+      std::vector<Infeasible> piece;
+      const Infeasible base{Infeasible::Kind::speed, names[c], rig.channels[c].unit, t0, t1, 0, 0,
+                            composed_source(show, names[c], 0.5 * (t0 + t1))};
+      report(demand[c], base, rig.channels[c], piece);
+      for (const Infeasible& f : piece) add_merged(f, found);
+    }
+  }
+  return found;
 }
 
 /// The factor by which a segment must be slowed: speed scales with 1/f, acceleration with 1/f².
@@ -92,6 +239,7 @@ std::string Infeasible::to_string() const {
 }
 
 std::vector<Infeasible> check_feasibility(const playback::Show& show, const control::Rig& rig) {
+  if (show.layered()) return check_composed_feasibility(show, rig);
   std::vector<Infeasible> found;
   for (const playback::Track& track : show.tracks) {
     const auto ci = rig.find_channel(track.channel);
@@ -111,31 +259,17 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const cont
         }
         continue;
       }
-      const Demand d = measure(track.curve, t0, t1);
-      if (d.speed > c.max_velocity * (1 + 1e-9)) {
-        Infeasible f = base;
-        f.required = d.speed, f.allowed = c.max_velocity;
-        found.push_back(f);
-      }
-      if (d.acceleration > c.max_acceleration * (1 + 1e-9)) {
-        Infeasible f = base;
-        f.kind = Infeasible::Kind::acceleration;
-        f.required = d.acceleration, f.allowed = c.max_acceleration;
-        found.push_back(f);
-      }
-      if (d.low < c.min || d.high > c.max) {
-        Infeasible f = base;
-        f.kind = Infeasible::Kind::range;
-        f.required = d.high > c.max ? d.high : d.low;
-        f.allowed = d.high > c.max ? c.max : c.min;
-        found.push_back(f);
-      }
+      report(measure(track.curve, t0, t1), base, c, found);
     }
   }
   return found;
 }
 
 playback::Show retime(const playback::Show& show, const control::Rig& rig) {
+  if (show.layered())
+    throw InputError(show.where, "show '" + show.name + "' has layers of clips, which retiming cannot stretch honestly (a stretch would "
+                                 "change where clips overlap and fade); expected a show without layers (slow a placement with its "
+                                 "speed instead)");
   playback::Show out = show;
   // Stretching one span can change the demand of a segment that crosses its edge, so repeat
   // until nothing needs more time (a few rounds at most in practice).

@@ -31,6 +31,37 @@ void check_segment_overshoot(const playback::Track& track, std::size_t k, const 
                                            limits_text(c) + "; it will be clamped"});
 }
 
+/// Clips and layers: every channel a clip drives or a mask names must be the rig's; the channels
+/// that layers touch count as driven. Clip key values are offsets in additive layers, so their
+/// range is checked on the composed motion (check_feasibility), not here.
+void check_layers(const playback::Show& show, const control::Rig& rig, std::vector<bool>& driven, ShowCheck& result) {
+  const auto unknown = [&](const SourceLocation& where, const std::string& what, const std::string& channel) {
+    result.errors.push_back({where, "unknown channel '" + channel + "' in " + what + "; expected one of the rig '" + rig.name +
+                                        "' channels: " + rig.channel_names()});
+  };
+  for (const playback::Clip& clip : show.clips)
+    for (const playback::Track& track : clip.tracks)
+      if (!rig.find_channel(track.channel)) unknown(track.where, "clip '" + clip.name + "'", track.channel);
+  for (const playback::Layer& layer : show.layers) {
+    for (const playback::MaskChannel& m : layer.mask)
+      if (!rig.find_channel(m.channel)) unknown(m.where, "the mask of layer '" + layer.name + "'", m.channel);
+    for (const playback::Placement& p : layer.placements)
+      for (const playback::Track& track : show.clips[p.clip].tracks)
+        if (const auto ci = rig.find_channel(track.channel); ci && layer.touches(track.channel)) driven[*ci] = true;
+  }
+}
+
+/// Whether a track of the show, or of a clip that a layer lets touch it, drives `channel`.
+const playback::Track* track_driving(const playback::Show& show, const std::string& channel) {
+  for (const playback::Track& track : show.tracks)
+    if (track.channel == channel) return &track;
+  for (const playback::Layer& layer : show.layers)
+    for (const playback::Placement& p : layer.placements)
+      for (const playback::Track& track : show.clips[p.clip].tracks)
+        if (track.channel == channel && layer.touches(channel)) return &track;
+  return nullptr;
+}
+
 }  // namespace
 
 std::string Finding::to_string() const { return avar::to_string(where) + ": " + message; }
@@ -60,6 +91,7 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
     for (std::size_t k = 0; k + 1 < keys.size(); ++k)
       if (keys[k].interpolation == playback::Interpolation::bezier) check_segment_overshoot(track, k, c, result.warnings);
   }
+  check_layers(show, rig, driven, result);
   // Targets: the rig must have the effector; the joints that move it drive their channels, which
   // must not also have tracks.
   for (const playback::TargetTrack& target : show.targets) {
@@ -78,10 +110,9 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
     }
     for (std::size_t b : control::bindings_moving(*rig.kinematics, *effector)) {
       const std::size_t channel = rig.kinematics->bindings[b].channel;
-      for (const playback::Track& track : show.tracks)
-        if (track.channel == rig.channels[channel].name)
-          result.errors.push_back({track.where, "channel '" + track.channel + "' is moved by target '" + target.effector +
-                                                    "' (inverse kinematics) and also has a track; expected one or the other"});
+      if (const playback::Track* track = track_driving(show, rig.channels[channel].name))
+        result.errors.push_back({track->where, "channel '" + track->channel + "' is moved by target '" + target.effector +
+                                                   "' (inverse kinematics) and also has a track; expected one or the other"});
       driven[channel] = true;
     }
   }

@@ -5,6 +5,7 @@
 
 #include "avar/config/yaml_support.hpp"
 #include "avar/core/format.hpp"
+#include "show_clips.hpp"
 #include "show_tracks.hpp"
 
 namespace avar::config {
@@ -78,7 +79,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 playback::Show load_show_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers"}, "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -89,9 +90,9 @@ playback::Show load_show_file(const std::string& path) {
   if (show.duration <= 0) duration.fail("expected the duration to be more than 0 seconds, found " + duration.describe());
   if (auto loop = root.find("loop")) show.loop = loop->as_bool("loop");
 
-  // Targets for inverse kinematics may stand in for tracks.
+  // Targets for inverse kinematics, or layers of clips, may stand in for tracks.
   const auto targets = root.find("targets");
-  const YamlRef tracks = targets && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
+  const YamlRef tracks = (targets || root.has("layers")) && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
                                                         : root.at("tracks", "the show file");
   tracks.expect_map("tracks (a map of channel name to a list of keys, or to {extrapolation, cycles, auto_smoothing, keys})");
   std::set<std::string> seen;
@@ -111,6 +112,7 @@ playback::Show load_show_file(const std::string& path) {
       show.targets.push_back(read_target(name, YamlRef{it->second, &path}, show.duration));
     }
   }
+  detail::read_clips_and_layers(root, show);
   return show;
 }
 

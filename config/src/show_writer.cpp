@@ -65,6 +65,47 @@ void write_curve(YAML::Emitter& y, const playback::RawCurve& raw) {
   if (long_form) y << YAML::EndMap;
 }
 
+/// The clips as a map of name to {duration, mode, tracks}.
+void write_clips(YAML::Emitter& y, const std::vector<playback::Clip>& clips) {
+  y << YAML::Key << "clips" << YAML::Value << YAML::BeginMap;
+  for (const playback::Clip& clip : clips) {
+    y << YAML::Key << clip.name << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "duration" << YAML::Value << clip.duration;
+    y << YAML::Key << "mode" << YAML::Value << playback::to_string(clip.mode);
+    y << YAML::Key << "tracks" << YAML::Value << YAML::BeginMap;
+    for (const playback::Track& track : clip.tracks) {
+      y << YAML::Key << track.channel << YAML::Value;
+      write_curve(y, track.raw);
+    }
+    y << YAML::EndMap << YAML::EndMap;
+  }
+  y << YAML::EndMap;
+}
+
+/// The layers, bottom first; every placement field is written, the end resolved.
+void write_layers(YAML::Emitter& y, const playback::Show& show) {
+  y << YAML::Key << "layers" << YAML::Value << YAML::BeginSeq;
+  for (const playback::Layer& layer : show.layers) {
+    y << YAML::BeginMap;
+    y << YAML::Key << "name" << YAML::Value << layer.name;
+    y << YAML::Key << "blend" << YAML::Value << playback::to_string(layer.blend);
+    y << YAML::Key << "weight" << YAML::Value << layer.weight;
+    if (!layer.mask.empty()) {
+      y << YAML::Key << "channels" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const playback::MaskChannel& m : layer.mask) y << m.channel;
+      y << YAML::EndSeq;
+    }
+    y << YAML::Key << "clips" << YAML::Value << YAML::BeginSeq;
+    for (const playback::Placement& p : layer.placements)
+      y << YAML::Flow << YAML::BeginMap << YAML::Key << "clip" << YAML::Value << show.clips[p.clip].name << YAML::Key << "start"
+        << YAML::Value << p.start << YAML::Key << "end" << YAML::Value << p.end << YAML::Key << "speed" << YAML::Value << p.speed
+        << YAML::Key << "offset" << YAML::Value << p.offset << YAML::Key << "reverse" << YAML::Value << p.reverse << YAML::Key
+        << "fade_in" << YAML::Value << p.fade_in << YAML::Key << "fade_out" << YAML::Value << p.fade_out << YAML::EndMap;
+    y << YAML::EndSeq << YAML::EndMap;
+  }
+  y << YAML::EndSeq;
+}
+
 }  // namespace
 
 void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment) {
@@ -101,6 +142,8 @@ void write_show_file(const std::string& path, const playback::Show& show, const 
     }
     y << YAML::EndMap;
   }
+  if (!show.clips.empty()) write_clips(y, show.clips);
+  if (!show.layers.empty()) write_layers(y, show);
   y << YAML::EndMap;
   std::ofstream file(path);
   file << "# " << comment << '\n' << y.c_str() << '\n';

@@ -9,15 +9,12 @@
 namespace avar::control {
 namespace {
 
-std::vector<std::size_t> bind_tracks(const Rig& rig, const playback::Show& show) {
-  std::vector<std::size_t> binding;
-  binding.reserve(show.tracks.size());
-  for (const playback::Track& track : show.tracks) {
-    const auto channel = rig.find_channel(track.channel);
-    if (!channel) throw std::invalid_argument("show track '" + track.channel + "' has no channel in the rig");
-    binding.push_back(*channel);
-  }
-  return binding;
+/// The frame's channel names, by which the sampler binds every track, clip and mask of the show.
+std::vector<std::string> channel_names_of(const Rig& rig) {
+  std::vector<std::string> names;
+  names.reserve(rig.channels.size());
+  for (const ChannelSpec& c : rig.channels) names.push_back(c.name);
+  return names;
 }
 
 std::vector<ChannelLimits> limits_of(const Rig& rig) {
@@ -79,7 +76,7 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
       show_(show),
       links_(std::move(links)),
       options_(options),
-      sampler_(show, bind_tracks(rig, show), rig.rest_frame()),
+      sampler_(show, channel_names_of(rig), rig.rest_frame()),
       limiter_(limits_of(rig), options.tick_period_s),
       ramp_(rig.channels.size()),
       rest_(rig.rest_frame()),

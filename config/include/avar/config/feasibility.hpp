@@ -28,11 +28,22 @@ struct Infeasible {
 /// between its keys), or more range, than its channel allows, plus step keys that jump (the
 /// limiter shapes jumps; they are listed, not retimed). Tracks for unknown channels are skipped
 /// (check_show_against_rig reports them).
+///
+/// A layered show is checked on its composed motion, channel by channel, as the sampler plays it
+/// on this rig (rest pose under channels without a show track): the show is cut at every time
+/// where the composition may turn a corner or jump (key times of the show's tracks, placement
+/// starts, ends and fade edges, and the show times at which each placement meets one of its
+/// clip's key times through its time warp and mode); each piece is measured as a segment is, and
+/// a discontinuity at a cut (a placement without a fade, a step key) is listed as a jump.
+/// Consecutive pieces with the same finding for the same placement are merged into one span.
+/// If any channel is unknown to the rig nothing is checked (check_show_against_rig reports it).
 std::vector<Infeasible> check_feasibility(const playback::Show& show, const control::Rig& rig);
 
 /// A copy of the show whose offending spans are stretched in time just enough for the speed and
 /// acceleration limits, every track alike so that they stay in step, all other timing kept
-/// (later keys shift by the added time). Jumps and range problems are left as they are.
+/// (later keys shift by the added time). Jumps and range problems are left as they are. Throws
+/// InputError for a layered show: stretching show time would move where its clips overlap and
+/// fade, so it is refused rather than retimed dishonestly.
 playback::Show retime(const playback::Show& show, const control::Rig& rig);
 
 

@@ -23,8 +23,9 @@ struct ShowCheck {
   bool ok() const { return errors.empty(); }
 };
 
-/// Errors: a track for a channel the rig does not have; a key value outside its channel's
-/// limits. Warnings: a curve that overshoots the limits between keys (it will be clamped), and
+/// Errors: a track, a clip's track or a layer's mask naming a channel the rig does not have; a
+/// key value of a show track outside its channel's limits; a channel moved both by a target and
+/// by a track (of the show or of a clip a layer places). Warnings: a curve that overshoots the limits between keys (it will be clamped), and
 /// rig channels that no track drives (they hold their rest pose).
 ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig& rig);
 

@@ -1,6 +1,6 @@
 #pragma once
 // A show: tracks of keyframe curves, each bound by name to a channel of a rig, played over a
-// duration, once or looping.
+// duration, once or looping; optionally clips placed on layers over those tracks (timeline.hpp).
 
 #include <array>
 #include <cmath>
@@ -8,16 +8,12 @@
 #include <vector>
 
 #include "avar/core/input_error.hpp"
+#include "avar/playback/clip.hpp"
 #include "avar/playback/curve.hpp"
+#include "avar/playback/timeline.hpp"
+#include "avar/playback/track.hpp"
 
 namespace avar::playback {
-
-struct Track {
-  std::string channel;  ///< channel name in the rig
-  RawCurve raw;         ///< the keys as authored (for checks and reports)
-  Curve curve;          ///< built from raw
-  SourceLocation where;
-};
 
 /// What an effector of the rig's kinematics is asked to do.
 enum class TargetKind {
@@ -51,7 +47,11 @@ struct Show {
   bool loop = false;
   std::vector<Track> tracks;
   std::vector<TargetTrack> targets;
+  std::vector<Clip> clips;    ///< the clips the layers place (none for a plain show)
+  std::vector<Layer> layers;  ///< applied bottom (first) to top over `tracks`; none for a plain show
   SourceLocation where;
+
+  bool layered() const noexcept { return !layers.empty(); }
 
   /// The time within the show's curves for playing time t (seconds): a looping show wraps t
   /// modulo its duration (negative times included); a show played once passes t through (its
