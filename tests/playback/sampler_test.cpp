@@ -181,3 +181,52 @@ TEST(Sampler, RejectsBadBindings) {
 
 }  // namespace
 }  // namespace avar::playback
+
+namespace avar::playback {
+namespace {
+
+TEST(Sampler, SamplingALayeredShowAllocatesNothing) {
+  Show show;
+  show.duration = 30;
+  show.loop = true;
+  show.tracks.push_back(track("c0", {key(0, 0, Interpolation::bezier), key(30, 10)}));
+  for (int c = 0; c < 3; ++c) {
+    Clip clip;
+    clip.name = "clip" + std::to_string(c);
+    clip.duration = 2 + c;
+    clip.mode = static_cast<ClipMode>(c);
+    for (int ch = 0; ch < 4; ++ch) {
+      std::vector<RawKey> keys;
+      for (int k = 0; k <= 8; ++k) keys.push_back(key(clip.duration * k / 8, (k * 7 + ch) % 5, Interpolation::bezier));
+      clip.tracks.push_back(track("c" + std::to_string((ch + c) % 5), keys));
+    }
+    show.clips.push_back(std::move(clip));
+  }
+  for (int l = 0; l < 3; ++l) {
+    Layer layer;
+    layer.name = "l" + std::to_string(l);
+    layer.blend = l == 1 ? Blend::additive : Blend::override;
+    if (l == 2) layer.mask = {{"c1", {}}, {"c3", {}}};
+    for (int p = 0; p < 6; ++p) {
+      Placement placement;
+      placement.clip = static_cast<std::size_t>((p + l) % 3);
+      placement.start = p * 5;
+      placement.end = p * 5 + 6.5 > 30 ? 30 : p * 5 + 6.5;
+      placement.fade_in = placement.fade_out = 1;
+      placement.speed = 0.5 + p * 0.25;
+      placement.reverse = p % 2 == 1;
+      layer.placements.push_back(placement);
+    }
+    show.layers.push_back(std::move(layer));
+  }
+  const std::vector<std::string> names{"c0", "c1", "c2", "c3", "c4"};
+  Sampler sampler(show, names, std::vector<double>(5, 1));
+  std::vector<double> frame(5);
+  const long before = avar::testing::allocations.load();
+  for (int tick = -2000; tick < 70000; ++tick) sampler.sample(tick * 0.001, frame);
+  EXPECT_EQ(avar::testing::allocations.load(), before);
+  for (double v : frame) EXPECT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace avar::playback
