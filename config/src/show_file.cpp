@@ -90,9 +90,9 @@ playback::Show load_show_file(const std::string& path) {
   if (show.duration <= 0) duration.fail("expected the duration to be more than 0 seconds, found " + duration.describe());
   if (auto loop = root.find("loop")) show.loop = loop->as_bool("loop");
 
-  // Targets for inverse kinematics, or layers of clips, may stand in for tracks.
+  // Targets for inverse kinematics, or clips on layers, may stand in for tracks.
   const auto targets = root.find("targets");
-  const YamlRef tracks = (targets || root.has("layers")) && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
+  const YamlRef tracks = (targets || root.has("layers") || root.has("clips")) && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
                                                         : root.at("tracks", "the show file");
   tracks.expect_map("tracks (a map of channel name to a list of keys, or to {extrapolation, cycles, auto_smoothing, keys})");
   std::set<std::string> seen;
