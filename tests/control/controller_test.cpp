@@ -214,3 +214,39 @@ TEST(Controller, LoopingShowPlaysTheRequestedPasses) {
 
 }  // namespace
 }  // namespace avar::control
+
+namespace avar::control {
+namespace {
+
+/// A show whose only motion is a clip on a layer driving `channel`: 20 (a held ramp's end).
+playback::Show layered_show(const std::string& channel) {
+  playback::Show show;
+  show.name = "layered";
+  show.duration = 2.0;
+  playback::Clip clip;
+  clip.name = "raise";
+  clip.duration = 1;
+  clip.tracks.push_back(track(channel, {{0.0, 20.0}}));
+  show.clips.push_back(std::move(clip));
+  playback::Layer layer;
+  layer.name = "top";
+  layer.placements.push_back({.clip = 0, .start = 0, .end = 2, .speed = 1, .offset = 0, .reverse = false, .fade_in = 0, .fade_out = 0, .where = {}});
+  show.layers.push_back(std::move(layer));
+  return show;
+}
+
+TEST(Controller, BindsTheChannelsOfClipsOnLayersByName) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = layered_show("pan");
+  RecordingLink link;
+  Controller c(rig, show, {&link}, {.tick_period_s = 0.01});
+  c.begin(0.0, std::vector<double>{0.0, 10.0});
+  run(c, 0.01);
+  double pan_peak = 0;
+  for (const auto& f : link.frames) pan_peak = std::max(pan_peak, f[1]);
+  EXPECT_NEAR(pan_peak, 20.0, 1e-9);  // the layer moved pan from its rest 10 to 20
+  EXPECT_THROW(Controller(rig, layered_show("tail"), {&link}, {.tick_period_s = 0.01}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace avar::control
