@@ -19,7 +19,7 @@ TEST(PlayPathExample, ChecksAndPlaysTheFigureEightOnTheGazeHead) {
   const testing::CliResult play = testing::run_avar({"play", kShow, "--rig", kRig, "--sim", "--fast", "--no-progress"});
   ASSERT_EQ(play.code, kExitOk) << play.err << play.out;
   EXPECT_NE(play.out.find("neck_pan"), std::string::npos) << play.out;
-  EXPECT_EQ(play.out.find("failed"), std::string::npos) << play.out;
+  EXPECT_NE(play.out.find(" 0 degraded (target out of reach: closest pose used), 0 failed"), std::string::npos) << play.out;
 }
 
 }  // namespace
