@@ -48,7 +48,7 @@ Eigen::Vector3d read_vector(const YamlRef& node, const std::string& what) {
 }
 
 /// speed: a shape name | {shape, k1, k2} | a user curve (keys, or {keys, ...} as a track).
-playback::DistanceTime read_speed(const YamlRef& node, const std::string& what) {
+playback::DistanceTime read_speed(const YamlRef& node, const std::string& what, const std::string& effector) {
   constexpr std::string_view kShapes = "linear, sine, sine_constant_middle, parabolic, cubic";
   const std::string swhat = "the speed of " + what;
   const auto shape_at = [&](const YamlRef& n) { return read_name(n, "speed shape", playback::distance_time_shape_from_name, kShapes); };
@@ -72,8 +72,8 @@ playback::DistanceTime read_speed(const YamlRef& node, const std::string& what) 
                 ", found k1 " + format_number(k[0]) + ", k2 " + format_number(k[1]));
     return playback::DistanceTime(shape, k[0], k[1]);
   }
-  // A user curve: normalised time -> normalised distance, written as a track's keys.
-  const playback::Track track = read_track(YamlRef{YAML::Node(what + ".speed"), node.file}, node, 1.0);
+  // A user curve: normalised time -> normalised distance, written as a track's keys (named <effector>.speed).
+  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node, 1.0);
   return playback::DistanceTime::from_keys(track.raw);
 }
 
@@ -111,7 +111,7 @@ void read_orient(const YamlRef& node, const std::string& what, playback::PathSpe
 }
 
 /// path: {points, spline, tension, continuity, bias, from, to, speed, orient}
-playback::PathTrack read_path(const YamlRef& node, double duration, const std::string& what) {
+playback::PathTrack read_path(const YamlRef& node, double duration, const std::string& what, const std::string& effector) {
   const std::string pwhat = "the path of " + what;
   node.expect_map(pwhat + " (a map {points, spline, from, to, speed, orient})");
   node.expect_only_keys({"points", "spline", "tension", "continuity", "bias", "from", "to", "speed", "orient"}, pwhat);
@@ -148,7 +148,7 @@ playback::PathTrack read_path(const YamlRef& node, double duration, const std::s
   if (!(spec.to > spec.from))
     to.fail("expected the path's end time `to` (" + format_number(spec.to) + " s) to come after its start time `from` (" +
             format_number(spec.from) + " s)");
-  if (auto speed = node.find("speed")) spec.speed = read_speed(*speed, what);
+  if (auto speed = node.find("speed")) spec.speed = read_speed(*speed, what, effector);
   if (auto orient = node.find("orient")) read_orient(*orient, what, spec);
   return playback::PathTrack(std::move(spec));
 }
@@ -211,7 +211,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
   const bool curves_orientation = body.has("orientation") || body.has("roll") || body.has("pitch") || body.has("yaw");
   if (auto path = body.find("path")) {
     if (curves_point) path->fail(what + " has both a path and a point; expected one or the other");
-    target.path.emplace(read_path(*path, duration, what));
+    target.path.emplace(read_path(*path, duration, what, target.effector));
   }
   if (auto keys = body.find("orientation_keys")) {
     if (curves_orientation)

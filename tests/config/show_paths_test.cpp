@@ -99,6 +99,9 @@ TEST(ShowPaths, BadPathsAndKeysAreRejectedWithWhereAndWhat) {
   EXPECT_EQ(error_of(replace(kShow, "{time: 1, value: 1}]", "{time: 1, value: 0.9}]")),
             ":26:61: expected a user distance-time curve (normalised time -> normalised distance) to end with a key at time 1, "
             "value 1; found time 1, value 0.9");
+  EXPECT_EQ(error_of(replace(kShow, "{time: 0.5, value: 0.2}", "{tim: 0.5, value: 0.2}")),
+            ":26:37: unknown field 'tim' in a key of track 'eyes.speed'; expected one of: time, value, interpolation, left, right, "
+            "left_type, right_type, easing, back, amplitude, period, in_slope, out_slope, tension, continuity, bias");
   EXPECT_EQ(error_of(replace(kShow, "along: tangent", "along: sideways")),
             ":10:23: unknown orientation along the path 'sideways'; expected one of: frenet, tangent, or a map {along: frenet | "
             "tangent, up: [x, y, z]} or {look_at: [x, y, z], up: [x, y, z]}");
