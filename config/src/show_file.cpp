@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <set>
+#include <tuple>
 
 #include "avar/config/yaml_support.hpp"
 #include "avar/core/format.hpp"
@@ -12,6 +13,7 @@ namespace avar::config {
 namespace {
 
 using detail::constant_curve;
+using detail::read_name;
 using detail::read_track;
 
 /// Three curves of a target from `names` (x, y, z or roll, pitch, yaw), or a static `vector`.
@@ -39,21 +41,193 @@ void read_triple(const YamlRef& name, const YamlRef& body, double duration, cons
   }
 }
 
-/// targets: {effector: {point: [x, y, z] | x, y, z curves; aim: [x, y, z]; orientation:
-/// [roll, pitch, yaw] | roll, pitch, yaw curves}}
+/// [a, b, c] of finite numbers, as `what` (with its unit).
+Eigen::Vector3d read_vector(const YamlRef& node, const std::string& what) {
+  node.expect_sequence(what + " ([x, y, z])");
+  if (node.size() != 3) node.fail("expected " + what + " to have 3 numbers [x, y, z], found " + std::to_string(node.size()));
+  return {node[0].as_double(what), node[1].as_double(what), node[2].as_double(what)};
+}
+
+/// speed: a shape name | {shape, k1, k2} | a user curve (keys, or {keys, ...} as a track).
+playback::DistanceTime read_speed(const YamlRef& node, const std::string& what, const std::string& effector) {
+  constexpr std::string_view kShapes = "linear, sine, sine_constant_middle, parabolic, cubic";
+  const std::string swhat = "the speed of " + what;
+  const auto shape_at = [&](const YamlRef& n) { return read_name(n, "speed shape", playback::distance_time_shape_from_name, kShapes); };
+  if (!node.is_map() && !node.is_sequence()) return playback::DistanceTime(shape_at(node));
+  if (node.is_map() && node.has("shape")) {
+    node.expect_only_keys({"shape", "k1", "k2"}, swhat);
+    const auto shape = shape_at(node.at("shape", swhat));
+    const bool eased_middle = shape == playback::DistanceTimeShape::sine_constant_middle || shape == playback::DistanceTimeShape::parabolic;
+    double k[2] = {0, 1};
+    const char* names[2] = {"k1", "k2"};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto v = node.find(names[i]);
+      if (!v) continue;
+      if (!eased_middle)
+        v->fail("field '" + std::string(names[i]) + "' does not belong to speed shape " + to_string(shape) +
+                "; expected it only with sine_constant_middle and parabolic");
+      k[i] = v->as_double(std::string(names[i]) + " (normalised time)");
+    }
+    if (eased_middle && !(k[0] >= 0 && k[0] <= k[1] && k[1] <= 1))
+      node.fail("expected 0 <= k1 <= k2 <= 1 (normalised times ending the ease in and starting the ease out) in " + swhat +
+                ", found k1 " + format_number(k[0]) + ", k2 " + format_number(k[1]));
+    return playback::DistanceTime(shape, k[0], k[1]);
+  }
+  // A user curve: normalised time -> normalised distance, written as a track's keys (named <effector>.speed).
+  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node, 1.0);
+  return playback::DistanceTime::from_keys(track.raw);
+}
+
+/// orient: frenet | tangent | {along: frenet | tangent, up: [x, y, z]} | {look_at: [x, y, z], up: [x, y, z]}
+void read_orient(const YamlRef& node, const std::string& what, playback::PathSpec& spec) {
+  const std::string owhat = "the orientation along the path of " + what;
+  constexpr std::string_view kAlong = "frenet, tangent";
+  const auto along = [&](const YamlRef& n) {
+    const std::string name = n.as_string("an orientation along the path");
+    if (name == "frenet") return playback::PathOrientation::frenet;
+    if (name == "tangent") return playback::PathOrientation::tangent;
+    n.fail("unknown orientation along the path " + n.describe() + "; expected one of: " + std::string(kAlong) +
+           ", or a map {along: frenet | tangent, up: [x, y, z]} or {look_at: [x, y, z], up: [x, y, z]}");
+  };
+  if (!node.is_map()) {
+    spec.orientation = along(node);
+    return;
+  }
+  node.expect_only_keys({"along", "look_at", "up"}, owhat);
+  if (node.has("along") == node.has("look_at"))
+    node.fail("expected " + owhat + " to have either along (frenet or tangent) or look_at ([x, y, z] in metres), not " +
+              (node.has("along") ? "both" : "neither"));
+  if (auto a = node.find("along")) spec.orientation = along(*a);
+  if (auto l = node.find("look_at")) {
+    spec.orientation = playback::PathOrientation::look_at;
+    spec.look_at = read_vector(*l, "the look_at point of " + what + " (m)");
+  }
+  if (auto u = node.find("up")) {
+    if (spec.orientation == playback::PathOrientation::frenet)
+      u->fail("field 'up' does not belong to a Frenet frame (its axes come from the path's bending); expected it only with "
+              "along: tangent or look_at");
+    spec.up = read_vector(*u, "the up vector of " + what);
+    if (spec.up.isZero(0)) u->fail("expected the up vector of " + what + " to be a non-zero direction, found [0, 0, 0]");
+  }
+}
+
+/// path: {points, spline, tension, continuity, bias, from, to, speed, orient}
+playback::PathTrack read_path(const YamlRef& node, double duration, const std::string& what, const std::string& effector) {
+  const std::string pwhat = "the path of " + what;
+  node.expect_map(pwhat + " (a map {points, spline, from, to, speed, orient})");
+  node.expect_only_keys({"points", "spline", "tension", "continuity", "bias", "from", "to", "speed", "orient"}, pwhat);
+  playback::PathSpec spec;
+  spec.where = node.where();
+  const YamlRef points = node.at("points", pwhat);
+  points.expect_sequence("the points of " + what + " (a list of [x, y, z] in metres)");
+  if (points.size() < 2)
+    points.fail("expected the path of " + what + " to have at least 2 points, found " + std::to_string(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    spec.points.push_back(read_vector(points[i], "a point of the path of " + what + " (m)"));
+    spec.point_where.push_back(points[i].where());
+  }
+  if (auto spline = node.find("spline"))
+    spec.spline = read_name(*spline, "path spline", playback::path_spline_from_name, playback::path_spline_names());
+  const bool tcb = spec.spline == playback::PathSpline::kochanek_bartels;
+  for (const auto& [field, value, belongs] : {std::tuple{"tension", &spec.tension, tcb || spec.spline == playback::PathSpline::cardinal},
+                                              std::tuple{"continuity", &spec.continuity, tcb}, std::tuple{"bias", &spec.bias, tcb}}) {
+    const auto v = node.find(field);
+    if (!v) continue;
+    if (!belongs)
+      v->fail("field '" + std::string(field) + "' does not belong to a " + to_string(spec.spline) + " path; expected it only on " +
+              (std::string_view(field) == "tension" ? "cardinal and kochanek_bartels paths" : "kochanek_bartels paths"));
+    *value = v->as_double("the " + std::string(field));
+  }
+  const YamlRef from = node.at("from", pwhat + " (from: the show time in seconds when it starts)");
+  const YamlRef to = node.at("to", pwhat + " (to: the show time in seconds when it ends)");
+  spec.from = from.as_double("the path's start time (seconds)");
+  spec.to = to.as_double("the path's end time (seconds)");
+  if (spec.from < 0 || spec.from > duration)
+    from.fail("path start time " + format_number(spec.from) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+  if (spec.to > duration)
+    to.fail("path end time " + format_number(spec.to) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+  if (!(spec.to > spec.from))
+    to.fail("expected the path's end time `to` (" + format_number(spec.to) + " s) to come after its start time `from` (" +
+            format_number(spec.from) + " s)");
+  if (auto speed = node.find("speed")) spec.speed = read_speed(*speed, what, effector);
+  if (auto orient = node.find("orient")) read_orient(*orient, what, spec);
+  return playback::PathTrack(std::move(spec));
+}
+
+/// orientation_keys: {order: xyz, interpolation: slerp | squad, keys: [{time, quaternion: [w, x, y, z] | euler: [x, y, z]}]}
+playback::OrientationKeyTrack read_orientation_keys(const YamlRef& node, double duration, const std::string& what) {
+  const std::string owhat = "the orientation keys of " + what;
+  node.expect_map(owhat + " (a map {order, interpolation, keys})");
+  node.expect_only_keys({"order", "interpolation", "keys"}, owhat);
+  playback::OrientationKeysSpec spec;
+  spec.where = node.where();
+  if (auto order = node.find("order"))
+    spec.order = read_name(*order, "Euler order", playback::euler_order_from_name, "xyz, xzy, yxz, yzx, zxy, zyx");
+  if (auto interpolation = node.find("interpolation"))
+    spec.interpolation = read_name(*interpolation, "orientation interpolation", playback::orientation_interpolation_from_name, "slerp, squad");
+  const YamlRef keys = node.at("keys", owhat);
+  keys.expect_sequence("the keys of " + owhat);
+  if (keys.size() == 0) keys.fail("expected at least one orientation key in " + owhat + ", found none");
+  bool any_euler = false;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const YamlRef k = keys[i];
+    const std::string kwhat = "an orientation key of " + what + " ({time, quaternion: [w, x, y, z]} or {time, euler: [x, y, z]})";
+    k.expect_map(kwhat);
+    k.expect_only_keys({"time", "quaternion", "euler"}, kwhat);
+    playback::OrientationKeySpec key;
+    key.where = k.where();
+    const YamlRef time = k.at("time", kwhat);
+    key.time = time.as_double("the key time (seconds)");
+    if (key.time < 0 || key.time > duration)
+      time.fail("key time " + format_number(key.time) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+    if (k.has("quaternion") == k.has("euler"))
+      k.fail("expected " + kwhat + " to have either quaternion or euler, not " + (k.has("euler") ? "both" : "neither"));
+    if (auto q = k.find("quaternion")) {
+      q->expect_sequence("a quaternion ([w, x, y, z])");
+      if (q->size() != 4) q->fail("expected a quaternion [w, x, y, z] of 4 numbers, found " + std::to_string(q->size()));
+      key.quaternion = Eigen::Quaterniond((*q)[0].as_double("w"), (*q)[1].as_double("x"), (*q)[2].as_double("y"), (*q)[3].as_double("z"));
+      if (key.quaternion->norm() == 0) q->fail("expected a quaternion [w, x, y, z] of a rotation, found [0, 0, 0, 0]");
+    } else {
+      key.euler = read_vector(*k.find("euler"), "Euler angles (radians)");
+      any_euler = true;
+    }
+    spec.keys.push_back(key);
+  }
+  if (node.has("order") && !any_euler)
+    node.at("order", owhat).fail("an Euler order without Euler keys; expected `order` only when some key has euler angles");
+  return playback::OrientationKeyTrack(std::move(spec));
+}
+
+/// targets: {effector: {point: [x, y, z] | x, y, z curves | path; aim: [x, y, z]; orientation:
+/// [roll, pitch, yaw] | roll, pitch, yaw curves | orientation_keys}}
 playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, double duration) {
   playback::TargetTrack target;
   target.effector = name.as_string("an effector name");
   target.where = name.where();
   const std::string what = "target '" + target.effector + "'";
-  body.expect_map(what + " (a point {point | x, y, z}, optionally aim: [x, y, z]; and/or an orientation {orientation | "
-                         "roll, pitch, yaw})");
-  body.expect_only_keys({"aim", "point", "x", "y", "z", "orientation", "roll", "pitch", "yaw"}, what);
-  const bool point = body.has("point") || body.has("x") || body.has("y") || body.has("z");
-  const bool orientation = body.has("orientation") || body.has("roll") || body.has("pitch") || body.has("yaw");
+  body.expect_map(what + " (a point {point | x, y, z | path}, optionally aim: [x, y, z]; and/or an orientation {orientation | "
+                         "roll, pitch, yaw | orientation_keys})");
+  body.expect_only_keys({"aim", "point", "x", "y", "z", "path", "orientation", "roll", "pitch", "yaw", "orientation_keys"}, what);
+  const bool curves_point = body.has("point") || body.has("x") || body.has("y") || body.has("z");
+  const bool curves_orientation = body.has("orientation") || body.has("roll") || body.has("pitch") || body.has("yaw");
+  if (auto path = body.find("path")) {
+    if (curves_point) path->fail(what + " has both a path and a point; expected one or the other");
+    target.path.emplace(read_path(*path, duration, what, target.effector));
+  }
+  if (auto keys = body.find("orientation_keys")) {
+    if (curves_orientation)
+      keys->fail(what + " has both orientation_keys and an orientation (orientation or roll, pitch, yaw); expected one or the other");
+    if (target.path && target.path->orients())
+      keys->fail(what + " has orientation_keys and a path that orients it; expected one or the other");
+    target.orientation_keys.emplace(read_orientation_keys(*keys, duration, what));
+  }
+  if (target.path && target.path->orients() && curves_orientation)
+    body.fail("expected " + what + " to take its orientation from its path or from orientation / roll, pitch, yaw, not both");
+  const bool point = curves_point || target.path;
+  const bool orientation = curves_orientation || target.orientation_keys || (target.path && target.path->orients());
   if (!point && !orientation)
-    body.fail("expected " + what + " to give a point (point: [x, y, z] or x, y, z curves) or an orientation (orientation: "
-                                   "[roll, pitch, yaw] or roll, pitch, yaw curves)");
+    body.fail("expected " + what + " to give a point (point: [x, y, z], x, y, z curves or a path) or an orientation (orientation: "
+                                   "[roll, pitch, yaw], roll, pitch, yaw curves or orientation_keys)");
   if (auto aim = body.find("aim")) {
     if (orientation) aim->fail(what + " both aims and sets an orientation; expected one or the other");
     target.aim_axis = {0, 0, 0};
@@ -65,8 +239,8 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
   }
   static const char* const kXyz[3] = {"x", "y", "z"};
   static const char* const kRpy[3] = {"roll", "pitch", "yaw"};
-  if (point) read_triple(name, body, duration, what, "point", kXyz, "m", target.raw, target.xyz);
-  if (orientation) read_triple(name, body, duration, what, "orientation", kRpy, "rad", target.raw_rpy, target.rpy);
+  if (curves_point) read_triple(name, body, duration, what, "point", kXyz, "m", target.raw, target.xyz);
+  if (curves_orientation) read_triple(name, body, duration, what, "orientation", kRpy, "rad", target.raw_rpy, target.rpy);
   target.kind = !point                 ? playback::TargetKind::orientation
                 : orientation          ? playback::TargetKind::pose
                 : body.has("aim")      ? playback::TargetKind::aim

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <vector>
 
@@ -82,6 +83,47 @@ void write_clips(YAML::Emitter& y, const std::vector<playback::Clip>& clips) {
   y << YAML::EndMap;
 }
 
+void write_vector(YAML::Emitter& y, const Eigen::Vector3d& v) { y << YAML::Flow << std::vector<double>{v.x(), v.y(), v.z()}; }
+
+void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
+  y << YAML::BeginMap << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const Eigen::Vector3d& p : path.points) write_vector(y, p);
+  y << YAML::EndSeq << YAML::Key << "spline" << YAML::Value << playback::to_string(path.spline);
+  if (path.spline == playback::PathSpline::cardinal || path.spline == playback::PathSpline::kochanek_bartels)
+    y << YAML::Key << "tension" << YAML::Value << path.tension;
+  if (path.spline == playback::PathSpline::kochanek_bartels)
+    y << YAML::Key << "continuity" << YAML::Value << path.continuity << YAML::Key << "bias" << YAML::Value << path.bias;
+  y << YAML::Key << "from" << YAML::Value << path.from << YAML::Key << "to" << YAML::Value << path.to;
+  const playback::DistanceTime& speed = path.speed;
+  y << YAML::Key << "speed" << YAML::Value;
+  if (speed.shape() == playback::DistanceTimeShape::user) {
+    write_curve(y, speed.user_keys());
+  } else if (speed.shape() == playback::DistanceTimeShape::sine_constant_middle || speed.shape() == playback::DistanceTimeShape::parabolic) {
+    y << YAML::Flow << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << playback::to_string(speed.shape()) << YAML::Key << "k1"
+      << YAML::Value << speed.k1() << YAML::Key << "k2" << YAML::Value << speed.k2() << YAML::EndMap;
+  } else {
+    y << playback::to_string(speed.shape());
+  }
+  switch (path.orientation) {
+    case playback::PathOrientation::none: break;
+    case playback::PathOrientation::frenet: y << YAML::Key << "orient" << YAML::Value << "frenet"; break;
+    case playback::PathOrientation::tangent:
+      y << YAML::Key << "orient" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "along" << YAML::Value << "tangent"
+        << YAML::Key << "up" << YAML::Value;
+      write_vector(y, path.up);
+      y << YAML::EndMap;
+      break;
+    case playback::PathOrientation::look_at:
+      y << YAML::Key << "orient" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "look_at" << YAML::Value;
+      write_vector(y, path.look_at);
+      y << YAML::Key << "up" << YAML::Value;
+      write_vector(y, path.up);
+      y << YAML::EndMap;
+      break;
+  }
+  y << YAML::EndMap;
+}
+
 /// The layers, bottom first; every placement field is written, the end resolved.
 void write_layers(YAML::Emitter& y, const playback::Show& show) {
   y << YAML::Key << "layers" << YAML::Value << YAML::BeginSeq;
@@ -104,6 +146,26 @@ void write_layers(YAML::Emitter& y, const playback::Show& show) {
     y << YAML::EndSeq << YAML::EndMap;
   }
   y << YAML::EndSeq;
+}
+
+void write_orientation_keys(YAML::Emitter& y, const playback::OrientationKeysSpec& spec) {
+  const bool any_euler = std::any_of(spec.keys.begin(), spec.keys.end(), [](const auto& k) { return !k.quaternion; });
+  y << YAML::BeginMap;
+  if (any_euler) y << YAML::Key << "order" << YAML::Value << playback::to_string(spec.order);
+  y << YAML::Key << "interpolation" << YAML::Value << playback::to_string(spec.interpolation);
+  y << YAML::Key << "keys" << YAML::Value << YAML::BeginSeq;
+  for (const playback::OrientationKeySpec& k : spec.keys) {
+    y << YAML::Flow << YAML::BeginMap << YAML::Key << "time" << YAML::Value << k.time;
+    if (k.quaternion) {
+      y << YAML::Key << "quaternion" << YAML::Value << YAML::Flow
+        << std::vector<double>{k.quaternion->w(), k.quaternion->x(), k.quaternion->y(), k.quaternion->z()};
+    } else {
+      y << YAML::Key << "euler" << YAML::Value;
+      write_vector(y, k.euler);
+    }
+    y << YAML::EndMap;
+  }
+  y << YAML::EndSeq << YAML::EndMap;
 }
 
 }  // namespace
@@ -130,11 +192,20 @@ void write_show_file(const std::string& path, const playback::Show& show, const 
           << std::vector<double>{target.aim_axis[0], target.aim_axis[1], target.aim_axis[2]};
       const char* axes[3] = {"x", "y", "z"};
       const char* angles[3] = {"roll", "pitch", "yaw"};
-      for (std::size_t i = 0; i < 3 && target.has_point(); ++i) {
+      if (target.path) {
+        y << YAML::Key << "path" << YAML::Value;
+        write_path(y, target.path->spec());
+      }
+      if (target.orientation_keys) {
+        y << YAML::Key << "orientation_keys" << YAML::Value;
+        write_orientation_keys(y, target.orientation_keys->spec());
+      }
+      for (std::size_t i = 0; i < 3 && target.has_point() && !target.path; ++i) {
         y << YAML::Key << axes[i] << YAML::Value;
         write_curve(y, target.raw[i]);
       }
-      for (std::size_t i = 0; i < 3 && target.has_orientation(); ++i) {
+      const bool orientation_curves = target.has_orientation() && !target.orientation_keys && !(target.path && target.path->orients());
+      for (std::size_t i = 0; i < 3 && orientation_curves; ++i) {
         y << YAML::Key << angles[i] << YAML::Value;
         write_curve(y, target.raw_rpy[i]);
       }

@@ -53,11 +53,22 @@ kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept 
   double rpy[3] = {0, 0, 0};
   for (std::size_t i = 0; i < goals_.size(); ++i) {
     const playback::TargetTrack& target = show_.targets[i];
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (target.has_point()) goals_[i].position[static_cast<Eigen::Index>(a)] = target.xyz[a].evaluate(local, cursors_[6 * i + a]);
-      if (target.has_orientation()) rpy[a] = target.rpy[a].evaluate(local, cursors_[6 * i + 3 + a]);
+    // A path gives the point, and the orientation when it orients; orientation keys give the
+    // orientation; what remains comes from the x, y, z and roll, pitch, yaw curves.
+    const bool path_orients = target.path && target.path->orients();
+    const bool point_curves = target.has_point() && !target.path;
+    const bool angle_curves = target.has_orientation() && !target.orientation_keys && !path_orients;
+    if (target.path) {
+      const playback::PathSample sample = target.path->sample(local);
+      goals_[i].position = sample.position;
+      if (path_orients) goals_[i].orientation = sample.orientation;
     }
-    if (target.has_orientation())
+    if (target.orientation_keys) goals_[i].orientation = target.orientation_keys->evaluate(local);
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (point_curves) goals_[i].position[static_cast<Eigen::Index>(a)] = target.xyz[a].evaluate(local, cursors_[6 * i + a]);
+      if (angle_curves) rpy[a] = target.rpy[a].evaluate(local, cursors_[6 * i + 3 + a]);
+    }
+    if (angle_curves)
       goals_[i].orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
                               Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
   }

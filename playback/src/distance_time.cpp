@@ -4,8 +4,52 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+
+#include "avar/core/format.hpp"
 
 namespace avar::playback {
+namespace {
+
+constexpr const char* kShapeNames[] = {"linear", "sine", "sine_constant_middle", "parabolic", "cubic", "user"};
+
+}  // namespace
+
+std::optional<DistanceTimeShape> distance_time_shape_from_name(std::string_view name) {
+  for (std::size_t i = 0; i + 1 < std::size(kShapeNames); ++i)
+    if (name == kShapeNames[i]) return static_cast<DistanceTimeShape>(i);
+  return std::nullopt;
+}
+
+const char* to_string(DistanceTimeShape shape) { return kShapeNames[static_cast<std::size_t>(shape)]; }
+
+DistanceTime DistanceTime::from_keys(const RawCurve& raw) {
+  DistanceTime f(DistanceTimeShape::linear);
+  f.shape_ = DistanceTimeShape::user;
+  f.user_raw_ = raw;
+  f.user_ = Curve::build(raw);
+  const auto& keys = raw.keys;
+  const std::string what = "a user distance-time curve (normalised time -> normalised distance)";
+  if (keys.front().time != 0 || keys.front().value != 0)
+    throw InputError(keys.front().where, "expected " + what + " to start with a key at time 0, value 0; found time " +
+                                             format_number(keys.front().time) + ", value " + format_number(keys.front().value));
+  if (keys.size() < 2 || keys.back().time != 1 || keys.back().value != 1)
+    throw InputError(keys.back().where, "expected " + what + " to end with a key at time 1, value 1; found time " +
+                                            format_number(keys.back().time) + ", value " + format_number(keys.back().value));
+  for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+    double previous = keys[k].value;
+    for (int i = 1; i <= kUserSamplesPerSegment; ++i) {
+      const double t = keys[k].time + (keys[k + 1].time - keys[k].time) * i / kUserSamplesPerSegment;
+      const double s = f.user_.evaluate(t);
+      if (s < previous || s < 0 || s > 1)
+        throw InputError(keys[k].where, "expected " + what + " to rise from 0 to 1 without ever going back, but between " +
+                                            format_number(keys[k].time) + " and " + format_number(keys[k + 1].time) + " it reaches " +
+                                            format_number(s) + " at " + format_number(t) + " after " + format_number(previous));
+      previous = s;
+    }
+  }
+  return f;
+}
 
 DistanceTime::DistanceTime(DistanceTimeShape shape, double k1, double k2) : shape_(shape), k1_(k1), k2_(k2) {
   if (!(k1 >= 0 && k1 <= k2 && k2 <= 1)) throw std::invalid_argument("distance-time function: expected 0 <= k1 <= k2 <= 1");
@@ -22,6 +66,7 @@ double DistanceTime::distance(double t) const noexcept {
     case DistanceTimeShape::linear: return t;
     case DistanceTimeShape::sine: return 0.5 * (1 - std::cos(pi * t));
     case DistanceTimeShape::cubic: return t * t * (3 - 2 * t);
+    case DistanceTimeShape::user: return std::clamp(user_.evaluate(t), 0.0, 1.0);
     case DistanceTimeShape::sine_constant_middle: {
       // Unnormalised distance: the ease-in quarter sine covers k1 (2/pi) at unit top speed.
       double d;
@@ -52,6 +97,11 @@ double DistanceTime::speed(double t) const noexcept {
     case DistanceTimeShape::linear: return 1;
     case DistanceTimeShape::sine: return 0.5 * pi * std::sin(pi * t);
     case DistanceTimeShape::cubic: return 6 * t * (1 - t);
+    case DistanceTimeShape::user: {
+      constexpr double h = 1e-6;
+      const double a = std::max(0.0, t - h), b = std::min(1.0, t + h);
+      return (distance(b) - distance(a)) / (b - a);
+    }
     case DistanceTimeShape::sine_constant_middle:
       if (t < k1_) return scale_ * std::sin(0.5 * pi * t / k1_);
       if (t <= k2_) return scale_;

@@ -75,7 +75,7 @@ TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
             ":7:8: target 'eyes' has both point and x; expected a static point or three curves");
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
-            ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z, orientation, roll, pitch, yaw");
+            ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z, path, orientation, roll, pitch, yaw, orientation_keys");
   EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    orientation: [0, 0, 1]")),
             ":5:10: target 'eyes' both aims and sets an orientation; expected one or the other");
 }

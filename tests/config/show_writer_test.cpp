@@ -46,6 +46,7 @@ TEST(ShowWriter, ExamplesWithTargetsAndAvarSplinesSurviveARoundTrip) {
   round_trip(AVAR_SOURCE_DIR "/examples/shows/look-around.yaml");
   round_trip(AVAR_SOURCE_DIR "/examples/shows/curves-tour.yaml");
   round_trip(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
+  round_trip(AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml");
 }
 
 TEST(ShowWriter, OrientationAndPoseTargetsSurviveARoundTrip) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -108,6 +109,53 @@ TEST(IkStage, AnOrientationTargetTurnsTheHeadAndAPoseTargetPlacesTheHand) {
   EXPECT_EQ(r.status, kinematics::IkStatus::converged);
   EXPECT_NEAR(frame[0], 30, 1e-3);
   EXPECT_NEAR(frame[1], -20, 1e-3);
+}
+
+TEST(IkStage, FollowsAPathTargetAndOrientationKeys) {
+  const Rig rig = head_rig();
+  playback::Show show;
+  show.name = "path";
+  show.duration = 2;
+  playback::TargetTrack t;
+  t.effector = "gaze";
+  t.kind = playback::TargetKind::aim;
+  playback::PathSpec path;
+  path.points = {{1, -0.5, 0.2}, {1, 0.5, 0.2}};
+  path.spline = playback::PathSpline::linear;
+  path.from = 0;
+  path.to = 1;
+  t.path.emplace(path);
+  show.targets.push_back(std::move(t));
+  IkStage stage(*rig.kinematics, show, rig.rest_frame());
+  std::vector<double> frame{0, 0, 0};
+  for (const double time : {0.0, 0.25, 0.5, 0.75, 1.0, 1.5}) {
+    EXPECT_EQ(stage.apply(time, frame).status, kinematics::IkStatus::converged) << time;
+    const double y = std::clamp(-0.5 + time, -0.5, 0.5);  // constant speed, then the end holds
+    EXPECT_NEAR(frame[0], std::atan2(y, 1.0) / kDeg, 1e-3) << time;
+    EXPECT_NEAR(frame[1], 0, 1e-3) << time;
+  }
+
+  playback::Show turn;
+  turn.name = "turn";
+  turn.duration = 2;
+  playback::TargetTrack o;
+  o.effector = "gaze";
+  o.kind = playback::TargetKind::orientation;
+  playback::OrientationKeysSpec keys;
+  playback::OrientationKeySpec first, second;
+  first.euler = {0, -20 * kDeg, 30 * kDeg};  // as the roll, pitch, yaw test: tilt up 20°, pan left 30°
+  second.time = 2;
+  second.quaternion = Eigen::Quaterniond::Identity();
+  keys.keys = {first, second};
+  o.orientation_keys.emplace(keys);
+  turn.targets.push_back(std::move(o));
+  IkStage turning(*rig.kinematics, turn, rig.rest_frame());
+  EXPECT_EQ(turning.apply(0, frame).status, kinematics::IkStatus::converged);
+  EXPECT_NEAR(frame[0], 30, 1e-3);
+  EXPECT_NEAR(frame[1], -20, 1e-3);
+  EXPECT_EQ(turning.apply(2, frame).status, kinematics::IkStatus::converged);
+  EXPECT_NEAR(frame[0], 0, 1e-3);
+  EXPECT_NEAR(frame[1], 0, 1e-3);
 }
 
 TEST(IkStage, TheControllerHomesToTheSolvedPoseAndPlaysIt) {

@@ -107,8 +107,21 @@ Scene scene_with_targets() {
   return sc;
 }
 
-TEST(TickAllocation, NoAllocationWithInverseKinematicsAndDeviceTelemetry) {
-  const Scene sc = scene_with_targets();
+/// The target scene with the eye aiming along a path at an eased speed instead of x, y, z curves.
+Scene scene_with_path_target() {
+  Scene sc = scene_with_targets();
+  playback::TargetTrack& target = sc.show.targets.front();
+  playback::PathSpec path;
+  path.points = {{1, -0.5, -0.3}, {1, 0, 0.4}, {1, 0.5, -0.3}, {1, 0.2, 0.2}};
+  path.spline = playback::PathSpline::catmull_rom;
+  path.from = 0.5;
+  path.to = 3.5;
+  path.speed = playback::DistanceTime(playback::DistanceTimeShape::sine_constant_middle, 0.2, 0.8);
+  target.path.emplace(path);
+  return sc;
+}
+
+void expect_no_allocation_in_ticks_with_ik(const Scene& sc) {
   CountingTransport transport;
   firmware_iface::MaestroLink link(transport, sc.link_config);
   Controller controller(sc.rig, sc.show, {&link}, {.tick_period_s = 0.001});
@@ -132,6 +145,10 @@ TEST(TickAllocation, NoAllocationWithInverseKinematicsAndDeviceTelemetry) {
   EXPECT_GT(controller.ik()->stats().converged, 3000u);
   EXPECT_EQ(after - before, 0) << "allocations during " << k << " ticks";
 }
+
+TEST(TickAllocation, NoAllocationWithInverseKinematicsAndDeviceTelemetry) { expect_no_allocation_in_ticks_with_ik(scene_with_targets()); }
+
+TEST(TickAllocation, NoAllocationWithAPathTarget) { expect_no_allocation_in_ticks_with_ik(scene_with_path_target()); }
 
 TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   const Scene sc = scene();

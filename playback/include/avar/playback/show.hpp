@@ -4,12 +4,15 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/core/input_error.hpp"
 #include "avar/playback/clip.hpp"
 #include "avar/playback/curve.hpp"
+#include "avar/playback/orientation_keys.hpp"
+#include "avar/playback/path_track.hpp"
 #include "avar/playback/timeline.hpp"
 #include "avar/playback/track.hpp"
 
@@ -26,7 +29,9 @@ enum class TargetKind {
 /// A target for one effector, solved by inverse kinematics every tick. The point's x, y and z
 /// (metres, in the rig's base frame) and the orientation's roll, pitch and yaw (radians: the
 /// effector frame turned about the base's fixed x, then y, then z axes, as URDF's rpy) are
-/// keyframe curves; a static value is a one-key curve.
+/// keyframe curves; a static value is a one-key curve. Instead of x, y, z curves the point may
+/// follow a path (PathTrack), which may also give the orientation; instead of roll, pitch, yaw
+/// curves the orientation may come from quaternion or Euler keys (OrientationKeyTrack).
 struct TargetTrack {
   std::string effector;  ///< effector name in the rig's kinematics
   TargetKind kind = TargetKind::position;
@@ -35,6 +40,8 @@ struct TargetTrack {
   std::array<Curve, 3> xyz;                 ///< built from raw
   std::array<RawCurve, 3> raw_rpy;          ///< roll, pitch, yaw as authored (orientation, pose)
   std::array<Curve, 3> rpy;                 ///< built from raw_rpy
+  std::optional<PathTrack> path;            ///< when set, the point (and, if it orients, the orientation)
+  std::optional<OrientationKeyTrack> orientation_keys;  ///< when set, the orientation
   SourceLocation where;
 
   bool has_point() const noexcept { return kind != TargetKind::orientation; }
