@@ -219,7 +219,10 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
         const Cubic s_of_u = bezier_polynomial(unit_time);
         const Cubic v_of_u = bezier_polynomial(value);
         s.e1 = v_of_u.c1, s.e2 = v_of_u.c2, s.e3 = v_of_u.c3;
-        if (time_is_parameter(s_of_u)) break;  // polynomial in u = s
+        if (time_is_parameter(s_of_u)) {
+          s.shape = Shape::polynomial;  // in u = s
+          break;
+        }
         if (min_slope_on_window(s_of_u) >= kMinTableSlope) {
           tabulate_inverse(with_extra(Shape::bezier_table, s_of_u.c1, s_of_u.c2, s_of_u.c3), inverse_);
         } else {
@@ -274,6 +277,30 @@ void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedH
   slope_after_ = slope_at(false);
 }
 
+// From the table's estimate of u, steps u -= (s(u) - x) du/ds with du/ds also from the table:
+// each step multiplies the error by about the table's relative error in du/ds, with no division.
+// residual = s(u) - x at the returned u. Always inlined: the per-sample path needs u and the
+// residual in registers.
+[[gnu::always_inline]] inline double Curve::refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept {
+  // Polynomials split as Estrin does: independent halves, a shorter dependency chain than Horner.
+  const auto residual_at = [&](double u) { return (u * b.k1 - x) + (u * u) * (b.k2 + u * b.k3); };
+  const double w2 = w * w;
+  double u = (p.a0 + w * p.a1) + w2 * ((p.a2 + w * p.a3) + w2 * (p.a4 + w * p.a5));
+  residual = residual_at(u);
+  if (p.refinements > 0) {
+    const double du_dw = (p.a1 + w * (2.0 * p.a2)) + w2 * ((3.0 * p.a3 + w * (4.0 * p.a4)) + w2 * (5.0 * p.a5));
+    const double du_dx = du_dw * kTablePieces;
+    static_assert(kMaxRefinements == 2);
+    u -= residual * du_dx;
+    residual = residual_at(u);
+    if (p.refinements > 1) {
+      u -= residual * du_dx;
+      residual = residual_at(u);
+    }
+  }
+  return u;
+}
+
 // The inverse u(s) of a strictly increasing time cubic, as kTablePieces quintic Hermite pieces:
 // on each equal interval of s a piece matches u, du/ds = 1 / s'(u) and d2u/ds2 = -s''(u) / s'(u)^3
 // at both ends. Each piece is checked at build time at points across its interval and given the
@@ -321,29 +348,6 @@ void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& ta
   }
 }
 
-// From the table's estimate of u, steps u -= (s(u) - x) du/ds with du/ds also from the table:
-// each step multiplies the error by about the table's relative error in du/ds, with no division.
-// residual = s(u) - x at the returned u.
-inline double Curve::refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept {
-  // Polynomials split as Estrin does: independent halves, a shorter dependency chain than Horner.
-  const auto residual_at = [&](double u) { return (u * b.k1 - x) + (u * u) * (b.k2 + u * b.k3); };
-  const double w2 = w * w;
-  double u = (p.a0 + w * p.a1) + w2 * ((p.a2 + w * p.a3) + w2 * (p.a4 + w * p.a5));
-  residual = residual_at(u);
-  if (p.refinements > 0) {
-    const double du_dw = (p.a1 + w * (2.0 * p.a2)) + w2 * ((3.0 * p.a3 + w * (4.0 * p.a4)) + w2 * (5.0 * p.a5));
-    const double du_dx = du_dw * kTablePieces;
-    static_assert(kMaxRefinements == 2);
-    u -= residual * du_dx;
-    residual = residual_at(u);
-    if (p.refinements > 1) {
-      u -= residual * du_dx;
-      residual = residual_at(u);
-    }
-  }
-  return u;
-}
-
 double Curve::evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double x) noexcept {
   // Blender returns a key's own value when the time falls on it, whatever roots the cubic has.
   if (x == 0.0) return s.v0;
@@ -355,11 +359,11 @@ double Curve::evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, do
 }
 
 double Curve::evaluate_solved(const Segment& s, double x, double t) const noexcept {
-  if (s.shape == Shape::polynomial) return value_cubic(s, x);
-  const SegmentExtra& b = extras_[s.extra];
   switch (s.shape) {
-    case Shape::polynomial: break;
+    case Shape::linear:
+    case Shape::polynomial: break;  // evaluate_in's (linear: e2 = e3 = 0)
     case Shape::bezier_table: {
+      const SegmentExtra& b = extras_[s.extra];
       const double scaled = x * kTablePieces;
       const int j = std::min(static_cast<int>(scaled), kTablePieces - 1);
       double residual = 0;
@@ -368,13 +372,14 @@ double Curve::evaluate_solved(const Segment& s, double x, double t) const noexce
       if (!(std::abs(residual) <= kMaxResidual)) return evaluate_bezier_closed(s, b, x);
       return value_cubic(s, u);
     }
-    case Shape::bezier_closed: return evaluate_bezier_closed(s, b, x);
+    case Shape::bezier_closed: return evaluate_bezier_closed(s, extras_[s.extra], x);
     case Shape::easing: {
+      const SegmentExtra& b = extras_[s.extra];
       const double duration = 1.0 / s.inv_duration;
       return ease(s.family, s.easing, t - s.t0, s.v0, s.e1, duration, EasingParams{b.k1, b.k2, b.k3});
     }
   }
-  return s.v0;
+  return value_cubic(s, x);
 }
 
 std::size_t Curve::find_segment(double t) const noexcept {

@@ -161,8 +161,8 @@ class Curve {
 
  private:
   enum class Shape : std::uint8_t {
-    /// v0 + s (e1 + s (e2 + s e3)) in the normalised time s: step and Blender's constant Bezier
-    /// (e = 0), linear (e1 only), the Hermite-family splines, the B-spline, and Bezier segments
+    linear,           ///< v0 + s e1 in the normalised time s: linear, step and Blender's constant Bezier (e1 = 0)
+    /// v0 + s (e1 + s (e2 + s e3)): the Hermite-family splines, the B-spline, and Bezier segments
     /// whose time handles sit at thirds (time linear in the parameter: u = s, no solve)
     polynomial,
     bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse + refinement
@@ -177,7 +177,7 @@ class Curve {
     double v0 = 0;
     double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic (in u for Bezier, in s otherwise)
     std::uint32_t extra = 0;        ///< bezier_table, bezier_closed, easing: index into extras_
-    Shape shape = Shape::polynomial;
+    Shape shape = Shape::linear;
     Interpolation family = Interpolation::step;  ///< easing segments
     Easing easing = Easing::automatic;           ///< easing segments
   };
@@ -205,10 +205,11 @@ class Curve {
   /// t within [s.t0, s.t1].
   double evaluate_in(const Segment& s, double t) const noexcept {
     const double x = (t - s.t0) * s.inv_duration;
+    if (s.shape == Shape::linear) return s.v0 + x * s.e1;
     if (s.shape == Shape::polynomial) return value_cubic(s, x);
     return evaluate_solved(s, x, t);
   }
-  /// The shapes other than polynomial; x is the normalised time.
+  /// The shapes other than linear and polynomial; x is the normalised time.
   double evaluate_solved(const Segment& s, double x, double t) const noexcept;
   static double evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double normalised_time) noexcept;
   /// evaluate(t, cursor) when t is not strictly inside the cursor's segment.
