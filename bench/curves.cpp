@@ -1,11 +1,12 @@
 // avar-bench-curves: the cost of one curve sample. A 10-minute curve with about a thousand keys
 // is sampled at a 1 kHz tick with its cached cursor (what the sampler does every tick), and at
 // random times (binary search). Linear, step and two kinds of Bezier segments: handles at a third
-// of the segment (the time cubic degenerates to a line, Blender's linear branch) and handles of
-// random length (a full cubic in time, Cardano's or the trigonometric branch); Blender's auto
-// handles with continuous-acceleration smoothing; a sine easing; Catmull-Rom; a uniform cubic
-// B-spline, and the very same B-spline in Eigen's spline module (unsupported/Eigen/Splines) as
-// the peer (checked to agree with avar's before timing).
+// of the segment (time is linear in the curve parameter: no time solve) and handles of random
+// length (a full cubic in time: the tabulated inverse, or Blender's closed form where time nearly
+// stalls); Blender's auto handles with continuous-acceleration smoothing (their time handles sit
+// at thirds too); a sine easing; Catmull-Rom; a uniform cubic B-spline, and the very same
+// B-spline in Eigen's spline module (unsupported/Eigen/Splines) as the peer (checked to agree
+// with avar's before timing).
 // ns_per_sample is reported for every run; the repetitions give its median and worst.
 #include <benchmark/benchmark.h>
 

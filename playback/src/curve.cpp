@@ -26,6 +26,13 @@ constexpr double kMinTableSlope = 0.1;
 // parameter is then within 1e-9 of the root (Blender itself rounds the root to float, ~6e-8).
 constexpr double kMaxResidual = 1.0e-10;
 
+// Handles at thirds of the segment in time make s(u) = u, up to rounding of the handle times
+// (~1e-13 of the segment). Within kMaxResidual of the identity on [0, 1], u = s is as close to
+// the root as the tabulated inverse guarantees (|s(u) - s| <= kMaxResidual, s'(u) ~ 1).
+bool time_is_parameter(const Cubic& s) noexcept {
+  return std::abs(s.c1 - 1.0) + std::abs(s.c2) + std::abs(s.c3) <= kMaxResidual;
+}
+
 double min_slope_on_window(const Cubic& s) noexcept {
   double low = std::min(s.slope_at(kWindowLow), s.slope_at(kWindowHigh));
   if (s.c3 != 0.0) {
@@ -155,6 +162,7 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
     const double change = next.value - k.value;
     Segment s;
     s.t0 = k.time;
+    s.t1 = next.time;
     s.inv_duration = 1.0 / duration;
     s.v0 = k.value;
     s.family = k.interpolation;
@@ -164,12 +172,14 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
       s.e2 = 3 * change - 2 * duration * m0 - duration * m1;
       s.e3 = -2 * change + duration * m0 + duration * m1;
     };
+    const auto with_extra = [&](Shape shape, double k1, double k2, double k3) -> SegmentExtra& {
+      s.shape = shape;
+      s.extra = static_cast<std::uint32_t>(extras_.size());
+      return extras_.emplace_back(SegmentExtra{k1, k2, k3, 0});
+    };
     switch (k.interpolation) {
-      case Interpolation::step: s.shape = Shape::step; break;
-      case Interpolation::linear:
-        s.shape = Shape::linear;
-        s.e1 = change;
-        break;
+      case Interpolation::step: break;  // v0
+      case Interpolation::linear: s.e1 = change; break;
       case Interpolation::hermite: hermite(*k.out_slope, *next.in_slope); break;
       case Interpolation::catmull_rom:
       case Interpolation::cardinal:
@@ -200,31 +210,30 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
         // Blender's shortcut, tested on the handles before correction: four equal values (to
         // float precision) make the segment constant.
         if (std::abs(value[0] - value[3]) < FLT_EPSILON && std::abs(value[1] - value[2]) < FLT_EPSILON &&
-            std::abs(value[2] - value[3]) < FLT_EPSILON) {
-          s.shape = Shape::constant;
-          break;
-        }
+            std::abs(value[2] - value[3]) < FLT_EPSILON)
+          break;  // v0
         correct_bezier_handles(time, value);
         // Time in units of the segment: s(u) runs from 0 to 1. The roots in u are those of the
         // cubic in seconds (or in Blender's frames): scaling time does not move them.
         const double unit_time[4] = {0.0, (time[1] - k.time) / duration, (time[2] - k.time) / duration, 1.0};
         const Cubic s_of_u = bezier_polynomial(unit_time);
         const Cubic v_of_u = bezier_polynomial(value);
-        s.k1 = s_of_u.c1, s.k2 = s_of_u.c2, s.k3 = s_of_u.c3;
         s.e1 = v_of_u.c1, s.e2 = v_of_u.c2, s.e3 = v_of_u.c3;
+        if (time_is_parameter(s_of_u)) {
+          s.shape = Shape::polynomial;  // in u = s
+          break;
+        }
         if (min_slope_on_window(s_of_u) >= kMinTableSlope) {
-          s.shape = Shape::bezier_table;
-          tabulate_inverse(s, inverse_);
+          tabulate_inverse(with_extra(Shape::bezier_table, s_of_u.c1, s_of_u.c2, s_of_u.c3), inverse_);
         } else {
-          s.shape = Shape::bezier_closed;
+          with_extra(Shape::bezier_closed, s_of_u.c1, s_of_u.c2, s_of_u.c3);
         }
         break;
       }
       default:  // Blender's easing families
-        s.shape = Shape::easing;
         s.easing = resolved_easing(k.interpolation, k.easing);
         s.e1 = change;
-        s.k1 = k.back, s.k2 = k.amplitude, s.k3 = k.period;
+        with_extra(Shape::easing, k.back, k.amplitude, k.period);
         break;
     }
     segments_.push_back(s);
@@ -255,7 +264,7 @@ void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedH
       case Interpolation::bspline: {
         if (segments_.empty()) return 0;
         const Segment& s = before ? segments_.front() : segments_.back();
-        if (s.shape != Shape::polynomial && s.shape != Shape::linear) return 0;
+        if (s.shape != Shape::polynomial) return 0;
         return (before ? s.e1 : s.e1 + 2 * s.e2 + 3 * s.e3) * s.inv_duration;
       }
       default: {
@@ -268,30 +277,62 @@ void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedH
   slope_after_ = slope_at(false);
 }
 
-// The inverse u(s) of a strictly increasing time cubic, as kTablePieces cubic Hermite pieces: on
-// each equal interval of s a piece matches u and du/ds = 1 / s'(u) at both ends. Each piece is
-// checked at build time at points across its interval and given the fewest refinement steps
-// (0 to kMaxRefinements) that reach the residual there; a piece that does not (near an end where
-// s'(u) is small the inverse bends too fast for a cubic) is filled with NaN, so that its samples
-// always take Blender's closed form.
-void Curve::tabulate_inverse(Segment& segment, std::vector<InversePiece>& table) {
-  const Cubic s{0.0, segment.k1, segment.k2, segment.k3};
+// From the table's estimate of u, steps u -= (s(u) - x) du/ds with du/ds also from the table:
+// each step multiplies the error by about the table's relative error in du/ds, with no division.
+// residual = s(u) - x at the returned u. Always inlined: the per-sample path needs u and the
+// residual in registers.
+[[gnu::always_inline]] inline double Curve::refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept {
+  // Polynomials split as Estrin does: independent halves, a shorter dependency chain than Horner.
+  const auto residual_at = [&](double u) { return (u * b.k1 - x) + (u * u) * (b.k2 + u * b.k3); };
+  const double w2 = w * w;
+  double u = (p.a0 + w * p.a1) + w2 * ((p.a2 + w * p.a3) + w2 * (p.a4 + w * p.a5));
+  residual = residual_at(u);
+  if (p.refinements > 0) {
+    const double du_dw = (p.a1 + w * (2.0 * p.a2)) + w2 * ((3.0 * p.a3 + w * (4.0 * p.a4)) + w2 * (5.0 * p.a5));
+    const double du_dx = du_dw * kTablePieces;
+    static_assert(kMaxRefinements == 2);
+    u -= residual * du_dx;
+    residual = residual_at(u);
+    if (p.refinements > 1) {
+      u -= residual * du_dx;
+      residual = residual_at(u);
+    }
+  }
+  return u;
+}
+
+// The inverse u(s) of a strictly increasing time cubic, as kTablePieces quintic Hermite pieces:
+// on each equal interval of s a piece matches u, du/ds = 1 / s'(u) and d2u/ds2 = -s''(u) / s'(u)^3
+// at both ends. Each piece is checked at build time at points across its interval and given the
+// fewest refinement steps (0 to kMaxRefinements) that reach the residual there; a piece that does
+// not (near an end where s'(u) is small the inverse bends too fast for a quintic) is filled with
+// NaN, so that its samples always take Blender's closed form.
+void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table) {
+  const Cubic s{0.0, bezier.k1, bezier.k2, bezier.k3};
   constexpr int n = kTablePieces;
-  double u[n + 1], du_dw[n + 1];
+  double u[n + 1], du_dw[n + 1], d2u_dw2[n + 1];
   for (int j = 0; j <= n; ++j) {
     u[j] = j == 0 ? 0.0 : j == n ? 1.0 : invert_increasing(s, static_cast<double>(j) / n);
-    du_dw[j] = 1.0 / (s.slope_at(u[j]) * n);  // du/dw = du/ds * ds/dw, with ds/dw = 1 / n
+    const double slope = s.slope_at(u[j]), bend = 2.0 * s.c2 + 6.0 * s.c3 * u[j];
+    du_dw[j] = 1.0 / (slope * n);  // du/dw = du/ds * ds/dw, with ds/dw = 1 / n
+    d2u_dw2[j] = -bend / (slope * slope * slope * n * n);
   }
-  segment.table = static_cast<std::uint32_t>(table.size());
+  bezier.table = static_cast<std::uint32_t>(table.size());
   for (int j = 0; j < n; ++j) {
-    const double m0 = du_dw[j], m1 = du_dw[j + 1], step = u[j + 1] - u[j];
-    InversePiece piece{u[j], m0, 3.0 * step - 2.0 * m0 - m1, -2.0 * step + m0 + m1, 0};
+    const double step = u[j + 1] - u[j], m0 = du_dw[j], m1 = du_dw[j + 1], c0 = d2u_dw2[j], c1 = d2u_dw2[j + 1];
+    InversePiece piece{u[j],
+                       m0,
+                       0.5 * c0,
+                       10.0 * step - 6.0 * m0 - 4.0 * m1 - 1.5 * c0 + 0.5 * c1,
+                       -15.0 * step + 8.0 * m0 + 7.0 * m1 + 1.5 * c0 - c1,
+                       6.0 * step - 3.0 * m0 - 3.0 * m1 - 0.5 * c0 + 0.5 * c1,
+                       0};
     const auto reaches = [&] {
       constexpr int kChecks = 32;
       for (int k = 0; k <= kChecks; ++k) {
         const double w = static_cast<double>(k) / kChecks;
         double residual = 0;
-        refine(segment, piece, w, (j + w) / n, residual);
+        refine(bezier, piece, w, (j + w) / n, residual);
         if (!(std::abs(residual) <= kMaxResidual / 4)) return false;
       }
       return true;
@@ -299,7 +340,7 @@ void Curve::tabulate_inverse(Segment& segment, std::vector<InversePiece>& table)
     while (!reaches()) {
       if (++piece.refinements > kMaxRefinements) {
         const double nan = std::numeric_limits<double>::quiet_NaN();
-        piece = {nan, nan, nan, nan, 0};
+        piece = {nan, nan, nan, nan, nan, nan, 0};
         break;
       }
     }
@@ -307,56 +348,38 @@ void Curve::tabulate_inverse(Segment& segment, std::vector<InversePiece>& table)
   }
 }
 
-// From the table's estimate of u, steps u -= (s(u) - x) du/ds with du/ds also from the table:
-// each step multiplies the error by about the table's relative error in du/ds, with no division.
-// residual = s(u) - x at the returned u.
-double Curve::refine(const Segment& s, const InversePiece& p, double w, double x, double& residual) noexcept {
-  double u = p.a0 + w * (p.a1 + w * (p.a2 + w * p.a3));
-  residual = u * (s.k1 + u * (s.k2 + u * s.k3)) - x;
-  if (p.refinements > 0) {
-    const double du_dx = (p.a1 + w * (2.0 * p.a2 + w * 3.0 * p.a3)) * kTablePieces;
-    for (int i = 0; i < p.refinements; ++i) {
-      u -= residual * du_dx;
-      residual = u * (s.k1 + u * (s.k2 + u * s.k3)) - x;
-    }
-  }
-  return u;
-}
-
-double Curve::evaluate_bezier_closed(const Segment& s, double x) const noexcept {
+double Curve::evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double x) noexcept {
   // Blender returns a key's own value when the time falls on it, whatever roots the cubic has.
   if (x == 0.0) return s.v0;
   double roots[3];
   // x(u) - x with x(0) = 0 <= x < 1 = x(1) always has a root in [0, 1]; if rounding at the very
   // ends of the segment loses it, the linear estimate of u stands in (Blender would return 0).
-  const double u = solve_cubic_in_unit_interval(-x, s.k1, s.k2, s.k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
-  return s.v0 + u * (s.e1 + u * (s.e2 + u * s.e3));
+  const double u = solve_cubic_in_unit_interval(-x, b.k1, b.k2, b.k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
+  return value_cubic(s, u);
 }
 
-double Curve::evaluate_in(std::size_t i, double t) const noexcept {
-  const Segment& s = segments_[i];
-  const double x = (t - s.t0) * s.inv_duration;  // in [0, 1]: the segment holds t
+double Curve::evaluate_solved(const Segment& s, double x, double t) const noexcept {
   switch (s.shape) {
-    case Shape::step:
-    case Shape::constant: return s.v0;
-    case Shape::linear: return s.v0 + x * s.e1;
-    case Shape::polynomial: return s.v0 + x * (s.e1 + x * (s.e2 + x * s.e3));
+    case Shape::linear:
+    case Shape::polynomial: break;  // evaluate_in's (linear: e2 = e3 = 0)
     case Shape::bezier_table: {
+      const SegmentExtra& b = extras_[s.extra];
       const double scaled = x * kTablePieces;
       const int j = std::min(static_cast<int>(scaled), kTablePieces - 1);
       double residual = 0;
-      const double u = refine(s, inverse_[s.table + static_cast<std::size_t>(j)], scaled - j, x, residual);
+      const double u = refine(b, inverse_[b.table + static_cast<std::size_t>(j)], scaled - j, x, residual);
       // |u - root| <= |residual| / min s'(u) <= 1e-9; otherwise (a NaN piece) Blender's solve.
-      if (!(std::abs(residual) <= kMaxResidual)) return evaluate_bezier_closed(s, x);
-      return s.v0 + u * (s.e1 + u * (s.e2 + u * s.e3));
+      if (!(std::abs(residual) <= kMaxResidual)) return evaluate_bezier_closed(s, b, x);
+      return value_cubic(s, u);
     }
-    case Shape::bezier_closed: return evaluate_bezier_closed(s, x);
+    case Shape::bezier_closed: return evaluate_bezier_closed(s, extras_[s.extra], x);
     case Shape::easing: {
+      const SegmentExtra& b = extras_[s.extra];
       const double duration = 1.0 / s.inv_duration;
-      return ease(s.family, s.easing, t - s.t0, s.v0, s.e1, duration, EasingParams{s.k1, s.k2, s.k3});
+      return ease(s.family, s.easing, t - s.t0, s.v0, s.e1, duration, EasingParams{b.k1, b.k2, b.k3});
     }
   }
-  return s.v0;
+  return value_cubic(s, x);
 }
 
 std::size_t Curve::find_segment(double t) const noexcept {
@@ -428,13 +451,11 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
     if (t >= times_[i + 1]) i = find_segment(t);
   }
   if (cursor) cursor->segment = i;
-  return evaluate_in(i, t);
+  return evaluate_in(segments_[i], t);
 }
 
-double Curve::evaluate(double t, CurveCursor& cursor) const noexcept {
-  // The tick's common case: t still inside the cursor's segment (key times themselves take the
-  // general path, which decides which segment owns them).
-  if (const std::size_t i = cursor.segment; i < segments_.size() && t > times_[i] && t < times_[i + 1]) return evaluate_in(i, t);
+// Key times themselves come here too: the general path decides which segment owns them.
+double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
   if (times_.empty()) return 0;
   if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, &cursor);
   double offset = 0;

@@ -143,8 +143,15 @@ class Curve {
   /// thanks to the cursor; any other t falls back to a binary search, and the result never
   /// depends on the cursor: it equals evaluate(t) bit for bit. Always finite. Real-time safe:
   /// no allocation, exception or lock. The curve is immutable, so many threads may evaluate it
-  /// at once, each with its own cursor.
-  double evaluate(double t, CurveCursor& cursor) const noexcept;
+  /// at once, each with its own cursor. Inline: the tick's common case (t strictly inside the
+  /// cursor's segment) is one bounds check, two compares and, for polynomial segments, a cubic.
+  double evaluate(double t, CurveCursor& cursor) const noexcept {
+    if (cursor.segment < segments_.size()) [[likely]] {
+      const Segment& s = segments_[cursor.segment];
+      if (t > s.t0 && t < s.t1) [[likely]] return evaluate_in(s, t);
+    }
+    return evaluate_moved(t, cursor);
+  }
   /// Random access (binary search over the keys). Real-time safe, thread-safe.
   double evaluate(double t) const noexcept;
 
@@ -154,41 +161,59 @@ class Curve {
 
  private:
   enum class Shape : std::uint8_t {
-    step,             ///< the start key's value
-    linear,           ///< v0 + s e1
-    polynomial,       ///< v0 + s (e1 + s (e2 + s e3)) in the normalised time s (Hermite-family splines, B-spline)
-    constant,         ///< a Bezier segment whose four values agree (Blender's shortcut)
+    linear,           ///< v0 + s e1 in the normalised time s: linear, step and Blender's constant Bezier (e1 = 0)
+    /// v0 + s (e1 + s (e2 + s e3)): the Hermite-family splines, the B-spline, and Bezier segments
+    /// whose time handles sit at thirds (time linear in the parameter: u = s, no solve)
+    polynomial,
     bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse + refinement
     bezier_closed,    ///< Bezier with handles that let time stall or run backwards: Blender's solve
     easing,           ///< one of Blender's easing equations
   };
   /// Segment i runs from key i to key i+1. Times are normalised: s = (t - t0) / (t1 - t0).
-  struct Segment {
-    double t0 = 0;
-    double inv_duration = 0;
+  /// One cache line: what every sample of the segment reads.
+  struct alignas(64) Segment {
+    double t0 = 0, t1 = 0;          ///< key times (s)
+    double inv_duration = 0;        ///< 1 / (t1 - t0)
     double v0 = 0;
     double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic (in u for Bezier, in s otherwise)
-    double k1 = 0, k2 = 0, k3 = 0;  ///< Bezier: normalised time cubic s(u); easing: back, amplitude, period
-    std::uint32_t table = 0;        ///< first entry of this segment's inverse table
-    Shape shape = Shape::step;
+    std::uint32_t extra = 0;        ///< bezier_table, bezier_closed, easing: index into extras_
+    Shape shape = Shape::linear;
     Interpolation family = Interpolation::step;  ///< easing segments
     Easing easing = Easing::automatic;           ///< easing segments
   };
-  /// Cubic Hermite piece of the inverse u(s) on one of kTablePieces equal intervals of s, in the
-  /// local coordinate w in [0, 1): u = a0 + a1 w + a2 w^2 + a3 w^3, then `refinements` steps.
+  /// What the segments that solve or ease need beyond their Segment.
+  struct SegmentExtra {
+    double k1 = 0, k2 = 0, k3 = 0;  ///< Bezier: normalised time cubic s(u); easing: back, amplitude, period
+    std::uint32_t table = 0;        ///< bezier_table: first entry of this segment's inverse table
+  };
+  /// Quintic Hermite piece of the inverse u(s) on one of kTablePieces equal intervals of s, in
+  /// the local coordinate w in [0, 1): u = a0 + a1 w + ... + a5 w^5, then `refinements` steps.
   struct InversePiece {
-    double a0 = 0, a1 = 0, a2 = 0, a3 = 0;
+    double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0;
     int refinements = 0;
   };
   static constexpr int kTablePieces = 32;
   static constexpr int kMaxRefinements = 2;
 
-  static void tabulate_inverse(Segment& segment, std::vector<InversePiece>& table);
-  static double refine(const Segment& s, const InversePiece& p, double w, double x, double& residual) noexcept;
+  static void tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table);
+  static double refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept;
   void build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   void build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
-  double evaluate_in(std::size_t segment, double t) const noexcept;
-  double evaluate_bezier_closed(const Segment& s, double normalised_time) const noexcept;
+  /// The segment's value cubic at u (its normalised time for polynomial segments), split as
+  /// Estrin does so that its halves evaluate in parallel: a shorter dependency chain than Horner.
+  static double value_cubic(const Segment& s, double u) noexcept { return (s.v0 + u * s.e1) + (u * u) * (s.e2 + u * s.e3); }
+  /// t within [s.t0, s.t1].
+  double evaluate_in(const Segment& s, double t) const noexcept {
+    const double x = (t - s.t0) * s.inv_duration;
+    if (s.shape == Shape::linear) return s.v0 + x * s.e1;
+    if (s.shape == Shape::polynomial) return value_cubic(s, x);
+    return evaluate_solved(s, x, t);
+  }
+  /// The shapes other than linear and polynomial; x is the normalised time.
+  double evaluate_solved(const Segment& s, double x, double t) const noexcept;
+  static double evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double normalised_time) noexcept;
+  /// evaluate(t, cursor) when t is not strictly inside the cursor's segment.
+  double evaluate_moved(double t, CurveCursor& cursor) const noexcept;
   std::size_t find_segment(double t) const noexcept;
   double extrapolate(double t) const noexcept;
   /// Blender's Cycles time map: the time inside the keys to evaluate, and the value offset.
@@ -197,6 +222,7 @@ class Curve {
 
   std::vector<double> times_;         ///< key times
   std::vector<Segment> segments_;     ///< times_.size() - 1 of them
+  std::vector<SegmentExtra> extras_;  ///< one per bezier_table, bezier_closed and easing segment
   std::vector<InversePiece> inverse_; ///< kTablePieces per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
