@@ -1,0 +1,69 @@
+#pragma once
+// Time-optimal jerk-limited motion of one axis to rest at a goal.
+//
+// From a state (p, v, a) the profile reaches (goal, 0, 0) with piecewise-constant jerk in
+// {-J, 0, +J}, |a| <= A and |v| <= V throughout (when the start has |a| <= A and can keep
+// |v| <= V, i.e. |v + a|a|/(2J)| <= V, which holds for every state on such a profile). It has
+// three parts: a time-optimal velocity change from (v, a) to a peak velocity vp with a = 0, a
+// cruise at vp (only when |vp| = V), and a time-optimal velocity change from (vp, 0) to rest.
+// The distance D(vp) of the two changes is closed-form; vp solves D(vp) = goal - p (a few
+// safeguarded Newton steps on the branch where D is monotone), or vp = ±V and the cruise fills
+// the rest. A state on a plan re-plans to the same plan, so re-planning every tick toward a held
+// goal follows one optimal profile. Units: any length unit, seconds. plan() and at() are
+// real-time safe (no allocation, exception or lock) and O(1).
+
+#include <array>
+#include <cstddef>
+
+namespace avar::control {
+
+struct MotionState {
+  double p = 0;  ///< position, units
+  double v = 0;  ///< velocity, units/s
+  double a = 0;  ///< acceleration, units/s²
+};
+
+struct JerkLimits {
+  double velocity = 1;      ///< V, units/s, > 0
+  double acceleration = 1;  ///< A, units/s², > 0
+  double jerk = 1;          ///< J, units/s³, > 0
+};
+
+/// Where braking at the limits (the time-optimal change to v = 0, a = 0) brings `s` to rest.
+double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept;
+
+class JerkProfile {
+ public:
+  /// Plans from `from` to rest at `goal`. `from.a` is taken within [-A, A]. `hint`: a peak
+  /// velocity to try first (the previous plan's peak_velocity() makes a re-plan toward the same
+  /// goal cost one evaluation); any finite value is safe.
+  void plan(const MotionState& from, double goal, const JerkLimits& limits, double hint = 0) noexcept;
+
+  /// The state `t` seconds after the start of the plan; at or after duration(): exactly
+  /// (goal, 0, 0).
+  MotionState at(double t) const noexcept;
+
+  /// Seconds from the start to rest at the goal.
+  double duration() const noexcept { return duration_; }
+  /// The velocity between the two changes (the cruise velocity when |vp| = V), units/s.
+  double peak_velocity() const noexcept { return peak_; }
+
+ private:
+  /// The state t seconds along the pieces, before the shift onto the goal.
+  MotionState follow(double t) const noexcept;
+
+  struct Piece {
+    double duration = 0;  ///< s
+    double jerk = 0;      ///< units/s³
+  };
+  static constexpr std::size_t kPieces = 7;  ///< 3 (change) + 1 (cruise) + 3 (stop)
+
+  MotionState start_;
+  double goal_ = 0;
+  double peak_ = 0;
+  double duration_ = 0;
+  double offset_ = 0;  ///< added to every position so that the plan ends exactly on the goal
+  std::array<Piece, kPieces> pieces_{};
+};
+
+}  // namespace avar::control
