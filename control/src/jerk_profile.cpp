@@ -8,6 +8,14 @@
 namespace avar::control {
 namespace {
 
+/// The acceleration and jerk limits with their reciprocals (the solve evaluates D several times
+/// per plan; multiplications are much cheaper than divisions).
+struct Bounds {
+  double A, J, inv_A, inv_J;
+  explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
+};
+constexpr double kSixth = 1.0 / 6;
+
 /// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
 /// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
 struct VelocityChange {
@@ -17,11 +25,13 @@ struct VelocityChange {
   double hold = 0;      ///< s
   double fall = 0;      ///< s
   double distance = 0;  ///< units
+  double magnitude = 0;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
 };
 
-VelocityChange velocity_change(double v0, double a0, double v1, double A, double J) {
+VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k) {
+  const double A = k.A, J = k.J;
   VelocityChange c;
-  c.s = v1 >= v0 + a0 * std::abs(a0) / (2 * J) ? 1.0 : -1.0;
+  c.s = v1 >= v0 + 0.5 * a0 * std::abs(a0) * k.inv_J ? 1.0 : -1.0;
   // In the frame where the change raises the velocity: w = s v, b = s a.
   const double b0 = c.s * a0;
   const double w0 = c.s * v0;
@@ -32,25 +42,27 @@ VelocityChange velocity_change(double v0, double a0, double v1, double A, double
     c.peak = std::sqrt(peak_squared);
   } else {
     c.peak = A;
-    c.hold = std::max(0.0, (dw - (2 * A * A - b0 * b0) / (2 * J)) / A);
+    c.hold = std::max(0.0, (dw - 0.5 * (2 * A * A - b0 * b0) * k.inv_J) * k.inv_A);
   }
   // peak >= b0 but for rounding, which would leave the change ending with a != 0.
   c.peak = std::max(c.peak, b0);
-  c.rise = (c.peak - b0) / J;
-  c.fall = c.peak / J;
+  c.rise = (c.peak - b0) * k.inv_J;
+  c.fall = c.peak * k.inv_J;
   const double t1 = c.rise, t2 = c.hold, t3 = c.fall, m = c.peak;
   double w = w0;
-  double x = w * t1 + b0 * t1 * t1 / 2 + J * t1 * t1 * t1 / 6;
-  w += b0 * t1 + J * t1 * t1 / 2;
-  x += w * t2 + m * t2 * t2 / 2;
+  double x = t1 * (w + t1 * (0.5 * b0 + kSixth * J * t1));
+  w += t1 * (b0 + 0.5 * J * t1);
+  x += t2 * (w + 0.5 * m * t2);
   w += m * t2;
-  x += w * t3 + m * t3 * t3 / 2 - J * t3 * t3 * t3 / 6;
+  x += t3 * (w + t3 * (0.5 * m - kSixth * J * t3));
   c.distance = c.s * x;
+  const double t = t1 + t2 + t3;
+  c.magnitude = (std::abs(w0) + m * t) * t;
   return c;
 }
 
 /// The peak acceleration of the time-optimal stop from (v, 0): sqrt(J|v|), at most A.
-double stop_peak(double v, double A, double J) { return std::min(std::sqrt(J * std::abs(v)), A); }
+double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * std::abs(v)), k.A); }
 
 /// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp: for a change to
 /// v1 with peak m, d distance/d v1 = s v1/m + m/(2J); the stop from vp covers vp T/2 with
@@ -58,17 +70,21 @@ double stop_peak(double v, double A, double J) { return std::min(std::sqrt(J * s
 struct Reach {
   double distance = 0;
   double slope = 0;
+  double magnitude = 0;  ///< the distance is exact to a few ulps of this
 };
 
-Reach reach(double v0, double a0, double vp, double A, double J) {
-  const VelocityChange c = velocity_change(v0, a0, vp, A, J);
+Reach reach(double v0, double a0, double vp, const Bounds& k) {
+  const VelocityChange c = velocity_change(v0, a0, vp, k);
   Reach r;
   r.distance = c.distance;
-  r.slope = c.peak > 0 ? c.s * vp / c.peak + c.peak / (2 * J) : std::numeric_limits<double>::infinity();
-  const double m = stop_peak(vp, A, J);
+  r.magnitude = c.magnitude;
+  r.slope = c.peak > 0 ? c.s * vp / c.peak + 0.5 * c.peak * k.inv_J : std::numeric_limits<double>::infinity();
+  const double m = stop_peak(vp, k);
   if (m > 0) {
-    r.distance += vp * (m / J + std::abs(vp) / m) / 2;
-    r.slope += std::abs(vp) / m + m / (2 * J);
+    const double duration = m * k.inv_J + std::abs(vp) / m;
+    r.distance += 0.5 * vp * duration;
+    r.magnitude += std::abs(vp) * duration;
+    r.slope += std::abs(vp) / m + 0.5 * m * k.inv_J;
   }
   return r;
 }
@@ -84,36 +100,44 @@ MotionState advance(MotionState s, double t, double jerk) {
 
 double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
   const double a = std::clamp(s.a, -limits.acceleration, limits.acceleration);
-  return s.p + velocity_change(s.v, a, 0, limits.acceleration, limits.jerk).distance;
+  return s.p + velocity_change(s.v, a, 0, Bounds(limits)).distance;
 }
 
 void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint) noexcept {
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
+  const Bounds bounds(limits);
   start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
   goal_ = goal;
   const double v0 = start_.v, a0 = start_.a;
   const double d = goal - from.p;
-  // Reached to rounding: the last bits of the distance are what the plan's end may miss by.
-  const double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
+  // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
+  // the plan is shifted by that onto the goal, below).
+  double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
   const auto residual = [&](double vp) {
-    Reach r = reach(v0, a0, vp, A, J);
+    Reach r = reach(v0, a0, vp, bounds);
     r.distance -= d;
+    tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
     return r;
   };
 
   // D is increasing for vp beyond both the natural velocity (reached by releasing the
   // acceleration) and 0; between them (a change and a stop in the same direction) it may not be.
-  const double natural = std::clamp(v0 + a0 * std::abs(a0) / (2 * J), -V, V);
+  // (computed as velocity_change decides its direction)
+  const double natural = std::clamp(v0 + 0.5 * a0 * std::abs(a0) * bounds.inv_J, -V, V);
   const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
 
   double vp = std::numeric_limits<double>::quiet_NaN();
   double cruise = 0;
   // A re-plan toward the same goal from a state on the last plan has the same peak: try it
-  // first, with a few Newton steps kept on its monotone branch.
-  if (std::isfinite(hint) && (hint >= high || hint <= low)) {
-    const double lo = hint >= high ? high : -V, hi = hint >= high ? V : low;
+  // first, with a few Newton steps kept on its branch (so that a target that moves a little
+  // each tick costs a few evaluations).
+  if (std::isfinite(hint)) {
+    const double lo = hint >= high ? high : hint <= low ? -V : low;
+    const double hi = hint >= high ? V : hint <= low ? low : high;
+    // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
     double x = std::clamp(hint, lo, hi);
-    for (int k = 0; k < 3; ++k) {
+    if (x == natural) x = std::nextafter(x, hint >= high ? V : -V);
+    for (int k = 0; k < 6; ++k) {
       const Reach r = residual(x);
       if (std::abs(x) == V && r.distance * x <= 0) {
         vp = x;
@@ -168,26 +192,39 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
     if (!(vp == vp) && std::abs(f_lo) <= tolerance) vp = lo;
     if (!(vp == vp) && std::abs(f_hi) <= tolerance) vp = hi;
     if (!(vp == vp) && !finish_short(lo, f_lo) && !finish_short(hi, f_hi)) {
-      double x = hint > lo && hint < hi ? hint : lo + (hi - lo) * (-f_lo / (f_hi - f_lo));
-      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+      // Next to the natural velocity D grows like the square root of |vp - natural|: there the
+      // iteration runs in u = sqrt(|vp - natural|), in which D is smooth.
+      const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+      const double dir = lo == natural ? 1.0 : -1.0;
+      const auto to_vp = [&](double u) { return mapped ? natural + dir * u * u : u; };
+      const auto to_u = [&](double x) { return mapped ? std::sqrt(std::abs(x - natural)) : x; };
+      double u_lo = to_u(lo), u_hi = to_u(hi);
+      const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
+      const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
+      double u = hint > lo && hint < hi ? to_u(hint) : secant();
+      if (!inside(u)) u = 0.5 * (u_lo + u_hi);
       bool bisect = false;
       for (int k = 0; k < 64; ++k) {
+        const double x = to_vp(u);
         const Reach r = residual(x);
         if (std::abs(r.distance) <= tolerance) {
           vp = x;
           break;
         }
-        (r.distance < 0 ? lo : hi) = x;
-        (r.distance < 0 ? f_lo : f_hi) = r.distance;
+        if (r.distance < 0) {
+          lo = x, u_lo = u, f_lo = r.distance;
+        } else {
+          hi = x, u_hi = u, f_hi = r.distance;
+        }
         if (finish_short(x, r.distance)) break;
-        if (hi - lo <= 2 * DBL_EPSILON * std::max(std::abs(lo), std::abs(hi))) break;
-        double next = x - r.distance / r.slope;
-        if (!(next > lo && next < hi) || next == x) {
-          next = bisect ? 0.5 * (lo + hi) : lo + (hi - lo) * (-f_lo / (f_hi - f_lo));
-          if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (std::abs(u_hi - u_lo) <= 2 * DBL_EPSILON * std::max(std::abs(u_lo), std::abs(u_hi))) break;
+        double next = u - r.distance / (mapped ? r.slope * 2 * u * dir : r.slope);
+        if (!inside(next) || next == u) {
+          next = bisect ? 0.5 * (u_lo + u_hi) : secant();
+          if (!inside(next)) next = 0.5 * (u_lo + u_hi);
           bisect = !bisect;
         }
-        x = next;
+        u = next;
       }
       if (!(vp == vp) && lo > 0) {
         vp = lo;
@@ -202,8 +239,8 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   }
   peak_ = vp;
 
-  const VelocityChange change = velocity_change(v0, a0, vp, A, J);
-  const double m = stop_peak(vp, A, J);
+  const VelocityChange change = velocity_change(v0, a0, vp, bounds);
+  const double m = stop_peak(vp, bounds);
   const double stop_jerk = vp > 0 ? -J : J;
   const double stop_ramp = m / J;
   const double stop_hold = m > 0 ? std::max(0.0, std::abs(vp) / m - m / J) : 0.0;

@@ -8,10 +8,13 @@
 // respects V, A and J, so their first, second and third differences over dt do too. The profile
 // is re-planned from the current state every tick, so a moving target is followed at once (with
 // the lag the limits impose) and a held target is reached on one optimal profile, exactly and at
-// rest: a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile never
-// passes both its start's braking point and its goal, both within the range, so no command
-// leaves [min, max]. There is no added delay.
-// Sized once; apply() is real-time safe (no allocation, exception or lock) and O(1) per channel.
+// rest: a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
+// no further than its start's braking point (where braking at the limits comes to rest) or its
+// goal; both start within [min, max], so from every state it produces braking stops within the
+// range and no command leaves it (a last clamp absorbs rounding). Nothing is delayed: a target
+// starts moving the command on the tick it arrives. Units: channel units and seconds.
+// Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
+// allocation, exception or lock) and O(1) per channel (one plan, a few Newton steps at most).
 
 #include <cstdint>
 #include <span>
