@@ -121,8 +121,8 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   };
 
   // D is increasing for vp beyond both the natural velocity (reached by releasing the
-  // acceleration) and 0; between them (a change and a stop in the same direction) it may not be.
-  // (computed as velocity_change decides its direction)
+  // acceleration; computed exactly as velocity_change computes it) and 0; between them (a change
+  // and a stop in the same direction) it may not be.
   const double natural = std::clamp(v0 + 0.5 * a0 * std::abs(a0) * bounds.inv_J, -V, V);
   const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
 

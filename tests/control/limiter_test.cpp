@@ -183,6 +183,30 @@ TEST(Limiter, ChannelsAreIndependentAndNotDelayed) {
   EXPECT_LT(settled_at, 10);  // the fast channel: 4 (d/(2J))^(1/3) = 0.023 s
 }
 
+TEST(JerkProfile, ReplanningFromAStateOnThePlanGivesTheSamePlan) {
+  // Bellman: the rest of an optimal plan is the optimal plan from where it has got to.
+  const JerkLimits limits{2, 10, 100};
+  const MotionState starts[] = {{0, 0, 0}, {0, 1.5, -5}, {0, -1.8, 10}, {0, 2, 0}, {0, 0.3, 9}};
+  for (const MotionState& start : starts) {
+    for (double goal : {3.0, 0.05, -0.4, -4.0}) {
+      SCOPED_TRACE("from v " + std::to_string(start.v) + " a " + std::to_string(start.a) + " to " + std::to_string(goal));
+      JerkProfile plan;
+      plan.plan(start, goal, limits);
+      const MotionState end = plan.at(plan.duration());
+      EXPECT_EQ(end.p, goal);
+      EXPECT_EQ(end.v, 0);
+      for (double t : {0.013, 0.1, 0.37, 0.9}) {
+        if (t >= plan.duration()) continue;
+        JerkProfile again;
+        again.plan(plan.at(t), goal, limits, plan.peak_velocity());
+        // (The time left is a square root of rounding-sized quantities near the end.)
+        EXPECT_NEAR(again.duration(), plan.duration() - t, 1e-7) << "t " << t;
+        EXPECT_NEAR(again.at(0.01).p, plan.at(t + 0.01).p, 1e-9) << "t " << t;
+      }
+    }
+  }
+}
+
 TEST(Limiter, NonFiniteTargetKeepsThePreviousGoalAndReportsIt) {
   Limiter limiter({{0, 10, 100, 1e4, 1e6, 0}, {0, 10, 100, 1e4, 1e6, 0}}, 0.02);
   limiter.reset(std::vector<double>{4, 5});

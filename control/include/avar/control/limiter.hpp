@@ -14,7 +14,8 @@
 // range and no command leaves it (a last clamp absorbs rounding). Nothing is delayed: a target
 // starts moving the command on the tick it arrives. Units: channel units and seconds.
 // Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
-// allocation, exception or lock) and O(1) per channel (one plan, a few Newton steps at most).
+// allocation, exception or lock) and bounded per channel: one plan, typically 1-6 evaluations
+// of a closed form, at most 73.
 
 #include <cstdint>
 #include <span>
