@@ -15,6 +15,13 @@ struct Bounds {
   explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
 };
 constexpr double kSixth = 1.0 / 6;
+/// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
+constexpr double kShiftable = 64;
+/// Bound of the bracketed refinement (each one evaluation of D).
+constexpr int kMaxRefinements = 64;
+/// Bound of the warm-started Newton steps from the hint.
+constexpr int kMaxWarmSteps = 6;
+static_assert(JerkProfile::kMaxEvaluations == kMaxWarmSteps + 3 + kMaxRefinements);
 
 /// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
 /// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
@@ -113,7 +120,9 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
   // the plan is shifted by that onto the goal, below).
   double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
+  evaluations_ = 0;
   const auto residual = [&](double vp) {
+    ++evaluations_;
     Reach r = reach(v0, a0, vp, bounds);
     r.distance -= d;
     tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
@@ -137,7 +146,7 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
     // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
     double x = std::clamp(hint, lo, hi);
     if (x == natural) x = std::nextafter(x, hint >= high ? V : -V);
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < kMaxWarmSteps; ++k) {
       const Reach r = residual(x);
       if (std::abs(x) == V && r.distance * x <= 0) {
         vp = x;
@@ -204,13 +213,24 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
       double u = hint > lo && hint < hi ? to_u(hint) : secant();
       if (!inside(u)) u = 0.5 * (u_lo + u_hi);
       bool bisect = false;
-      for (int k = 0; k < 64; ++k) {
+      double previous_x = std::numeric_limits<double>::quiet_NaN();
+      for (int k = 0; k < kMaxRefinements; ++k) {
         const double x = to_vp(u);
         const Reach r = residual(x);
         if (std::abs(r.distance) <= tolerance) {
           vp = x;
           break;
         }
+        // In u, steps can go on shrinking the bracket's far side while vp = natural ± u² no
+        // longer changes at all (its last bit is reached): the residual is then as small as vp's
+        // resolution allows. Accept it when the end shift below may absorb it; otherwise stop
+        // (the fallback after the loop keeps the plan exact). Without this the loop ran to its
+        // bound on the same vp (issue: 64 evaluations a tick on some moving-target states).
+        if (x == previous_x) {
+          if (std::abs(r.distance) <= kShiftable * tolerance) vp = x;
+          break;
+        }
+        previous_x = x;
         if (r.distance < 0) {
           lo = x, u_lo = u, f_lo = r.distance;
         } else {
@@ -253,7 +273,7 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   // so that the position's rounding never accumulates from tick to tick (a shift larger than
   // rounding, from a solve that did not converge, is left for the next plan to correct).
   const double miss = goal - follow(duration_).p;
-  offset_ = std::abs(miss) <= 64 * tolerance ? miss : 0.0;
+  offset_ = std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
 }
 
 MotionState JerkProfile::at(double t) const noexcept {

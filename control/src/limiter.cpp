@@ -51,11 +51,13 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     } else {
       status = Status::not_finite;
     }
+    c.evaluations = 0;
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) {
       JerkProfile profile;
       profile.plan(c.state, c.goal, c.jerk_limits, c.peak_velocity);
       const MotionState next = profile.at(dt_s_);
       c.peak_velocity = profile.peak_velocity();
+      c.evaluations = profile.evaluations();
       // Rounding only: a plan stays within the range, and is finite from a finite state.
       if (std::isfinite(next.p) && std::isfinite(next.v) && std::isfinite(next.a))
         c.state = {std::clamp(next.p, l.min, l.max), next.v, next.a};

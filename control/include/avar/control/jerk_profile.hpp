@@ -14,7 +14,7 @@
 // last bits so that it ends exactly on the goal. A state on a plan re-plans to the same plan, so
 // re-planning every tick toward a held goal follows one optimal profile. Units: any length unit,
 // seconds. plan() and at() are real-time safe (no allocation, exception or lock) and bounded
-// (typically 1-6 evaluations of D, at most 73).
+// (typically 1-6 evaluations of D, at most kMaxEvaluations).
 
 #include <array>
 #include <cstddef>
@@ -51,6 +51,15 @@ class JerkProfile {
   double duration() const noexcept { return duration_; }
   /// The velocity between the two changes (the cruise velocity when |vp| = V), units/s.
   double peak_velocity() const noexcept { return peak_; }
+  /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a
+  /// state on the previous plan toward the same goal, never more than kMaxEvaluations.
+  int evaluations() const noexcept { return evaluations_; }
+  /// Every loop of plan() has a fixed bound: at most 6 Newton steps from the hint, 3 evaluations
+  /// to bracket the root, 64 safeguarded refinements (which also stop as soon as vp stops
+  /// changing in its last bit). Should the refinements reach their bound, the plan takes the
+  /// bracket's end that falls short of the goal and finishes with a short cruise at its velocity
+  /// (exact and within the limits, barely slower than optimal).
+  static constexpr int kMaxEvaluations = 6 + 3 + 64;
 
  private:
   /// The state t seconds along the pieces, before the shift onto the goal.
@@ -66,6 +75,7 @@ class JerkProfile {
   double goal_ = 0;
   double peak_ = 0;
   double duration_ = 0;
+  int evaluations_ = 0;
   double offset_ = 0;  ///< added to every position so that the plan ends exactly on the goal
   std::array<Piece, kPieces> pieces_{};
 };

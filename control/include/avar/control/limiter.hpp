@@ -15,7 +15,7 @@
 // starts moving the command on the tick it arrives. Units: channel units and seconds.
 // Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
 // allocation, exception or lock) and bounded per channel: one plan, typically 1-6 evaluations
-// of a closed form, at most 73.
+// of a closed form, at most JerkProfile::kMaxEvaluations.
 
 #include <cstdint>
 #include <span>
@@ -66,6 +66,9 @@ class Limiter {
   /// Largest distance seen between the (clamped) target and the command of the same tick: how
   /// far the limits made the figure trail the show.
   double max_lag(std::size_t channel) const noexcept { return channels_[channel].max_lag; }
+  /// The cost of the channel's plan in the last tick: evaluations of the profile's distance
+  /// (0 when it was at rest on its goal). See JerkProfile::evaluations().
+  int evaluations(std::size_t channel) const noexcept { return channels_[channel].evaluations; }
 
  private:
   struct Channel {
@@ -76,6 +79,7 @@ class Limiter {
     double peak_velocity = 0;  ///< of the last plan: the next plan's first guess
     std::uint64_t clamped = 0;
     double max_lag = 0;
+    int evaluations = 0;
   };
 
   double dt_s_;
