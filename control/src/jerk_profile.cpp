@@ -17,11 +17,13 @@ struct Bounds {
 constexpr double kSixth = 1.0 / 6;
 /// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
 constexpr double kShiftable = 64;
+/// A plan taken on a predicted Newton step must end this close to the goal (in tolerances).
+constexpr double kCertified = 4;
 /// Bound of the bracketed refinement (each one evaluation of D).
 constexpr int kMaxRefinements = 64;
 /// Bound of the warm-started Newton steps from the hint.
 constexpr int kMaxWarmSteps = 6;
-static_assert(JerkProfile::kMaxEvaluations == kMaxWarmSteps + 3 + kMaxRefinements);
+static_assert(JerkProfile::kMaxEvaluations == 2 * kMaxWarmSteps + 3 + kMaxRefinements);
 
 /// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
 /// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
@@ -111,6 +113,11 @@ double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
 }
 
 void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint) noexcept {
+  evaluations_ = 0;
+  if (!plan_once(from, goal, limits, hint, true)) plan_once(from, goal, limits, hint, false);
+}
+
+bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept {
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   const Bounds bounds(limits);
   start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
@@ -120,7 +127,6 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
   // the plan is shifted by that onto the goal, below).
   double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
-  evaluations_ = 0;
   const auto residual = [&](double vp) {
     ++evaluations_;
     Reach r = reach(v0, a0, vp, bounds);
@@ -140,7 +146,9 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   // A re-plan toward the same goal from a state on the last plan has the same peak: try it
   // first, with a few Newton steps kept on its branch (so that a target that moves a little
   // each tick costs a few evaluations).
+  bool predicted = false;
   if (std::isfinite(hint)) {
+    double previous_residual = 0;
     const double lo = hint >= high ? high : hint <= low ? -V : low;
     const double hi = hint >= high ? V : hint <= low ? low : high;
     // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
@@ -159,6 +167,18 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
       }
       const double next = std::clamp(x - r.distance / r.slope, lo, hi);
       if (!(next != x)) break;
+      // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
+      // step. When that predicts a residual well within tolerance, take the step without
+      // evaluating it; the plan's end certifies it below (else the solve runs again in full).
+      if (predict && k > 0 && next > lo && next < hi) {
+        const double K = r.distance / (previous_residual * previous_residual);
+        if (std::abs(K * r.distance * r.distance) <= 0.25 * tolerance) {
+          vp = next;
+          predicted = true;
+          break;
+        }
+      }
+      previous_residual = r.distance;
       x = next;
     }
   }
@@ -273,7 +293,9 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
   // so that the position's rounding never accumulates from tick to tick (a shift larger than
   // rounding, from a solve that did not converge, is left for the next plan to correct).
   const double miss = goal - follow(duration_).p;
+  if (predicted && !(std::abs(miss) <= kCertified * tolerance)) return false;
   offset_ = std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
+  return true;
 }
 
 MotionState JerkProfile::at(double t) const noexcept {

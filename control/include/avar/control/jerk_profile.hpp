@@ -54,16 +54,20 @@ class JerkProfile {
   /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a
   /// state on the previous plan toward the same goal, never more than kMaxEvaluations.
   int evaluations() const noexcept { return evaluations_; }
-  /// Every loop of plan() has a fixed bound: at most 6 Newton steps from the hint, 3 evaluations
-  /// to bracket the root, 64 safeguarded refinements (which also stop as soon as vp stops
-  /// changing in its last bit). Should the refinements reach their bound, the plan takes the
+  /// Every loop of plan() has a fixed bound: at most 6 Newton steps from the hint (taken twice
+  /// when a predicted last step is not confirmed by the plan's end), 3 evaluations to bracket the
+  /// root, 64 safeguarded refinements (which also stop as soon as vp stops changing in its last
+  /// bit). Should the refinements reach their bound, the plan takes the
   /// bracket's end that falls short of the goal and finishes with a short cruise at its velocity
   /// (exact and within the limits, barely slower than optimal).
-  static constexpr int kMaxEvaluations = 6 + 3 + 64;
+  static constexpr int kMaxEvaluations = 2 * 6 + 3 + 64;
 
  private:
   /// The state t seconds along the pieces, before the shift onto the goal.
   MotionState follow(double t) const noexcept;
+  /// One solve and build; with `predict`, Newton may stop on a step predicted to converge, and
+  /// false is returned when the plan's end does not certify it (the caller solves again without).
+  bool plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept;
 
   struct Piece {
     double duration = 0;  ///< s
