@@ -154,6 +154,13 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
     double x = std::clamp(hint, lo, hi);
     if (x == natural) x = std::nextafter(x, hint >= high ? V : -V);
+    // On a branch that starts at the natural velocity, D grows like sqrt(|vp - natural|) there
+    // (a state on the stopping part of a plan has its root right at that corner): Newton runs in
+    // u = sqrt(|vp - natural|), where D is smooth, as in the bracketed refinement below.
+    const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+    const double dir = lo == natural ? 1.0 : -1.0;
+    const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
+    double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
     for (int k = 0; k < kMaxWarmSteps; ++k) {
       const Reach r = residual(x);
       if (std::abs(x) == V && r.distance * x <= 0) {
@@ -165,7 +172,15 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         vp = x;
         break;
       }
-      const double next = std::clamp(x - r.distance / r.slope, lo, hi);
+      double next = 0;
+      if (mapped) {
+        const double u_next = std::clamp(u - r.distance / (r.slope * 2 * u * dir), 0.0, u_end);
+        if (!(u_next > 0)) break;  // at the corner itself: the bracketed refinement takes over
+        next = std::clamp(natural + dir * u_next * u_next, lo, hi);
+        u = u_next;
+      } else {
+        next = std::clamp(x - r.distance / r.slope, lo, hi);
+      }
       if (!(next != x)) break;
       // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
       // step. When that predicts a residual well within tolerance, take the step without
