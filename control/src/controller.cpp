@@ -147,7 +147,7 @@ bool Controller::show_over(double show_time_s) const noexcept {
 }
 
 void Controller::ease_to(std::span<const double> goal, double now_s) noexcept {
-  // From where the limiter is heading (its commands follow that with a fixed delay).
+  // From where the limiter is heading (its goal: the commands reach it on a limited profile).
   for (std::size_t i = 0; i < heading_.size(); ++i) heading_[i] = limiter_.heading(i);
   ramp_.plan(heading_, goal, ramp_velocity_, options_.min_ramp_s);
   phase_start_ = now_s;

@@ -1,23 +1,27 @@
 #pragma once
 // Per-channel motion limits applied to every command before it reaches a link.
 //
-// Each channel's target is clamped into its range less the soft margins and rate-limited: the
-// velocity stays within [-V, V] and within V of its value N1 ticks earlier (so it can always
-// stop, and never has to pass its goal). Two moving averages, of N1 and N2 ticks, then smooth it.
-// A moving average never leaves the range of what it averages, so no command passes the clamped
-// target or the range. The first average's acceleration is the velocity change over N1 ticks
-// divided by N1 dt, at most V/(N1 dt) = A; the second's jerk is the acceleration change over N2
-// ticks, at most 2A/(N2 dt) = J. A rest-to-rest move takes d/V + V/A + 2A/J: the time-optimal
-// jerk-limited profile's d/V + V/A + A/J plus one jerk phase. A held target is reached exactly.
-// The averages delay the motion by a fixed time; every channel is padded to the same delay,
-// delay(), so channels that move together in the show stay together on the figure.
-// Sized once for a tick period; apply() is real-time safe (no allocation, exception or lock).
+// Each tick, each channel's target is clamped into its range less the soft margins (the goal),
+// and the channel's exact state (position, velocity, acceleration) is advanced by one tick along
+// the time-optimal jerk-limited profile from that state to rest at the goal (JerkProfile: jerk in
+// {-J, 0, +J}, |a| <= A, |v| <= V). The commands are samples of one continuous motion that
+// respects V, A and J, so their first, second and third differences over dt do too. The profile
+// is re-planned from the current state every tick, so a moving target is followed at once (with
+// the lag the limits impose) and a held target is reached on one optimal profile, exactly and at
+// rest: a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
+// no further than its start's braking point (where braking at the limits comes to rest) or its
+// goal; both start within [min, max], so from every state it produces braking stops within the
+// range and no command leaves it (a last clamp absorbs rounding). Nothing is delayed: a target
+// starts moving the command on the tick it arrives. Units: channel units and seconds.
+// Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
+// allocation, exception or lock) and bounded per channel: one plan, typically 1-6 evaluations
+// of a closed form, at most JerkProfile::kMaxEvaluations.
 
-#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "avar/control/jerk_profile.hpp"
 #include "avar/core/status.hpp"
 
 namespace avar::control {
@@ -37,8 +41,8 @@ class Limiter {
   /// non-positive limits or period.
   Limiter(std::vector<ChannelLimits> limits, double dt_s);
 
-  /// Sets the present pose, at rest. Values are clamped into range; non-finite ones keep the
-  /// previous value.
+  /// Sets the present pose, at rest, and makes it every channel's goal. Values are clamped into
+  /// range; non-finite ones keep the previous value.
   void reset(std::span<const double> pose) noexcept;
 
   /// One tick toward `target`: out[i] is the new command. A non-finite target keeps heading for
@@ -46,9 +50,6 @@ class Limiter {
   /// alias.
   Status apply(std::span<const double> target, std::span<double> out) noexcept;
 
-  /// How long after a target is given its motion reaches the commands (seconds), the same for
-  /// every channel.
-  double delay() const noexcept { return delay_s_; }
   /// True when every channel's command has come to rest on its goal.
   bool settled() const noexcept;
 
@@ -56,48 +57,32 @@ class Limiter {
   const ChannelLimits& limits(std::size_t channel) const noexcept { return channels_[channel].limits; }
   /// The commands of the last tick.
   std::span<const double> last() const noexcept { return last_; }
-  /// The rate-limited target of the last tick (where the commands are heading).
-  double heading(std::size_t channel) const noexcept { return channels_[channel].rate_limited; }
+  /// Where the channel is going: the last finite target clamped into range less its margins.
+  double heading(std::size_t channel) const noexcept { return channels_[channel].goal; }
+  /// The channel's exact motion at the last command (position = last()[channel]).
+  const MotionState& state(std::size_t channel) const noexcept { return channels_[channel].state; }
   /// Samples whose target lay outside the range less its margins.
   std::uint64_t clamped(std::size_t channel) const noexcept { return channels_[channel].clamped; }
-  /// Largest distance between the (clamped) target, taken delay() earlier, and the command:
-  /// how far the limits made the figure trail the show.
+  /// Largest distance seen between the (clamped) target and the command of the same tick: how
+  /// far the limits made the figure trail the show.
   double max_lag(std::size_t channel) const noexcept { return channels_[channel].max_lag; }
+  /// The cost of the channel's plan in the last tick: evaluations of the profile's distance
+  /// (0 when it was at rest on its goal). See JerkProfile::evaluations().
+  int evaluations(std::size_t channel) const noexcept { return channels_[channel].evaluations; }
 
  private:
-  /// A moving average over a ring buffer with a running sum (recomputed exactly once per lap,
-  /// so rounding never accumulates).
-  struct MovingAverage {
-    std::vector<double> ring;
-    std::size_t next = 0;
-    double sum = 0;
-    void fill(double v) noexcept;
-    double push(double v) noexcept;
-  };
-  /// A pure delay of ring.size() ticks (none when empty).
-  struct DelayLine {
-    std::vector<double> ring;
-    std::size_t next = 0;
-    void fill(double v) noexcept { std::fill(ring.begin(), ring.end(), v); }
-    double push(double v) noexcept;
-  };
   struct Channel {
     ChannelLimits limits;
+    JerkLimits jerk_limits;
     double goal = 0;          ///< clamped target
-    double rate_limited = 0;  ///< after the velocity limit
-    DelayLine past_velocity;  ///< the rate-limited velocity N1 ticks ago
-    MovingAverage acceleration_stage;
-    MovingAverage jerk_stage;
-    DelayLine padding;        ///< up to the common delay
-    DelayLine goal_delay;     ///< the goal as it was delay() ago, for the lag figure
-    std::uint64_t steady_ticks = 0;  ///< ticks the rate-limited value has not changed
-    std::size_t settle_ticks = 0;    ///< ticks after which the output equals a steady input
+    MotionState state;        ///< of the last command
+    double peak_velocity = 0;  ///< of the last plan: the next plan's first guess
     std::uint64_t clamped = 0;
     double max_lag = 0;
+    int evaluations = 0;
   };
 
   double dt_s_;
-  double delay_s_ = 0;
   std::vector<Channel> channels_;
   std::vector<double> last_;
 };

@@ -1,0 +1,87 @@
+#pragma once
+// Time-optimal jerk-limited motion of one axis to rest at a goal.
+//
+// From a state (p, v, a) the profile reaches (goal, 0, 0) with piecewise-constant jerk in
+// {-J, 0, +J}, |a| <= A and |v| <= V throughout (when the start has |a| <= A and can keep
+// |v| <= V, i.e. |v + a|a|/(2J)| <= V, which holds for every state on such a profile). It has
+// three parts: a time-optimal velocity change from (v, a) to a peak velocity vp with a = 0, a
+// cruise at vp (only when |vp| = V), and a time-optimal velocity change from (vp, 0) to rest.
+// The distance D(vp) of the two changes is closed-form; vp solves D(vp) = goal - p, or vp = ±V
+// and the cruise fills the rest. D is increasing beyond both 0 and the natural velocity
+// v + a|a|/(2J); the root is bracketed on that branch (or between them) and found by Newton
+// steps from the previous plan's peak, safeguarded by regula falsi and bisection, in the variable
+// sqrt(|vp - natural|) where D has a square-root corner. The plan is then shifted by the solve's
+// last bits so that it ends exactly on the goal. A state on a plan re-plans to the same plan, so
+// re-planning every tick toward a held goal follows one optimal profile. Units: any length unit,
+// seconds. plan() and at() are real-time safe (no allocation, exception or lock) and bounded
+// (typically 1-6 evaluations of D, at most kMaxEvaluations).
+
+#include <array>
+#include <cstddef>
+
+namespace avar::control {
+
+struct MotionState {
+  double p = 0;  ///< position, units
+  double v = 0;  ///< velocity, units/s
+  double a = 0;  ///< acceleration, units/s²
+};
+
+struct JerkLimits {
+  double velocity = 1;      ///< V, units/s, > 0
+  double acceleration = 1;  ///< A, units/s², > 0
+  double jerk = 1;          ///< J, units/s³, > 0
+};
+
+/// Where braking at the limits (the time-optimal change to v = 0, a = 0) brings `s` to rest.
+double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept;
+
+class JerkProfile {
+ public:
+  /// Plans from `from` to rest at `goal`. `from.a` is taken within [-A, A]. `hint`: a peak
+  /// velocity to try first (the previous plan's peak_velocity() makes a re-plan toward the same
+  /// goal cost one evaluation); any finite value is safe.
+  void plan(const MotionState& from, double goal, const JerkLimits& limits, double hint = 0) noexcept;
+
+  /// The state `t` seconds after the start of the plan; at or after duration(): exactly
+  /// (goal, 0, 0).
+  MotionState at(double t) const noexcept;
+
+  /// Seconds from the start to rest at the goal.
+  double duration() const noexcept { return duration_; }
+  /// The velocity between the two changes (the cruise velocity when |vp| = V), units/s.
+  double peak_velocity() const noexcept { return peak_; }
+  /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a
+  /// state on the previous plan toward the same goal, never more than kMaxEvaluations.
+  int evaluations() const noexcept { return evaluations_; }
+  /// Every loop of plan() has a fixed bound: at most 6 Newton steps from the hint (taken twice
+  /// when a predicted last step is not confirmed by the plan's end), 3 evaluations to bracket the
+  /// root, 64 safeguarded refinements (which also stop as soon as vp stops changing in its last
+  /// bit). Should the refinements reach their bound, the plan takes the
+  /// bracket's end that falls short of the goal and finishes with a short cruise at its velocity
+  /// (exact and within the limits, barely slower than optimal).
+  static constexpr int kMaxEvaluations = 2 * 6 + 3 + 64;
+
+ private:
+  /// The state t seconds along the pieces, before the shift onto the goal.
+  MotionState follow(double t) const noexcept;
+  /// One solve and build; with `predict`, Newton may stop on a step predicted to converge, and
+  /// false is returned when the plan's end does not certify it (the caller solves again without).
+  bool plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept;
+
+  struct Piece {
+    double duration = 0;  ///< s
+    double jerk = 0;      ///< units/s³
+  };
+  static constexpr std::size_t kPieces = 7;  ///< 3 (change) + 1 (cruise) + 3 (stop)
+
+  MotionState start_;
+  double goal_ = 0;
+  double peak_ = 0;
+  double duration_ = 0;
+  int evaluations_ = 0;
+  double offset_ = 0;  ///< added to every position so that the plan ends exactly on the goal
+  std::array<Piece, kPieces> pieces_{};
+};
+
+}  // namespace avar::control

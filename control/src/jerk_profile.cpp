@@ -1,0 +1,335 @@
+#include "avar/control/jerk_profile.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace avar::control {
+namespace {
+
+/// The acceleration and jerk limits with their reciprocals (the solve evaluates D several times
+/// per plan; multiplications are much cheaper than divisions).
+struct Bounds {
+  double A, J, inv_A, inv_J;
+  explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
+};
+constexpr double kSixth = 1.0 / 6;
+/// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
+constexpr double kShiftable = 64;
+/// A plan taken on a predicted Newton step must end this close to the goal (in tolerances).
+constexpr double kCertified = 4;
+/// Bound of the bracketed refinement (each one evaluation of D).
+constexpr int kMaxRefinements = 64;
+/// Bound of the warm-started Newton steps from the hint.
+constexpr int kMaxWarmSteps = 6;
+static_assert(JerkProfile::kMaxEvaluations == 2 * kMaxWarmSteps + 3 + kMaxRefinements);
+
+/// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
+/// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
+struct VelocityChange {
+  double s = 1;         ///< +1 raises the velocity past its natural value v0 + a0|a0|/(2J), -1 lowers it
+  double peak = 0;      ///< |peak acceleration|, <= A
+  double rise = 0;      ///< s (duration of the first jerk piece)
+  double hold = 0;      ///< s
+  double fall = 0;      ///< s
+  double distance = 0;  ///< units
+  double magnitude = 0;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
+};
+
+VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k) {
+  const double A = k.A, J = k.J;
+  VelocityChange c;
+  c.s = v1 >= v0 + 0.5 * a0 * std::abs(a0) * k.inv_J ? 1.0 : -1.0;
+  // In the frame where the change raises the velocity: w = s v, b = s a.
+  const double b0 = c.s * a0;
+  const double w0 = c.s * v0;
+  const double dw = c.s * (v1 - v0);
+  // Velocity gained: (peak² - b0²)/(2J) rising, peak·hold, peak²/(2J) falling.
+  const double peak_squared = std::max(0.0, J * dw + 0.5 * b0 * b0);
+  if (peak_squared <= A * A) {
+    c.peak = std::sqrt(peak_squared);
+  } else {
+    c.peak = A;
+    c.hold = std::max(0.0, (dw - 0.5 * (2 * A * A - b0 * b0) * k.inv_J) * k.inv_A);
+  }
+  // peak >= b0 but for rounding, which would leave the change ending with a != 0.
+  c.peak = std::max(c.peak, b0);
+  c.rise = (c.peak - b0) * k.inv_J;
+  c.fall = c.peak * k.inv_J;
+  const double t1 = c.rise, t2 = c.hold, t3 = c.fall, m = c.peak;
+  double w = w0;
+  double x = t1 * (w + t1 * (0.5 * b0 + kSixth * J * t1));
+  w += t1 * (b0 + 0.5 * J * t1);
+  x += t2 * (w + 0.5 * m * t2);
+  w += m * t2;
+  x += t3 * (w + t3 * (0.5 * m - kSixth * J * t3));
+  c.distance = c.s * x;
+  const double t = t1 + t2 + t3;
+  c.magnitude = (std::abs(w0) + m * t) * t;
+  return c;
+}
+
+/// The peak acceleration of the time-optimal stop from (v, 0): sqrt(J|v|), at most A.
+double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * std::abs(v)), k.A); }
+
+/// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp: for a change to
+/// v1 with peak m, d distance/d v1 = s v1/m + m/(2J); the stop from vp covers vp T/2 with
+/// T = m/J + |vp|/m, of slope |vp|/m + m/(2J).
+struct Reach {
+  double distance = 0;
+  double slope = 0;
+  double magnitude = 0;  ///< the distance is exact to a few ulps of this
+};
+
+Reach reach(double v0, double a0, double vp, const Bounds& k) {
+  const VelocityChange c = velocity_change(v0, a0, vp, k);
+  Reach r;
+  r.distance = c.distance;
+  r.magnitude = c.magnitude;
+  r.slope = c.peak > 0 ? c.s * vp / c.peak + 0.5 * c.peak * k.inv_J : std::numeric_limits<double>::infinity();
+  const double m = stop_peak(vp, k);
+  if (m > 0) {
+    const double duration = m * k.inv_J + std::abs(vp) / m;
+    r.distance += 0.5 * vp * duration;
+    r.magnitude += std::abs(vp) * duration;
+    r.slope += std::abs(vp) / m + 0.5 * m * k.inv_J;
+  }
+  return r;
+}
+
+MotionState advance(MotionState s, double t, double jerk) {
+  s.p += t * (s.v + t * (s.a / 2 + t * jerk / 6));
+  s.v += t * (s.a + t * jerk / 2);
+  s.a += t * jerk;
+  return s;
+}
+
+}  // namespace
+
+double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
+  const double a = std::clamp(s.a, -limits.acceleration, limits.acceleration);
+  return s.p + velocity_change(s.v, a, 0, Bounds(limits)).distance;
+}
+
+void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint) noexcept {
+  evaluations_ = 0;
+  if (!plan_once(from, goal, limits, hint, true)) plan_once(from, goal, limits, hint, false);
+}
+
+bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept {
+  const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
+  const Bounds bounds(limits);
+  start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
+  goal_ = goal;
+  const double v0 = start_.v, a0 = start_.a;
+  const double d = goal - from.p;
+  // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
+  // the plan is shifted by that onto the goal, below).
+  double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
+  const auto residual = [&](double vp) {
+    ++evaluations_;
+    Reach r = reach(v0, a0, vp, bounds);
+    r.distance -= d;
+    tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
+    return r;
+  };
+
+  // D is increasing for vp beyond both the natural velocity (reached by releasing the
+  // acceleration; computed exactly as velocity_change computes it) and 0; between them (a change
+  // and a stop in the same direction) it may not be.
+  const double natural = std::clamp(v0 + 0.5 * a0 * std::abs(a0) * bounds.inv_J, -V, V);
+  const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
+
+  double vp = std::numeric_limits<double>::quiet_NaN();
+  double cruise = 0;
+  // A re-plan toward the same goal from a state on the last plan has the same peak: try it
+  // first, with a few Newton steps kept on its branch (so that a target that moves a little
+  // each tick costs a few evaluations).
+  bool predicted = false;
+  if (std::isfinite(hint)) {
+    double previous_residual = 0;
+    const double lo = hint >= high ? high : hint <= low ? -V : low;
+    const double hi = hint >= high ? V : hint <= low ? low : high;
+    // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
+    double x = std::clamp(hint, lo, hi);
+    if (x == natural) x = std::nextafter(x, hint >= high ? V : -V);
+    // On a branch that starts at the natural velocity, D grows like sqrt(|vp - natural|) there
+    // (a state on the stopping part of a plan has its root right at that corner): Newton runs in
+    // u = sqrt(|vp - natural|), where D is smooth, as in the bracketed refinement below.
+    const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+    const double dir = lo == natural ? 1.0 : -1.0;
+    const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
+    double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
+    for (int k = 0; k < kMaxWarmSteps; ++k) {
+      const Reach r = residual(x);
+      if (std::abs(x) == V && r.distance * x <= 0) {
+        vp = x;
+        cruise = -r.distance / x;
+        break;
+      }
+      if (std::abs(r.distance) <= tolerance) {
+        vp = x;
+        break;
+      }
+      double next = 0;
+      if (mapped) {
+        const double u_next = std::clamp(u - r.distance / (r.slope * 2 * u * dir), 0.0, u_end);
+        if (!(u_next > 0)) break;  // at the corner itself: the bracketed refinement takes over
+        next = std::clamp(natural + dir * u_next * u_next, lo, hi);
+        u = u_next;
+      } else {
+        next = std::clamp(x - r.distance / r.slope, lo, hi);
+      }
+      if (!(next != x)) break;
+      // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
+      // step. When that predicts a residual well within tolerance, take the step without
+      // evaluating it; the plan's end certifies it below (else the solve runs again in full).
+      if (predict && k > 0 && next > lo && next < hi) {
+        const double K = r.distance / (previous_residual * previous_residual);
+        if (std::abs(K * r.distance * r.distance) <= 0.25 * tolerance) {
+          vp = next;
+          predicted = true;
+          break;
+        }
+      }
+      previous_residual = r.distance;
+      x = next;
+    }
+  }
+  if (!(vp == vp)) {
+    // The branch that holds the root, bracketed as f(lo) <= 0 <= f(hi).
+    double lo = 0, hi = 0, f_lo = 0, f_hi = 0;
+    const Reach at_high = residual(high);
+    if (at_high.distance <= 0) {
+      const Reach at_v = residual(V);
+      if (at_v.distance <= 0) {
+        vp = V;
+        cruise = -at_v.distance / V;
+      }
+      lo = high, f_lo = at_high.distance, hi = V, f_hi = at_v.distance;
+    } else {
+      const Reach at_low = low == high ? at_high : residual(low);
+      if (at_low.distance >= 0) {
+        const Reach at_minus_v = residual(-V);
+        if (at_minus_v.distance >= 0) {
+          vp = -V;
+          cruise = at_minus_v.distance / V;
+        }
+        lo = -V, f_lo = at_minus_v.distance, hi = low, f_hi = at_low.distance;
+      } else {
+        lo = low, f_lo = at_low.distance, hi = high, f_hi = at_high.distance;
+      }
+    }
+    // Safeguarded Newton: a step that leaves the bracket becomes a regula falsi or bisection.
+    // Near vp = natural the distance grows like a square root of vp, so the bracket may close
+    // before the residual does: an end of the bracket that falls short of the goal in the
+    // direction it moves is finished exactly by a short cruise at its velocity (time-optimal but
+    // for that cruise, which is accepted once negligible).
+    const double negligible_s = 1e-9 * (V / A + A / J);
+    const auto finish_short = [&](double x, double f) {
+      if (x == 0 || -f / x < 0 || -f / x > negligible_s) return false;
+      vp = x;
+      cruise = -f / x;
+      return true;
+    };
+    if (!(vp == vp) && std::abs(f_lo) <= tolerance) vp = lo;
+    if (!(vp == vp) && std::abs(f_hi) <= tolerance) vp = hi;
+    if (!(vp == vp) && !finish_short(lo, f_lo) && !finish_short(hi, f_hi)) {
+      // Next to the natural velocity D grows like the square root of |vp - natural|: there the
+      // iteration runs in u = sqrt(|vp - natural|), in which D is smooth.
+      const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+      const double dir = lo == natural ? 1.0 : -1.0;
+      const auto to_vp = [&](double u) { return mapped ? natural + dir * u * u : u; };
+      const auto to_u = [&](double x) { return mapped ? std::sqrt(std::abs(x - natural)) : x; };
+      double u_lo = to_u(lo), u_hi = to_u(hi);
+      const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
+      const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
+      double u = hint > lo && hint < hi ? to_u(hint) : secant();
+      if (!inside(u)) u = 0.5 * (u_lo + u_hi);
+      bool bisect = false;
+      double previous_x = std::numeric_limits<double>::quiet_NaN();
+      for (int k = 0; k < kMaxRefinements; ++k) {
+        const double x = to_vp(u);
+        const Reach r = residual(x);
+        if (std::abs(r.distance) <= tolerance) {
+          vp = x;
+          break;
+        }
+        // In u, steps can go on shrinking the bracket's far side while vp = natural ± u² no
+        // longer changes at all (its last bit is reached): the residual is then as small as vp's
+        // resolution allows. Accept it when the end shift below may absorb it; otherwise stop
+        // (the fallback after the loop keeps the plan exact). Without this the loop ran to its
+        // bound on the same vp (issue: 64 evaluations a tick on some moving-target states).
+        if (x == previous_x) {
+          if (std::abs(r.distance) <= kShiftable * tolerance) vp = x;
+          break;
+        }
+        previous_x = x;
+        if (r.distance < 0) {
+          lo = x, u_lo = u, f_lo = r.distance;
+        } else {
+          hi = x, u_hi = u, f_hi = r.distance;
+        }
+        if (finish_short(x, r.distance)) break;
+        if (std::abs(u_hi - u_lo) <= 2 * DBL_EPSILON * std::max(std::abs(u_lo), std::abs(u_hi))) break;
+        double next = u - r.distance / (mapped ? r.slope * 2 * u * dir : r.slope);
+        if (!inside(next) || next == u) {
+          next = bisect ? 0.5 * (u_lo + u_hi) : secant();
+          if (!inside(next)) next = 0.5 * (u_lo + u_hi);
+          bisect = !bisect;
+        }
+        u = next;
+      }
+      if (!(vp == vp) && lo > 0) {
+        vp = lo;
+        cruise = -f_lo / lo;
+      } else if (!(vp == vp) && hi < 0) {
+        vp = hi;
+        cruise = -f_hi / hi;
+      } else if (!(vp == vp)) {
+        vp = 0.5 * (lo + hi);
+      }
+    }
+  }
+  peak_ = vp;
+
+  const VelocityChange change = velocity_change(v0, a0, vp, bounds);
+  const double m = stop_peak(vp, bounds);
+  const double stop_jerk = vp > 0 ? -J : J;
+  const double stop_ramp = m / J;
+  const double stop_hold = m > 0 ? std::max(0.0, std::abs(vp) / m - m / J) : 0.0;
+  pieces_ = {Piece{change.rise, change.s * J},   Piece{change.hold, 0},     Piece{change.fall, -change.s * J},
+             Piece{cruise, 0},                   Piece{stop_ramp, stop_jerk}, Piece{stop_hold, 0},
+             Piece{stop_ramp, -stop_jerk}};
+  duration_ = 0;
+  for (const Piece& piece : pieces_) duration_ += piece.duration;
+  // The plan's end misses the goal by the solve's last bits: shift the whole plan onto the goal,
+  // so that the position's rounding never accumulates from tick to tick (a shift larger than
+  // rounding, from a solve that did not converge, is left for the next plan to correct).
+  const double miss = goal - follow(duration_).p;
+  if (predicted && !(std::abs(miss) <= kCertified * tolerance)) return false;
+  offset_ = std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
+  return true;
+}
+
+MotionState JerkProfile::at(double t) const noexcept {
+  if (!(t < duration_)) return {goal_, 0, 0};
+  MotionState s = follow(t);
+  s.p += offset_;
+  return s;
+}
+
+MotionState JerkProfile::follow(double t) const noexcept {
+  MotionState s = start_;
+  for (std::size_t i = 0; i < kPieces; ++i) {
+    if (t <= pieces_[i].duration) return advance(s, t, pieces_[i].jerk);
+    s = advance(s, pieces_[i].duration, pieces_[i].jerk);
+    t -= pieces_[i].duration;
+    // The stop was planned from exactly (peak, 0): do not carry the change's rounding into it.
+    if (i == 2 || i == 3) s.v = peak_, s.a = 0;
+  }
+  return s;
+}
+
+}  // namespace avar::control
