@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -312,7 +313,7 @@ TEST(Limiter, NoSampleEverExceedsAnyLimitAndHeldTargetsAreReached) {
       target = u(rng) < 0.05 ? std::numeric_limits<double>::quiet_NaN() : min - 0.5 * range + 2 * range * u(rng);
       const int hold = 1 + static_cast<int>(rng() % 40);
       for (int h = 0; h < hold; ++h, ++tick) {
-        limiter.apply(std::vector<double>{target}, out);
+        limiter.apply(std::span<const double>(&target, 1), out);
         check(tick);
         if (HasFatalFailure()) return;
       }
@@ -321,7 +322,7 @@ TEST(Limiter, NoSampleEverExceedsAnyLimitAndHeldTargetsAreReached) {
     const double margin = std::min(cl.soft_margin, range / 2);
     const double goal = std::clamp(target, cl.min + margin, cl.max - margin);
     for (int h = 0; !(limiter.settled() && out[0] == goal); ++h, ++tick) {
-      limiter.apply(std::vector<double>{target}, out);
+      limiter.apply(std::span<const double>(&target, 1), out);
       check(tick);
       if (HasFatalFailure()) return;
       // At most: a stop, then a move across the range.
