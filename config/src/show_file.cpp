@@ -1,8 +1,10 @@
 #include "avar/config/show_file.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include "avar/config/yaml_support.hpp"
 #include "avar/core/format.hpp"
@@ -111,6 +113,30 @@ void read_orient(const YamlRef& node, const std::string& what, playback::PathSpe
   }
 }
 
+/// A path point: [x, y, z], or (bezier paths) {at: [x, y, z], left: [x, y, z], right: [x, y, z]}
+/// with each handle optional (automatic when absent).
+void read_path_point(const YamlRef& node, const std::string& what, playback::PathSpec& spec) {
+  const std::string pointwhat = "a point of the path of " + what;
+  spec.point_where.push_back(node.where());
+  if (!node.is_map()) {
+    spec.points.push_back(read_vector(node, pointwhat + " (m)"));
+    spec.left.emplace_back();
+    spec.right.emplace_back();
+    return;
+  }
+  node.expect_only_keys({"at", "left", "right"}, pointwhat);
+  spec.points.push_back(read_vector(node.at("at", pointwhat + " ({at: [x, y, z], left: [x, y, z], right: [x, y, z]})"), pointwhat + " (m)"));
+  for (const auto& [side, handles] : {std::pair{"left", &spec.left}, std::pair{"right", &spec.right}}) {
+    handles->emplace_back();
+    const auto h = node.find(side);
+    if (!h) continue;
+    if (spec.spline != playback::PathSpline::bezier)
+      h->fail("field '" + std::string(side) + "' (a handle) does not belong to a " + to_string(spec.spline) +
+              " path; expected handles only on bezier paths");
+    handles->back() = read_vector(*h, "the " + std::string(side) + " handle of " + pointwhat + " (m)");
+  }
+}
+
 /// path: {points, spline, tension, continuity, bias, from, to, speed, orient}
 playback::PathTrack read_path(const YamlRef& node, double duration, const std::string& what, const std::string& effector) {
   const std::string pwhat = "the path of " + what;
@@ -118,16 +144,15 @@ playback::PathTrack read_path(const YamlRef& node, double duration, const std::s
   node.expect_only_keys({"points", "spline", "tension", "continuity", "bias", "from", "to", "speed", "orient"}, pwhat);
   playback::PathSpec spec;
   spec.where = node.where();
-  const YamlRef points = node.at("points", pwhat);
-  points.expect_sequence("the points of " + what + " (a list of [x, y, z] in metres)");
-  if (points.size() < 2)
-    points.fail("expected the path of " + what + " to have at least 2 points, found " + std::to_string(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    spec.points.push_back(read_vector(points[i], "a point of the path of " + what + " (m)"));
-    spec.point_where.push_back(points[i].where());
-  }
   if (auto spline = node.find("spline"))
     spec.spline = read_name(*spline, "path spline", playback::path_spline_from_name, playback::path_spline_names());
+  const YamlRef points = node.at("points", pwhat);
+  points.expect_sequence("the points of " + what + " (a list of [x, y, z] in metres, or on bezier paths {at, left, right})");
+  if (points.size() < 2)
+    points.fail("expected the path of " + what + " to have at least 2 points, found " + std::to_string(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) read_path_point(points[i], what, spec);
+  if (std::all_of(spec.left.begin(), spec.left.end(), [](const auto& h) { return !h; })) spec.left.clear();
+  if (std::all_of(spec.right.begin(), spec.right.end(), [](const auto& h) { return !h; })) spec.right.clear();
   const bool tcb = spec.spline == playback::PathSpline::kochanek_bartels;
   for (const auto& [field, value, belongs] : {std::tuple{"tension", &spec.tension, tcb || spec.spline == playback::PathSpline::cardinal},
                                               std::tuple{"continuity", &spec.continuity, tcb}, std::tuple{"bias", &spec.bias, tcb}}) {

@@ -87,7 +87,25 @@ void write_vector(YAML::Emitter& y, const Eigen::Vector3d& v) { y << YAML::Flow 
 
 void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
   y << YAML::BeginMap << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (const Eigen::Vector3d& p : path.points) write_vector(y, p);
+  for (std::size_t i = 0; i < path.points.size(); ++i) {
+    const auto left = path.left.empty() ? std::nullopt : path.left[i];
+    const auto right = path.right.empty() ? std::nullopt : path.right[i];
+    if (!left && !right) {
+      write_vector(y, path.points[i]);
+      continue;
+    }
+    y << YAML::BeginMap << YAML::Key << "at" << YAML::Value;
+    write_vector(y, path.points[i]);
+    if (left) {
+      y << YAML::Key << "left" << YAML::Value;
+      write_vector(y, *left);
+    }
+    if (right) {
+      y << YAML::Key << "right" << YAML::Value;
+      write_vector(y, *right);
+    }
+    y << YAML::EndMap;
+  }
   y << YAML::EndSeq << YAML::Key << "spline" << YAML::Value << playback::to_string(path.spline);
   if (path.spline == playback::PathSpline::cardinal || path.spline == playback::PathSpline::kochanek_bartels)
     y << YAML::Key << "tension" << YAML::Value << path.tension;

@@ -11,7 +11,7 @@
 namespace avar::playback {
 namespace {
 
-constexpr const char* kSplineNames[] = {"linear", "catmull_rom", "cardinal", "kochanek_bartels", "bspline"};
+constexpr const char* kSplineNames[] = {"linear", "catmull_rom", "cardinal", "kochanek_bartels", "bspline", "bezier"};
 
 Interpolation interpolation_of(PathSpline spline) {
   switch (spline) {
@@ -20,6 +20,7 @@ Interpolation interpolation_of(PathSpline spline) {
     case PathSpline::cardinal: return Interpolation::cardinal;
     case PathSpline::kochanek_bartels: return Interpolation::kochanek_bartels;
     case PathSpline::bspline: return Interpolation::bspline;
+    case PathSpline::bezier: break;  // built from its handles, not from the curve engine
   }
   return Interpolation::linear;
 }
@@ -78,7 +79,7 @@ std::optional<PathSpline> path_spline_from_name(std::string_view name) {
 
 const char* to_string(PathSpline spline) { return kSplineNames[static_cast<std::size_t>(spline)]; }
 
-const char* path_spline_names() { return "linear, catmull_rom, cardinal, kochanek_bartels, bspline"; }
+const char* path_spline_names() { return "linear, catmull_rom, cardinal, kochanek_bartels, bspline, bezier"; }
 
 /// The path as the arc-length machinery sees it.
 class PathTrack::Parametric final : public ParametricCurve {
@@ -106,6 +107,18 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
   if (!spec.look_at.allFinite()) throw InputError(spec.where, "expected a finite look_at point");
   if (std::all_of(spec.points.begin(), spec.points.end(), [&](const Eigen::Vector3d& p) { return p == spec.points.front(); }))
     throw InputError(spec.where, "a path's points are all the same point; expected a path of non-zero length");
+  const auto where_of = [&](std::size_t i) { return i < spec.point_where.size() ? spec.point_where[i] : spec.where; };
+  for (const auto* handles : {&spec.left, &spec.right}) {
+    if (handles->empty()) continue;
+    if (spec.spline != PathSpline::bezier)
+      throw InputError(spec.where, std::string("handles do not belong to a ") + to_string(spec.spline) + " path; expected them only on bezier paths");
+    if (handles->size() != spec.points.size())
+      throw InputError(spec.where, "expected one handle entry per path point (" + std::to_string(spec.points.size()) + "), found " +
+                                       std::to_string(handles->size()));
+    for (std::size_t i = 0; i < handles->size(); ++i)
+      if ((*handles)[i] && !(*handles)[i]->allFinite()) throw InputError(where_of(i), "expected a path handle of finite numbers");
+  }
+  if (spec.spline == PathSpline::bezier) return bezier_cubics(spec);
 
   const std::array<Curve, 3> coordinates = {coordinate_curve(spec, 0), coordinate_curve(spec, 1), coordinate_curve(spec, 2)};
   // Every supported spline is a cubic of u on each segment: four interior samples determine it.
@@ -123,6 +136,41 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
       const Eigen::Vector4d c = inverse * samples;
       for (std::size_t k = 0; k < 4; ++k) cubics[i][k][axis] = c[static_cast<Eigen::Index>(k)];
     }
+  }
+  return cubics;
+}
+
+std::vector<PathTrack::Cubic> PathTrack::bezier_cubics(const PathSpec& spec) {
+  const std::vector<Eigen::Vector3d>& p = spec.points;
+  const std::size_t n = p.size();
+  const auto given = [](const std::vector<std::optional<Eigen::Vector3d>>& handles, std::size_t i) {
+    return handles.empty() ? std::nullopt : handles[i];
+  };
+  const auto unit_chord = [&](std::size_t from) -> Eigen::Vector3d {
+    const Eigen::Vector3d chord = p[from + 1] - p[from];
+    const double length = chord.norm();
+    return length > 0 ? Eigen::Vector3d(chord / length) : Eigen::Vector3d::Zero();
+  };
+  const auto auto_direction = [&](std::size_t i) -> Eigen::Vector3d {
+    const Eigen::Vector3d sum = unit_chord(i - 1) + unit_chord(i);
+    const double length = sum.norm();
+    return length > 1e-12 ? Eigen::Vector3d(sum / length) : Eigen::Vector3d::Zero();
+  };
+  const auto right_of = [&](std::size_t i) -> Eigen::Vector3d {
+    if (const auto h = given(spec.right, i)) return *h;
+    if (i == 0) return p[0] + (p[1] - p[0]) / 3;
+    return p[i] + auto_direction(i) * (p[i + 1] - p[i]).norm() / 3;
+  };
+  const auto left_of = [&](std::size_t i) -> Eigen::Vector3d {
+    if (const auto h = given(spec.left, i)) return *h;
+    if (i == n - 1) return p[i] + (p[i - 1] - p[i]) / 3;
+    return p[i] - auto_direction(i) * (p[i] - p[i - 1]).norm() / 3;
+  };
+  std::vector<Cubic> cubics(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const Eigen::Vector3d a = p[i], b = right_of(i), c = left_of(i + 1), d = p[i + 1];
+    // Bernstein to power form: (1-s)^3 a + 3 s (1-s)^2 b + 3 s^2 (1-s) c + s^3 d.
+    cubics[i] = {a, 3 * (b - a), 3 * (a - 2 * b + c), d - a + 3 * (b - c)};
   }
   return cubics;
 }

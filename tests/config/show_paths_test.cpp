@@ -84,7 +84,7 @@ TEST(ShowPaths, BadPathsAndKeysAreRejectedWithWhereAndWhat) {
   EXPECT_EQ(error_of(replace(kShow, "[0.3, 0.1, 0.3]", "[0.3, 0.1]")),
             ":5:31: expected a point of the path of target 'hand' (m) to have 3 numbers [x, y, z], found 2");
   EXPECT_EQ(error_of(replace(kShow, "spline: catmull_rom", "spline: nurbs")),
-            ":6:15: unknown path spline 'nurbs'; expected one of: linear, catmull_rom, cardinal, kochanek_bartels, bspline");
+            ":6:15: unknown path spline 'nurbs'; expected one of: linear, catmull_rom, cardinal, kochanek_bartels, bspline, bezier");
   EXPECT_EQ(error_of(replace(kShow, "to: 4.0", "to: 1.0")),
             ":8:11: expected the path's end time `to` (1 s) to come after its start time `from` (1 s)");
   EXPECT_EQ(error_of(replace(kShow, "to: 4.0", "to: 7.0")), ":8:11: path end time 7 s is outside the show, which runs from 0 to 6 s");
@@ -126,8 +126,47 @@ TEST(ShowPaths, BadPathsAndKeysAreRejectedWithWhereAndWhat) {
             "to have either quaternion or euler, not neither");
 }
 
+/// The hand's path as a Bezier: handles on some points, automatic on the others.
+const std::string kBezierShow = replace(replace(kShow, "[[0.3, 0, 0.2], [0.3, 0.1, 0.3], [0.2, 0.2, 0.3], [0.1, 0.2, 0.2]]",
+                                                "[[0.3, 0, 0.2], {at: [0.3, 0.1, 0.3], left: [0.31, 0.05, 0.28], right: [0.29, 0.15, 0.32]},\n"
+                                                "               {at: [0.2, 0.2, 0.3], right: [0.17, 0.21, 0.29]}, [0.1, 0.2, 0.2]]"),
+                                        "spline: catmull_rom", "spline: bezier");
+
+TEST(ShowPaths, BezierPathsLoadWithHandlesAndAutomaticHandles) {
+  const playback::Show show = load(kBezierShow);
+  const playback::PathTrack& path = *show.targets[0].path;
+  const playback::PathSpec& spec = path.spec();
+  EXPECT_EQ(spec.spline, playback::PathSpline::bezier);
+  ASSERT_EQ(spec.left.size(), 4u);
+  ASSERT_EQ(spec.right.size(), 4u);
+  EXPECT_FALSE(spec.left[0] || spec.right[0] || spec.left[2] || spec.left[3] || spec.right[3]);
+  EXPECT_EQ(*spec.left[1], Eigen::Vector3d(0.31, 0.05, 0.28));
+  EXPECT_EQ(*spec.right[2], Eigen::Vector3d(0.17, 0.21, 0.29));
+  EXPECT_TRUE(path.position_at(1).isApprox(Eigen::Vector3d(0.3, 0.1, 0.3), 1e-14));
+  EXPECT_TRUE(path.derivative_at(1).isApprox(3 * (Eigen::Vector3d(0.29, 0.15, 0.32) - Eigen::Vector3d(0.3, 0.1, 0.3)), 1e-12));
+  EXPECT_TRUE(show.targets[0].path->sample(5).position.isApprox(Eigen::Vector3d(0.1, 0.2, 0.2), 1e-12));
+  // Without any handle, the plain form gives automatic handles and no handle lists.
+  const playback::Show plain = load(replace(kShow, "spline: catmull_rom", "spline: bezier"));
+  EXPECT_TRUE(plain.targets[0].path->spec().left.empty());
+  EXPECT_TRUE(plain.targets[0].path->spec().right.empty());
+}
+
+TEST(ShowPaths, BadBezierPointsAreRejectedWithWhereAndWhat) {
+  EXPECT_EQ(error_of(replace(kBezierShow, "left: [0.31, 0.05, 0.28]", "left: [0.31, .nan, 0.28]")),
+            ":5:66: expected the left handle of a point of the path of target 'hand' (m) to be a finite number, found '.nan'");
+  EXPECT_EQ(error_of(replace(kBezierShow, "right: [0.17, 0.21, 0.29]", "right: [0.17, 0.21]")),
+            ":6:45: expected the right handle of a point of the path of target 'hand' (m) to have 3 numbers [x, y, z], found 2");
+  EXPECT_EQ(error_of(replace(kBezierShow, "spline: bezier", "spline: catmull_rom")),
+            ":5:59: field 'left' (a handle) does not belong to a catmull_rom path; expected handles only on bezier paths");
+  EXPECT_EQ(error_of(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{right")),
+            ":6:16: missing field 'at' in a point of the path of target 'hand' ({at: [x, y, z], left: [x, y, z], right: [x, y, z]})");
+  EXPECT_EQ(error_of(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{at: [0.2, 0.2, 0.3], middle")),
+            ":6:38: unknown field 'middle' in a point of the path of target 'hand'; expected one of: at, left, right");
+}
+
 TEST(ShowPaths, PathTargetsAndOrientationKeysSurviveAWriterRoundTripExactly) {
-  for (const std::string& text : {kShow, replace(kShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: {look_at: [1, 0, 0]}"),
+  for (const std::string& text : {kShow, kBezierShow, replace(kBezierShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
+                                  replace(kShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: {look_at: [1, 0, 0]}"),
                                   replace(replace(kShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
                                           "spline: catmull_rom", "spline: kochanek_bartels\n      tension: 0.2\n      bias: -0.3")}) {
     const playback::Show original = load(text);

@@ -77,7 +77,7 @@ TEST(PathTrack, SegmentCubicsReproduceEverySplineOfTheCurveEngine) {
 }
 
 TEST(PathTrack, LinearSpeedCoversEqualDistancesInEqualTimesWithinTheArcLengthBound) {
-  for (PathSpline spline : {PathSpline::catmull_rom, PathSpline::bspline, PathSpline::linear}) {
+  for (PathSpline spline : {PathSpline::catmull_rom, PathSpline::bspline, PathSpline::linear, PathSpline::bezier}) {
     const PathTrack path(spec_of(figure_eight(), spline));
     const Measured measured(path);
     constexpr int kSteps = 300;
@@ -211,7 +211,75 @@ TEST(PathTrack, BadPathsAreRejectedAtTheirLocation) {
   no_up.up = Eigen::Vector3d::Zero();
   EXPECT_NE(message(no_up).find("up vector"), std::string::npos);
   EXPECT_EQ(path_spline_from_name("hermite"), std::nullopt);
-  EXPECT_EQ(path_spline_from_name("bezier"), std::nullopt);
+  EXPECT_EQ(path_spline_from_name("bezier"), PathSpline::bezier);
+  PathSpec bad_handle = spec_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, PathSpline::bezier);
+  bad_handle.point_where = {{"path.yaml", 8, 7}, {"path.yaml", 9, 7}, {"path.yaml", 10, 7}};
+  bad_handle.right = {std::nullopt, Eigen::Vector3d(1, NAN, 0), std::nullopt};
+  EXPECT_EQ(message(bad_handle), "path.yaml:9:7: expected a path handle of finite numbers");
+  PathSpec not_bezier = bad_handle;
+  not_bezier.spline = PathSpline::catmull_rom;
+  not_bezier.right = {std::nullopt, Eigen::Vector3d(1, 1, 0), std::nullopt};
+  EXPECT_EQ(message(not_bezier), "path.yaml:7:5: handles do not belong to a catmull_rom path; expected them only on bezier paths");
+  PathSpec short_handles = bad_handle;
+  short_handles.left = {std::nullopt};
+  EXPECT_EQ(message(short_handles), "path.yaml:7:5: expected one handle entry per path point (3), found 1");
+}
+
+/// dp/du at the end of the segment before point i (u -> i from below).
+Eigen::Vector3d derivative_before(const PathTrack& path, std::size_t i) {
+  return path.derivative_at(std::nextafter(static_cast<double>(i), 0.0));
+}
+
+TEST(PathTrack, BezierPassesThroughItsPointsAndLeavesThemAlongTheirHandles) {
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {0.4, 0.1, 0.2}, {0.6, 0.5, 0.1}, {0.3, 0.8, 0.4}};
+  PathSpec spec = spec_of(points, PathSpline::bezier);
+  const Eigen::Vector3d along(0.2, 0.1, -0.3);  // aligned handles at point 1: left behind, right ahead
+  spec.left = {Eigen::Vector3d(-5, -5, -5), points[1] - 0.5 * along, std::nullopt, Eigen::Vector3d(0.3, 0.7, 0.5)};
+  spec.right = {Eigen::Vector3d(0.1, -0.1, 0), points[1] + 1.5 * along, Eigen::Vector3d(0.7, 0.6, 0.3), std::nullopt};
+  const PathTrack path(spec);
+  ASSERT_EQ(path.segments(), 3u);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    EXPECT_TRUE(path.position_at(static_cast<double>(i)).isApprox(points[i], 1e-14)) << "point " << i;
+  // The Bezier derivative at an end is three times the vector to the handle, on both sides.
+  EXPECT_TRUE(path.derivative_at(0).isApprox(3 * (*spec.right[0] - points[0]), 1e-14));
+  EXPECT_TRUE(path.derivative_at(1).isApprox(3 * 1.5 * along, 1e-14));
+  EXPECT_TRUE(derivative_before(path, 1).isApprox(3 * 0.5 * along, 1e-9));
+  const Eigen::Vector3d across = (*spec.right[1] - *spec.left[1]).normalized();
+  EXPECT_NEAR(path.derivative_at(1).normalized().dot(across), 1, 1e-14);
+  EXPECT_NEAR(derivative_before(path, 1).normalized().dot(across), 1, 1e-9);
+  EXPECT_TRUE(derivative_before(path, 3).isApprox(3 * (points[3] - *spec.left[3]), 1e-9));
+  // Golden midpoint of segment 1: (P1 + 3 R1 + 3 L2 + P2) / 8, L2 automatic.
+  const Eigen::Vector3d a = (points[2] - points[1]).normalized(), b = (points[3] - points[2]).normalized();
+  const Eigen::Vector3d left2 = points[2] - (a + b).normalized() * (points[2] - points[1]).norm() / 3;
+  EXPECT_TRUE(path.position_at(1.5).isApprox((points[1] + 3 * *spec.right[1] + 3 * left2 + points[2]) / 8, 1e-14));
+  // The first left and last right handles do not shape the path.
+  PathSpec unused = spec;
+  unused.left[0] = Eigen::Vector3d(9, 9, 9);
+  unused.right[3] = Eigen::Vector3d(-9, 9, 9);
+  const PathTrack same(unused);
+  for (double u = 0; u <= 3; u += 0.05) ASSERT_EQ(same.position_at(u), path.position_at(u)) << u;
+}
+
+TEST(PathTrack, BezierAutoHandlesAreC1InChordLengthAtInteriorPointsAndAimAtTheNeighbourAtTheEnds) {
+  const unsigned seed = std::random_device{}();
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  for (int family = 0; family < 12; ++family) {
+    std::vector<Eigen::Vector3d> points(3 + family % 6);
+    for (Eigen::Vector3d& p : points) p = {coordinate(random), coordinate(random), coordinate(random)};
+    const PathTrack path(spec_of(points, PathSpline::bezier));
+    const std::size_t last = points.size() - 1;
+    ASSERT_TRUE(path.derivative_at(0).isApprox(points[1] - points[0], 1e-12)) << "seed " << seed;
+    ASSERT_TRUE(derivative_before(path, last).isApprox(points[last] - points[last - 1], 1e-9)) << "seed " << seed;
+    for (std::size_t i = 1; i < last; ++i) {
+      const double chord_before = (points[i] - points[i - 1]).norm(), chord_after = (points[i + 1] - points[i]).norm();
+      const Eigen::Vector3d before = derivative_before(path, i) / chord_before, after = path.derivative_at(static_cast<double>(i)) / chord_after;
+      ASSERT_LT((before - after).norm(), 1e-9) << "seed " << seed << " family " << family << " point " << i;
+      const Eigen::Vector3d direction = ((points[i] - points[i - 1]) / chord_before + (points[i + 1] - points[i]) / chord_after).normalized();
+      ASSERT_TRUE(after.isApprox(direction, 1e-12)) << "seed " << seed << " point " << i;  // unit: |dp/du| is the chord
+      ASSERT_TRUE(path.position_at(static_cast<double>(i)).isApprox(points[i], 1e-12)) << "seed " << seed;
+    }
+  }
 }
 
 }  // namespace

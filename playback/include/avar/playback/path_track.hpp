@@ -8,8 +8,24 @@
 // kochanek_bartels or bspline. Every one of these is a cubic polynomial of u on each segment
 // [i, i+1], so building recovers each segment's cubic exactly from four samples of the curve
 // engine (no spline logic is repeated here) and evaluates position and derivatives from it.
-// (Bezier keys are not offered: Blender's handle correction makes their segments rational in u,
-// not cubic.)
+// (The curve engine's Bezier keys are not used: Blender's handle correction makes their segments
+// rational in u, not cubic.)
+//
+// bezier: a 3-D cubic Bezier as Blender's curve objects have it. Segment i is the cubic with
+// control points P_i, R_i, L_{i+1}, P_{i+1} (R the right handle, L the left handle), written
+// directly in power form. A handle not given is automatic:
+// - interior point P with neighbours A (before) and B (after): direction d = the normalised sum of
+//   the unit chords (P - A)/|P - A| + (B - P)/|B - P| (Blender's BEZT auto-handle direction; a
+//   chord of zero length adds nothing), L = P - d |P - A| / 3, R = P + d |B - P| / 3. Blender
+//   scales by 1/2.5614 of the chord instead of 1/3. When d vanishes (the path doubles back) the
+//   handle sits on the point.
+// - end points: the handle toward the neighbour, R_0 = P_0 + (P_1 - P_0) / 3 and
+//   L_n = P_n + (P_{n-1} - P_n) / 3.
+// Automatic handles make the tangent direction continuous at every interior point, and dp/du
+// divided by the adjacent chord's length is the same from both sides (C1 in the chord-length
+// parameter; C1 in u itself only where the two chords are equally long). Since the point is moved
+// by distance, its velocity in time is continuous either way. The first point's left handle and
+// the last point's right handle are kept (for writing back) but do not shape the path.
 //
 // Speed. An ArcLengthTable (tolerance kArcLengthTolerance metres) maps travelled distance to u;
 // the distance at show time t is length * s((t - from) / (to - from)), s the distance-time
@@ -47,8 +63,8 @@
 
 namespace avar::playback {
 
-enum class PathSpline : std::uint8_t { linear, catmull_rom, cardinal, kochanek_bartels, bspline };
-/// "linear", "catmull_rom", "cardinal", "kochanek_bartels", "bspline"; nullopt otherwise.
+enum class PathSpline : std::uint8_t { linear, catmull_rom, cardinal, kochanek_bartels, bspline, bezier };
+/// "linear", "catmull_rom", "cardinal", "kochanek_bartels", "bspline", "bezier"; nullopt otherwise.
 std::optional<PathSpline> path_spline_from_name(std::string_view name);
 const char* to_string(PathSpline spline);
 const char* path_spline_names();  ///< comma separated, for error messages
@@ -59,6 +75,9 @@ enum class PathOrientation : std::uint8_t { none, frenet, tangent, look_at };
 struct PathSpec {
   std::vector<Eigen::Vector3d> points;  ///< metres, base frame; at least 2
   std::vector<SourceLocation> point_where;
+  /// bezier only: each empty (no handles given) or one entry per point, nullopt where the handle
+  /// is automatic. Metres, base frame.
+  std::vector<std::optional<Eigen::Vector3d>> left, right;
   PathSpline spline = PathSpline::catmull_rom;
   double tension = 0;     ///< cardinal, kochanek_bartels
   double continuity = 0;  ///< kochanek_bartels
@@ -87,8 +106,10 @@ class PathTrack {
   static constexpr double kMinCurvature = 1e-6;
 
   /// Validates and builds. Throws InputError (at the spec, or at the offending point) when there
-  /// are fewer than 2 points, a coordinate is not finite, to <= from or a time is not finite, the
-  /// up vector is zero, or the path has zero length (all points equal).
+  /// are fewer than 2 points, a coordinate or handle is not finite, handles are given for a spline
+  /// that is not bezier or their count differs from the points', to <= from or a time is not
+  /// finite, the up vector is zero, or all points are the same point (even when handles would
+  /// give the path length).
   explicit PathTrack(PathSpec spec);
 
   /// The point (and orientation) at show time t (seconds). Real-time safe, thread-safe.
@@ -111,6 +132,7 @@ class PathTrack {
   using Cubic = std::array<Eigen::Vector3d, 4>;
   class Parametric;
   static std::vector<Cubic> build_cubics(const PathSpec& spec);
+  static std::vector<Cubic> bezier_cubics(const PathSpec& spec);
   void build_frames();
   std::size_t locate(double& u) const noexcept;
 
