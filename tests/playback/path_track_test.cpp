@@ -261,11 +261,12 @@ TEST(PathTrack, BezierPassesThroughItsPointsAndLeavesThemAlongTheirHandles) {
 }
 
 TEST(PathTrack, BezierAutoHandlesAreC1InChordLengthAtInteriorPointsAndAimAtTheNeighbourAtTheEnds) {
-  const unsigned seed = std::random_device{}();
+  const unsigned seed = 20261201;
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> coordinate(-1, 1);
-  for (int family = 0; family < 12; ++family) {
-    std::vector<Eigen::Vector3d> points(3 + family % 6);
+  // Few families: each builds a whole path (arc-length table, frames), slow in sanitizer builds.
+  for (int family = 0; family < 4; ++family) {
+    std::vector<Eigen::Vector3d> points(3 + family);
     for (Eigen::Vector3d& p : points) p = {coordinate(random), coordinate(random), coordinate(random)};
     const PathTrack path(spec_of(points, PathSpline::bezier));
     const std::size_t last = points.size() - 1;
