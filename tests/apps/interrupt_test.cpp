@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../support/child_process.hpp"
+#include "../support/csv_rows.hpp"
 #include "../support/temp_file.hpp"
 
 namespace avar::app {
@@ -22,10 +23,7 @@ std::vector<std::string> last_row(const std::string& csv_path) {
   std::ifstream csv(csv_path);
   std::string line, last;
   while (std::getline(csv, line)) last = line;
-  std::vector<std::string> cells;
-  std::stringstream in(last);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  return cells;
+  return testing::csv_cells(last);
 }
 
 TEST(Interrupt, FirstCtrlCEasesToRestAndExits130) {

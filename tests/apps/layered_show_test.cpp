@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../support/cli_run.hpp"
+#include "../support/csv_rows.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
@@ -24,22 +25,11 @@ const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
 
 using Result = testing::CliResult;
 
-std::vector<std::vector<std::string>> rows_of(std::istream& lines) {
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> cells;
-    std::stringstream in(line);
-    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(LayeredShow, SampleWritesTheComposedChannelsOverTheRigsRestPose) {
   const Result r = testing::run_avar({"sample", kShow, "--rig", kRig, "--rate", "20"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   std::stringstream out(r.out);
-  const auto rows = rows_of(out);
+  const auto rows = testing::csv_rows(out);
   // The show's tracks first, then the channels its layers touch, in file order.
   ASSERT_EQ(rows[0], (std::vector<std::string>{"seconds", "lid_left", "lid_right", "neck_pan", "neck_tilt", "eyes_pan", "jaw"}));
   ASSERT_EQ(rows.size(), 1u + 14 * 20 + 1);
@@ -80,7 +70,7 @@ TEST(LayeredShow, PlaysOnTheSimulatedHeadFollowingTheComposedTargets) {
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   EXPECT_NE(r.out.find("deadline misses 0"), std::string::npos) << r.out;
   std::ifstream csv(trace);
-  const auto rows = rows_of(csv);
+  const auto rows = testing::csv_rows(csv);
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
   };

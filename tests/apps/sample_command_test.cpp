@@ -10,6 +10,7 @@
 
 #include "../support/child_process.hpp"
 #include "../support/cli_run.hpp"
+#include "../support/csv_rows.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/cli.hpp"
 #include "avar/config/show_file.hpp"
@@ -38,23 +39,11 @@ Result sample(std::vector<std::string> args) {
   return testing::run_avar(std::move(args));
 }
 
-std::vector<std::vector<std::string>> rows_of(const std::string& csv) {
-  std::vector<std::vector<std::string>> rows;
-  std::stringstream lines(csv);
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> cells;
-    std::stringstream in(line);
-    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(SampleCommand, WritesEveryChannelOfTheShowOnTheGridWithTheCurvesValuesExactly) {
   const Result r = sample({kShow, "--rate", "4"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  const auto rows = rows_of(r.out);
+  const auto rows = testing::csv_rows(r.out);
   const playback::Show show = config::load_show_file(kShow);
   ASSERT_EQ(rows.size(), 1u + 12 * 4 + 1);  // header, then 0, 0.25, ..., 12 s
   ASSERT_EQ(rows[0].size(), 1 + show.tracks.size());
@@ -86,23 +75,23 @@ TEST(SampleCommand, PrintsGridTimesAsTheirShortDecimalAndIncludesTheEnd) {
   const Result r = sample({path, "--step", "0.1", "--from", "-0.3", "--to", "0.3", "--channels", "ramp"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   std::vector<std::string> times;
-  for (const auto& row : rows_of(r.out)) times.push_back(row[0]);
+  for (const auto& row : testing::csv_rows(r.out)) times.push_back(row[0]);
   EXPECT_EQ(times, (std::vector<std::string>{"seconds", "-0.3", "-0.2", "-0.1", "0", "0.1", "0.2", "0.3"}));
   // 1/3 s does not land on 2 s; the last row is the last grid time before it.
   const Result thirds = sample({path, "--rate", "3", "--to", "2", "--channels", "ramp"});
   ASSERT_EQ(thirds.code, kExitOk) << thirds.err;
-  const auto rows = rows_of(thirds.out);
+  const auto rows = testing::csv_rows(thirds.out);
   ASSERT_EQ(rows.size(), 1u + 7);
   EXPECT_EQ(rows.back()[0], "2");
   const Result sevenths = sample({path, "--rate", "7", "--to", "0.5", "--channels", "ramp"});
-  EXPECT_EQ(rows_of(sevenths.out).back()[0], "0.428571429");
+  EXPECT_EQ(testing::csv_rows(sevenths.out).back()[0], "0.428571429");
 }
 
 TEST(SampleCommand, DefaultsToOneHundredHertzOverTheShow) {
   const std::string path = testing::write_temp_file("small.yaml", kSmallShow);
   const Result r = sample({path});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  const auto rows = rows_of(r.out);
+  const auto rows = testing::csv_rows(r.out);
   ASSERT_EQ(rows.size(), 1u + 201);
   EXPECT_EQ(rows[1][0], "0");
   EXPECT_EQ(rows[2][0], "0.01");
@@ -162,7 +151,7 @@ TEST(SampleCommand, TheBinaryWritesCsvToStandardOutputAndTeachesInItsHelp) {
   testing::ChildProcess run({AVAR_BINARY, "sample", kShow, "--rate", "1", "--channels", "jaw"});
   ASSERT_TRUE(run.started());
   EXPECT_EQ(run.wait(), kExitOk) << run.err();
-  const auto rows = rows_of(run.out());
+  const auto rows = testing::csv_rows(run.out());
   ASSERT_EQ(rows.size(), 1u + 13);
   EXPECT_EQ(rows[0], (std::vector<std::string>{"seconds", "jaw"}));
   EXPECT_EQ(rows[8], (std::vector<std::string>{"7", "4"}));  // the jaw key at 7 s
