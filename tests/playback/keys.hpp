@@ -2,10 +2,12 @@
 // Building keys and curves in playback tests.
 
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "avar/playback/curve.hpp"
+#include "avar/playback/track.hpp"
 
 namespace avar::playback::testing {
 
@@ -30,5 +32,12 @@ inline RawCurve raw_curve(std::vector<RawKey> keys) {
 }
 
 inline Curve build(std::vector<RawKey> keys) { return Curve::build(raw_curve(std::move(keys))); }
+
+/// A track of `channel` built from keys, without a source location.
+inline Track track(const std::string& channel, std::vector<RawKey> keys) {
+  RawCurve raw = raw_curve(std::move(keys));
+  Curve curve = Curve::build(raw);
+  return Track{channel, std::move(raw), std::move(curve), {}};
+}
 
 }  // namespace avar::playback::testing

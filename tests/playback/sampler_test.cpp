@@ -17,12 +17,8 @@ namespace avar::playback {
 namespace {
 
 using testing::key;
+using testing::track;
 
-Track track(const std::string& channel, std::vector<RawKey> keys) {
-  RawCurve raw = testing::raw_curve(std::move(keys));
-  Curve curve = Curve::build(raw);
-  return Track{channel, std::move(raw), std::move(curve), {}};
-}
 
 Track ramp(const std::string& channel, double t0, double v0, double t1, double v1) { return track(channel, {key(t0, v0), key(t1, v1)}); }
 

@@ -18,12 +18,8 @@ namespace avar::playback {
 namespace {
 
 using testing::key;
+using testing::track;
 
-Track track(const std::string& channel, std::vector<RawKey> keys) {
-  RawCurve raw = testing::raw_curve(std::move(keys));
-  Curve curve = Curve::build(raw);
-  return Track{channel, std::move(raw), std::move(curve), {}};
-}
 
 /// A clip whose channels each ramp linearly from `from` to `to` over its duration.
 Clip ramp_clip(const std::string& name, double duration, ClipMode mode, std::vector<std::string> channels, double from, double to) {
