@@ -144,36 +144,56 @@ int main(int argc, char** argv) {
     control::release_realtime(grant);
     print_loop("bare", rate, h, misses);
   }
-  // The tick's own cost with 32 channels: sample 32 Bezier tracks, limit, encode two packets;
-  // measured under the same scheduling, so that preemption by other work counts less.
+  // The tick's own cost with 32 channels: sample 32 Bezier tracks, limit, encode two packets.
+  // Wall-clock spans on a shared machine also hold whatever interrupted the thread (on this kind
+  // of virtual machine even a fixed 3 us loop reads 80-200 us at its worst), and that is not the
+  // tick's cost. The show is deterministic, so the same ticks are replayed kReplays times and
+  // each tick's cost is the least of its replays: an interruption would have to strike the same
+  // tick in every replay to count. The worst over the ticks of that is the tick's own worst case
+  // (e.g. the ticks whose plans need the most evaluations); the raw spans are printed beside.
   {
+    constexpr int kReplays = 5;
+    const int n = 100000;
+    std::vector<double> least(n, 1e300), raw;
+    std::vector<int> evaluations(n, 0);  // the limiter's work per tick (same in every replay)
+    raw.reserve(static_cast<std::size_t>(n) * kReplays);
     const control::RealtimeGrant grant = control::apply_realtime(policy);
-    Figure32 figure;
-    control::Controller controller(figure.rig, figure.show, figure.link_ptrs(), {.tick_period_s = 1.0 / rate});
-    controller.begin(0.0, figure.rig.rest_frame());
-    std::vector<double> ns;
-    const int n = 200000;
-    ns.reserve(n);
-    // Back to back, the ticks would keep this SCHED_FIFO thread busy for seconds: past
-    // kernel.sched_rt_runtime_us (950 ms of every second by default) the kernel suspends it for
-    // the rest of the second, and that ~50 ms pause would be reported as one tick's cost. A
-    // 2 ms sleep after every 20 ms of work (outside the measured spans) keeps it under budget.
-    std::int64_t since_pause = control::monotonic_ns();
-    for (int k = 0; k < n; ++k) {
-      const std::int64_t t0 = control::monotonic_ns();
-      controller.tick(k * 0.001);
-      const std::int64_t t1 = control::monotonic_ns();
-      ns.push_back(static_cast<double>(t1 - t0));
-      if (t1 - since_pause > 20'000'000) {
-        const timespec pause{0, 2'000'000};
-        nanosleep(&pause, nullptr);
-        since_pause = control::monotonic_ns();
+    for (int replay = 0; replay < kReplays; ++replay) {
+      Figure32 figure;
+      control::Controller controller(figure.rig, figure.show, figure.link_ptrs(), {.tick_period_s = 1.0 / rate});
+      controller.begin(0.0, figure.rig.rest_frame());
+      // Back to back, the ticks would keep this SCHED_FIFO thread busy for seconds: past
+      // kernel.sched_rt_runtime_us (950 ms of every second by default) the kernel suspends it for
+      // the rest of the second. A 2 ms sleep after every 20 ms of work (outside the measured
+      // spans) keeps it under budget.
+      std::int64_t since_pause = control::monotonic_ns();
+      for (int k = 0; k < n; ++k) {
+        const std::int64_t t0 = control::monotonic_ns();
+        controller.tick(k / rate);
+        const std::int64_t t1 = control::monotonic_ns();
+        const auto span = static_cast<double>(t1 - t0);
+        raw.push_back(span);
+        least[static_cast<std::size_t>(k)] = std::min(least[static_cast<std::size_t>(k)], span);
+        if (replay == 0)
+          for (std::size_t c = 0; c < controller.limiter().size(); ++c) evaluations[static_cast<std::size_t>(k)] += controller.limiter().evaluations(c);
+        if (t1 - since_pause > 20'000'000) {
+          const timespec pause{0, 2'000'000};
+          nanosleep(&pause, nullptr);
+          since_pause = control::monotonic_ns();
+        }
       }
     }
     control::release_realtime(grant);
-    std::sort(ns.begin(), ns.end());
-    std::printf("tick,channels=32,median_us=%.3f,p999_us=%.3f,worst_us=%.3f\n", ns[ns.size() / 2] / 1e3,
-                ns[ns.size() * 999 / 1000] / 1e3, ns.back() / 1e3);
+    const auto worst_tick = static_cast<std::size_t>(std::max_element(least.begin(), least.end()) - least.begin());
+    const int worst_tick_evaluations = evaluations[worst_tick];
+    std::sort(evaluations.begin(), evaluations.end());
+    std::sort(least.begin(), least.end());
+    std::sort(raw.begin(), raw.end());
+    std::printf("tick,channels=32,median_us=%.3f,worst_us=%.3f\n", least[least.size() / 2] / 1e3, least.back() / 1e3);
+    std::printf("tick-wall,channels=32,replays=%d,median_us=%.3f,p999_us=%.3f,max_us=%.3f\n", kReplays, raw[raw.size() / 2] / 1e3,
+                raw[raw.size() * 999 / 1000] / 1e3, raw.back() / 1e3);
+    std::printf("tick-limiter,channels=32,evaluations_median=%d,evaluations_max=%d,worst_tick=%zu,worst_tick_evaluations=%d\n",
+                evaluations[evaluations.size() / 2], evaluations.back(), worst_tick, worst_tick_evaluations);
   }
   return 0;
 }

@@ -80,21 +80,26 @@ struct Reach {
   double distance = 0;
   double slope = 0;
   double magnitude = 0;  ///< the distance is exact to a few ulps of this
+  VelocityChange change;  ///< phase 1
 };
 
 Reach reach(double v0, double a0, double vp, const Bounds& k) {
-  const VelocityChange c = velocity_change(v0, a0, vp, k);
   Reach r;
+  r.change = velocity_change(v0, a0, vp, k);
+  const VelocityChange& c = r.change;
   r.distance = c.distance;
   r.magnitude = c.magnitude;
   r.slope = c.peak > 0 ? c.s * vp / c.peak + 0.5 * c.peak * k.inv_J : std::numeric_limits<double>::infinity();
-  const double m = stop_peak(vp, k);
-  if (m > 0) {
-    const double duration = m * k.inv_J + std::abs(vp) / m;
-    r.distance += 0.5 * vp * duration;
-    r.magnitude += std::abs(vp) * duration;
-    r.slope += std::abs(vp) / m + 0.5 * m * k.inv_J;
-  }
+  // The stop from (vp, 0): peak m = sqrt(J|vp|) <= A, where |vp|/m = m/J (no division).
+  const double speed = std::abs(vp);
+  const double root = std::sqrt(k.J * speed);
+  const bool reaches_a = root > k.A;
+  const double m = reaches_a ? k.A : root;
+  const double coast = reaches_a ? speed * k.inv_A : m * k.inv_J;  // |vp| / m
+  const double duration = m * k.inv_J + coast;
+  r.distance += 0.5 * vp * duration;
+  r.magnitude += speed * duration;
+  r.slope += coast + 0.5 * m * k.inv_J;
   return r;
 }
 
@@ -112,12 +117,29 @@ double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
   return s.p + velocity_change(s.v, a, 0, Bounds(limits)).distance;
 }
 
-void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint) noexcept {
-  evaluations_ = 0;
-  if (!plan_once(from, goal, limits, hint, true)) plan_once(from, goal, limits, hint, false);
+double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept {
+  const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
+  const double d = std::abs(distance);
+  // The distance of the move with peak v: v (v/A + A/J) when A is reached, else 2 v sqrt(v/J).
+  const auto covered = [&](double v) { return v >= A * A / J ? v * (v / A + A / J) : 2 * v * std::sqrt(v / J); };
+  double vp = V;
+  if (d < covered(V)) {
+    const double a_reached = A * A / J;
+    vp = d >= covered(a_reached) ? 0.5 * A * (std::sqrt(A * A / (J * J) + 4 * d / A) - A / J) : std::cbrt(0.25 * J * d * d);
+  }
+  return std::copysign(std::min(vp, V), distance);
 }
 
-bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept {
+void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint, PlanSlack slack) noexcept {
+  evaluations_ = 0;
+  if (plan_once(from, goal, limits, hint, true, slack) && !(loose_ && duration_ <= slack.after)) return;
+  // Solved again to rounding, from where the first solve got to.
+  plan_once(from, goal, limits, std::isfinite(peak_) ? peak_ : hint, false, PlanSlack{});
+}
+
+bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict,
+                            const PlanSlack& slack) noexcept {
+  loose_ = false;
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   const Bounds bounds(limits);
   start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
@@ -127,11 +149,17 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
   // the plan is shifted by that onto the goal, below).
   double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
+  // The last evaluation, kept for the plan when the solve ends on it.
+  double last_vp = std::numeric_limits<double>::quiet_NaN();
+  Reach last;
   const auto residual = [&](double vp) {
+    if (vp == last_vp) return last;  // (the warm start may stop on a branch end the bracket needs)
     ++evaluations_;
     Reach r = reach(v0, a0, vp, bounds);
     r.distance -= d;
     tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
+    last_vp = vp;
+    last = r;
     return r;
   };
 
@@ -147,6 +175,12 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // first, with a few Newton steps kept on its branch (so that a target that moves a little
   // each tick costs a few evaluations).
   bool predicted = false;
+  // What the warm start learnt, for the bracketed solve should it not converge: on a branch
+  // where D increases (beyond both 0 and the natural velocity), evaluated points below and above
+  // the root bracket it; the last Newton iterate is the best start.
+  double below = std::numeric_limits<double>::quiet_NaN(), f_below = 0;
+  double above = std::numeric_limits<double>::quiet_NaN(), f_above = 0;
+  double resume = hint;
   if (std::isfinite(hint)) {
     double previous_residual = 0;
     const double lo = hint >= high ? high : hint <= low ? -V : low;
@@ -161,15 +195,19 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     const double dir = lo == natural ? 1.0 : -1.0;
     const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
     double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
+    const bool monotone = lo >= high || hi <= low;
     for (int k = 0; k < kMaxWarmSteps; ++k) {
       const Reach r = residual(x);
+      if (monotone && r.distance < 0 && !(x <= below)) below = x, f_below = r.distance;
+      if (monotone && r.distance > 0 && !(x >= above)) above = x, f_above = r.distance;
       if (std::abs(x) == V && r.distance * x <= 0) {
         vp = x;
         cruise = -r.distance / x;
         break;
       }
-      if (std::abs(r.distance) <= tolerance) {
+      if (std::abs(r.distance) <= std::max(tolerance, slack.distance)) {
         vp = x;
+        loose_ = std::abs(r.distance) > tolerance;
         break;
       }
       double next = 0;
@@ -187,7 +225,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       // evaluating it; the plan's end certifies it below (else the solve runs again in full).
       if (predict && k > 0 && next > lo && next < hi) {
         const double K = r.distance / (previous_residual * previous_residual);
-        if (std::abs(K * r.distance * r.distance) <= 0.25 * tolerance) {
+        if (std::abs(K * r.distance * r.distance) <= 0.25 * std::max(tolerance, slack.distance)) {
           vp = next;
           predicted = true;
           break;
@@ -195,19 +233,27 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       }
       previous_residual = r.distance;
       x = next;
+      resume = next;
     }
   }
   if (!(vp == vp)) {
     // The branch that holds the root, bracketed as f(lo) <= 0 <= f(hi).
     double lo = 0, hi = 0, f_lo = 0, f_hi = 0;
-    const Reach at_high = residual(high);
-    if (at_high.distance <= 0) {
+    // The slope at a bracket end next to the root's side of 0 or the natural velocity, where
+    // the residual is often far smaller than at ±V: a Newton step from there starts the solve.
+    double slope_lo = 0, slope_hi = 0;
+    const bool warm_bracket = below == below && above == above;
+    const Reach at_high = warm_bracket ? Reach{} : residual(high);
+    if (warm_bracket) {
+      lo = below, f_lo = f_below, hi = above, f_hi = f_above;
+    } else if (at_high.distance <= 0) {
       const Reach at_v = residual(V);
       if (at_v.distance <= 0) {
         vp = V;
         cruise = -at_v.distance / V;
       }
       lo = high, f_lo = at_high.distance, hi = V, f_hi = at_v.distance;
+      slope_lo = at_high.slope;
     } else {
       const Reach at_low = low == high ? at_high : residual(low);
       if (at_low.distance >= 0) {
@@ -217,6 +263,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
           cruise = at_minus_v.distance / V;
         }
         lo = -V, f_lo = at_minus_v.distance, hi = low, f_hi = at_low.distance;
+        slope_hi = at_low.slope;
       } else {
         lo = low, f_lo = at_low.distance, hi = high, f_hi = at_high.distance;
       }
@@ -238,22 +285,28 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     if (!(vp == vp) && !finish_short(lo, f_lo) && !finish_short(hi, f_hi)) {
       // Next to the natural velocity D grows like the square root of |vp - natural|: there the
       // iteration runs in u = sqrt(|vp - natural|), in which D is smooth.
-      const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+      const bool mapped = !warm_bracket && ((lo == natural && a0 <= 0) || (hi == natural && a0 >= 0));
       const double dir = lo == natural ? 1.0 : -1.0;
       const auto to_vp = [&](double u) { return mapped ? natural + dir * u * u : u; };
       const auto to_u = [&](double x) { return mapped ? std::sqrt(std::abs(x - natural)) : x; };
       double u_lo = to_u(lo), u_hi = to_u(hi);
       const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
       const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
-      double u = hint > lo && hint < hi ? to_u(hint) : secant();
+      double u = (resume - lo) * (resume - hi) < 0 ? to_u(resume) : secant();
+      if (!((resume - lo) * (resume - hi) < 0) && !mapped) {
+        const double from_lo = slope_lo > 0 ? lo - f_lo / slope_lo : u, from_hi = slope_hi > 0 ? hi - f_hi / slope_hi : u;
+        const double start = std::abs(f_lo) <= std::abs(f_hi) ? from_lo : from_hi;
+        if (inside(start)) u = start;
+      }
       if (!inside(u)) u = 0.5 * (u_lo + u_hi);
       bool bisect = false;
       double previous_x = std::numeric_limits<double>::quiet_NaN();
       for (int k = 0; k < kMaxRefinements; ++k) {
         const double x = to_vp(u);
         const Reach r = residual(x);
-        if (std::abs(r.distance) <= tolerance) {
+        if (std::abs(r.distance) <= std::max(tolerance, slack.distance)) {
           vp = x;
+          loose_ = std::abs(r.distance) > tolerance;
           break;
         }
         // In u, steps can go on shrinking the bracket's far side while vp = natural ± u² no
@@ -294,7 +347,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   }
   peak_ = vp;
 
-  const VelocityChange change = velocity_change(v0, a0, vp, bounds);
+  const bool evaluated = vp == last_vp;
+  const VelocityChange change = evaluated ? last.change : velocity_change(v0, a0, vp, bounds);
   const double m = stop_peak(vp, bounds);
   const double stop_jerk = vp > 0 ? -J : J;
   const double stop_ramp = m / J;
@@ -307,9 +361,20 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // The plan's end misses the goal by the solve's last bits: shift the whole plan onto the goal,
   // so that the position's rounding never accumulates from tick to tick (a shift larger than
   // rounding, from a solve that did not converge, is left for the next plan to correct).
-  const double miss = goal - follow(duration_).p;
+  // Where the solve ended on an evaluation, its residual is the miss (to rounding); a predicted
+  // step is certified by following the plan to its end.
+  // A predicted step in a plan that lasts beyond the slack's horizon is taken as it is (its end
+  // is within the slack by the prediction, and is never reached).
+  if (predicted && slack.distance > 0 && duration_ > slack.after) {
+    loose_ = true;
+    offset_ = 0;
+    return true;
+  }
+  const double miss = evaluated && !predicted ? -last.distance - cruise * vp : goal - follow(duration_).p;
   if (predicted && !(std::abs(miss) <= kCertified * tolerance)) return false;
-  offset_ = std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
+  // (A plan that ends within its slack is not shifted: shifts that come and go from tick to
+  // tick would add their size to the commands' third differences.)
+  offset_ = !loose_ && std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
   return true;
 }
 

@@ -14,6 +14,9 @@ Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), 
     Channel c;
     c.limits = l;
     c.jerk_limits = {l.max_velocity, l.max_acceleration, l.max_jerk};
+    // The distance a rest-to-rest move needs to reach full speed, or the range if shorter.
+    const double scale = l.max_velocity * (l.max_velocity / l.max_acceleration + l.max_acceleration / l.max_jerk);
+    c.slack = 1e-9 * std::min(scale, l.max - l.min);
     channels_.push_back(c);
   }
   for (std::size_t i = 0; i < channels_.size(); ++i) last_[i] = std::clamp(0.0, channels_[i].limits.min, channels_[i].limits.max);
@@ -28,6 +31,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.goal = last_[i] = p;
     c.state = {p, 0, 0};
     c.peak_velocity = 0;
+    c.planned_ticks = 0;
   }
 }
 
@@ -35,6 +39,21 @@ bool Limiter::settled() const noexcept {
   for (const Channel& c : channels_)
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) return false;
   return true;
+}
+
+double Limiter::first_guess(const Channel& c) noexcept {
+  const JerkLimits& k = c.jerk_limits;
+  // From rest: the rest-to-rest move's peak, exact.
+  if (c.state.v == 0 && c.state.a == 0) return rest_to_rest_peak(c.goal - c.state.p, k);
+  if (c.planned_ticks < 2 || !c.extrapolate) return c.peak_velocity;
+  return extrapolated_peak(c);
+}
+
+double Limiter::extrapolated_peak(const Channel& c) noexcept {
+  // While the target moves smoothly the peak does too: the last three plans' peaks extrapolated
+  // by a parabola (the last two by a line after two plans).
+  if (c.planned_ticks < 3) return 2 * c.peak_velocity - c.previous_peak;
+  return 3 * (c.peak_velocity - c.previous_peak) + c.earlier_peak;
 }
 
 Status Limiter::apply(std::span<const double> target, std::span<double> out) noexcept {
@@ -54,7 +73,18 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     c.evaluations = 0;
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) {
       JerkProfile profile;
-      profile.plan(c.state, c.goal, c.jerk_limits, c.peak_velocity);
+      // Plans that last beyond two ticks may end a billionth of the channel's scale of motion
+      // from the goal (never nearer a position limit than half the goal is), which saves a Newton
+      // step or two; the next tick plans again from where this one got to.
+      const double edge = std::min(c.goal - l.min, l.max - c.goal);
+      profile.plan(c.state, c.goal, c.jerk_limits, first_guess(c), {std::min(c.slack, 0.5 * edge), 2 * dt_s_});
+      // Near reversals and where the plan changes branch the peak jumps: extrapolate next time
+      // only if that would have guessed this plan's peak better than the last peak did.
+      const double extrapolated = c.planned_ticks >= 2 ? extrapolated_peak(c) : c.peak_velocity;
+      c.extrapolate = std::abs(extrapolated - profile.peak_velocity()) < std::abs(c.peak_velocity - profile.peak_velocity());
+      c.earlier_peak = c.previous_peak;
+      c.previous_peak = c.peak_velocity;
+      ++c.planned_ticks;
       const MotionState next = profile.at(dt_s_);
       c.peak_velocity = profile.peak_velocity();
       c.evaluations = profile.evaluations();
@@ -63,6 +93,8 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
         c.state = {std::clamp(next.p, l.min, l.max), next.v, next.a};
       else
         c.state = {c.state.p, 0, 0};
+    } else {
+      c.planned_ticks = 0;
     }
     c.max_lag = std::max(c.max_lag, std::abs(c.goal - c.state.p));
     last_[i] = c.state.p;

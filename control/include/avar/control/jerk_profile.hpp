@@ -36,12 +36,27 @@ struct JerkLimits {
 /// Where braking at the limits (the time-optimal change to v = 0, a = 0) brings `s` to rest.
 double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept;
 
+/// The peak velocity of the time-optimal move of `distance` from rest to rest (closed form): the
+/// exact first guess for a plan from rest. Each half of the move is a velocity change of vp that
+/// takes vp/A + A/J when it reaches A (vp >= A²/J), else 2 sqrt(vp/J), and covers vp times half
+/// of that; the peak is V when the distance allows.
+double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept;
+
+/// How far from its goal a plan that lasts long may end. Such a plan is only followed for a
+/// tick before the next one replaces it from where it got to, so its end need not be exact; the
+/// plans that end soon are always solved to rounding.
+struct PlanSlack {
+  double distance = 0;  ///< units, >= 0; keep it below the goal's distance to any position limit
+  double after = 0;     ///< s: plans that end sooner than this are solved to rounding
+};
+
 class JerkProfile {
  public:
   /// Plans from `from` to rest at `goal`. `from.a` is taken within [-A, A]. `hint`: a peak
   /// velocity to try first (the previous plan's peak_velocity() makes a re-plan toward the same
   /// goal cost one evaluation); any finite value is safe.
-  void plan(const MotionState& from, double goal, const JerkLimits& limits, double hint = 0) noexcept;
+  /// `slack`: see PlanSlack (none by default: every plan ends on the goal to rounding).
+  void plan(const MotionState& from, double goal, const JerkLimits& limits, double hint = 0, PlanSlack slack = {}) noexcept;
 
   /// The state `t` seconds after the start of the plan; at or after duration(): exactly
   /// (goal, 0, 0).
@@ -67,7 +82,9 @@ class JerkProfile {
   MotionState follow(double t) const noexcept;
   /// One solve and build; with `predict`, Newton may stop on a step predicted to converge, and
   /// false is returned when the plan's end does not certify it (the caller solves again without).
-  bool plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict) noexcept;
+  /// `slack`: a residual this small is accepted (recorded in loose_ when it exceeds rounding).
+  bool plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict,
+                 const PlanSlack& slack) noexcept;
 
   struct Piece {
     double duration = 0;  ///< s
@@ -80,6 +97,7 @@ class JerkProfile {
   double peak_ = 0;
   double duration_ = 0;
   int evaluations_ = 0;
+  bool loose_ = false;  ///< the plan ends within its slack of the goal, not to rounding
   double offset_ = 0;  ///< added to every position so that the plan ends exactly on the goal
   std::array<Piece, kPieces> pieces_{};
 };

@@ -74,13 +74,22 @@ class Limiter {
   struct Channel {
     ChannelLimits limits;
     JerkLimits jerk_limits;
+    double slack = 0;         ///< units: how far a long plan may end from its goal (PlanSlack)
     double goal = 0;          ///< clamped target
     MotionState state;        ///< of the last command
     double peak_velocity = 0;  ///< of the last plan: the next plan's first guess
+    double previous_peak = 0;  ///< of the plan before it
+    double earlier_peak = 0;   ///< and of the plan before that
+    int planned_ticks = 0;     ///< consecutive ticks that planned (k: the last k peaks are recent)
+    bool extrapolate = true;   ///< the peaks' extrapolation guessed the last plan's better than its predecessor
     std::uint64_t clamped = 0;
     double max_lag = 0;
     int evaluations = 0;
   };
+
+  /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
+  static double first_guess(const Channel& c) noexcept;
+  static double extrapolated_peak(const Channel& c) noexcept;
 
   double dt_s_;
   std::vector<Channel> channels_;
