@@ -1,6 +1,6 @@
 // avar-bench-loop: the control loop's wake-up lateness at 1 kHz, against a bare
 // clock_nanosleep loop on the same machine with the same scheduling, run back to back; and the
-// cost of one tick for a 32-channel rig. Usage: avar-bench-loop [seconds per loop, default 20].
+// cost of one tick for a 32-channel rig. Usage: avar-bench-loop [seconds per loop, default 20] [--worst N].
 #include <time.h>
 
 #include <algorithm>
@@ -109,7 +109,26 @@ control::LatencyHistogram bare_loop(double rate, double seconds, std::uint64_t& 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
+  double seconds = 20.0;
+  int show_worst = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--worst" && i + 1 < argc) {
+      show_worst = std::atoi(argv[++i]);
+    } else if (arg == "--help" || arg == "-h") {
+      std::printf("usage: avar-bench-loop [SECONDS] [--worst N]\n"
+                  "  SECONDS    length of each latency loop (default 20)\n"
+                  "  --worst N  also list the N costliest ticks of the 32-channel tick cost, with the\n"
+                  "             limiter's evaluations in each\n");
+      return 0;
+    } else {
+      seconds = std::atof(arg.c_str());
+      if (!(seconds > 0)) {
+        std::fprintf(stderr, "avar-bench-loop: expected a positive number of seconds or --worst N, got '%s'\n", arg.c_str());
+        return 2;
+      }
+    }
+  }
   const double rate = 1000;
   const control::RealtimeRequest policy{50, true, -1};
 
@@ -185,6 +204,20 @@ int main(int argc, char** argv) {
     }
     control::release_realtime(grant);
     const auto worst_tick = static_cast<std::size_t>(std::max_element(least.begin(), least.end()) - least.begin());
+    std::string worst_lines;
+    if (show_worst > 0) {
+      std::vector<std::size_t> order(least.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      const auto shown = std::min(order.size(), static_cast<std::size_t>(show_worst));
+      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+                        [&](std::size_t a, std::size_t b) { return least[a] > least[b]; });
+      for (std::size_t i = 0; i < shown; ++i) {
+        char line[128];
+        std::snprintf(line, sizeof line, "tick-worst,tick=%zu,us=%.3f,evaluations=%d\n", order[i], least[order[i]] / 1e3,
+                      evaluations[order[i]]);
+        worst_lines += line;
+      }
+    }
     const int worst_tick_evaluations = evaluations[worst_tick];
     std::sort(evaluations.begin(), evaluations.end());
     std::sort(least.begin(), least.end());
@@ -194,6 +227,7 @@ int main(int argc, char** argv) {
                 raw[raw.size() * 999 / 1000] / 1e3, raw.back() / 1e3);
     std::printf("tick-limiter,channels=32,evaluations_median=%d,evaluations_max=%d,worst_tick=%zu,worst_tick_evaluations=%d\n",
                 evaluations[evaluations.size() / 2], evaluations.back(), worst_tick, worst_tick_evaluations);
+    std::fputs(worst_lines.c_str(), stdout);
   }
   return 0;
 }

@@ -166,7 +166,12 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // D is increasing for vp beyond both the natural velocity (reached by releasing the
   // acceleration; computed exactly as velocity_change computes it) and 0; between them (a change
   // and a stop in the same direction) it may not be.
-  const double natural = std::clamp(v0 + 0.5 * a0 * std::abs(a0) * bounds.inv_J, -V, V);
+  // A natural velocity that is zero to rounding (a state braking onto rest) is zero: the two
+  // branch ends coincide, and the solve next to them runs in u (below) rather than creeping up on
+  // a |vp|^(3/2) root in vp.
+  const double release = 0.5 * a0 * std::abs(a0) * bounds.inv_J;
+  const double unsnapped = std::clamp(v0 + release, -V, V);
+  const double natural = std::abs(unsnapped) <= 8 * DBL_EPSILON * std::abs(v0) ? 0.0 : unsnapped;
   const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
 
   double vp = std::numeric_limits<double>::quiet_NaN();
@@ -293,7 +298,16 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
       const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
       double u = (resume - lo) * (resume - hi) < 0 ? to_u(resume) : secant();
-      if (!((resume - lo) * (resume - hi) < 0) && !mapped) {
+      // Else a model: from a bracket end at 0 (brake to rest) or at the natural velocity (release
+      // the acceleration), the rest of the distance as a move from rest (exact from rest, close
+      // while the change before it is small next to the move); the end nearer the root is used.
+      double anchor = std::numeric_limits<double>::quiet_NaN(), f_anchor = anchor;
+      for (const auto& [end, f] : {std::pair{lo, f_lo}, std::pair{hi, f_hi}})
+        if ((end == natural || end == 0) && !(std::abs(f) >= std::abs(f_anchor))) anchor = end, f_anchor = f;
+      const double model = anchor == anchor ? anchor + rest_to_rest_peak(-f_anchor, limits) : anchor;
+      const bool model_inside = (model - lo) * (model - hi) < 0;
+      if (!((resume - lo) * (resume - hi) < 0) && model_inside) u = to_u(model);
+      if (!((resume - lo) * (resume - hi) < 0) && !model_inside && !mapped) {
         const double from_lo = slope_lo > 0 ? lo - f_lo / slope_lo : u, from_hi = slope_hi > 0 ? hi - f_hi / slope_hi : u;
         const double start = std::abs(f_lo) <= std::abs(f_hi) ? from_lo : from_hi;
         if (inside(start)) u = start;
