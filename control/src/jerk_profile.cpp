@@ -80,6 +80,7 @@ struct Reach {
   double distance = 0;
   double slope = 0;
   double magnitude = 0;  ///< the distance is exact to a few ulps of this
+  double duration = 0;   ///< of the change and the stop (s): the plan's, but for a cruise
   VelocityChange change;  ///< phase 1
 };
 
@@ -99,6 +100,7 @@ Reach reach(double v0, double a0, double vp, const Bounds& k) {
   const double duration = m * k.inv_J + coast;
   r.distance += 0.5 * vp * duration;
   r.magnitude += speed * duration;
+  r.duration = c.rise + c.hold + c.fall + duration;
   r.slope += coast + 0.5 * m * k.inv_J;
   return r;
 }
@@ -152,6 +154,10 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // The last evaluation, kept for the plan when the solve ends on it.
   double last_vp = std::numeric_limits<double>::quiet_NaN();
   Reach last;
+  // A residual within rounding, or within the slack for a plan that lasts beyond its horizon.
+  const auto close_enough = [&](const Reach& r) {
+    return std::abs(r.distance) <= tolerance || (std::abs(r.distance) <= slack.distance && r.duration > slack.after);
+  };
   const auto residual = [&](double vp) {
     if (vp == last_vp) return last;  // (the warm start may stop on a branch end the bracket needs)
     ++evaluations_;
@@ -210,7 +216,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         cruise = -r.distance / x;
         break;
       }
-      if (std::abs(r.distance) <= std::max(tolerance, slack.distance)) {
+      if (close_enough(r)) {
         vp = x;
         loose_ = std::abs(r.distance) > tolerance;
         break;
@@ -230,7 +236,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       // evaluating it; the plan's end certifies it below (else the solve runs again in full).
       if (predict && k > 0 && next > lo && next < hi) {
         const double K = r.distance / (previous_residual * previous_residual);
-        if (std::abs(K * r.distance * r.distance) <= 0.25 * std::max(tolerance, slack.distance)) {
+        const double allowed = r.duration > slack.after ? std::max(tolerance, slack.distance) : tolerance;
+        if (std::abs(K * r.distance * r.distance) <= 0.25 * allowed) {
           vp = next;
           predicted = true;
           break;
@@ -252,23 +259,43 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     if (warm_bracket) {
       lo = below, f_lo = f_below, hi = above, f_hi = f_above;
     } else if (at_high.distance <= 0) {
-      const Reach at_v = residual(V);
-      if (at_v.distance <= 0) {
-        vp = V;
-        cruise = -at_v.distance / V;
+      // The root is in [high, V]. First the model: brake (or release) to `high`, then the rest
+      // of the distance as a move from rest; it usually brackets the root with `high` and spares
+      // the evaluation at V.
+      const double probe = high + rest_to_rest_peak(-at_high.distance, limits);
+      const bool probed = probe > high && probe < V;
+      const Reach at_probe = probed ? residual(probe) : at_high;
+      if (probed && at_probe.distance >= 0) {
+        lo = high, f_lo = at_high.distance, slope_lo = at_high.slope;
+        hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
+      } else {
+        const Reach at_v = residual(V);
+        if (at_v.distance <= 0) {
+          vp = V;
+          cruise = -at_v.distance / V;
+        }
+        lo = probed ? probe : high, f_lo = at_probe.distance, slope_lo = at_probe.slope;
+        hi = V, f_hi = at_v.distance;
       }
-      lo = high, f_lo = at_high.distance, hi = V, f_hi = at_v.distance;
-      slope_lo = at_high.slope;
     } else {
       const Reach at_low = low == high ? at_high : residual(low);
       if (at_low.distance >= 0) {
-        const Reach at_minus_v = residual(-V);
-        if (at_minus_v.distance >= 0) {
-          vp = -V;
-          cruise = at_minus_v.distance / V;
+        // The root is in [-V, low]: as above, mirrored.
+        const double probe = low + rest_to_rest_peak(-at_low.distance, limits);
+        const bool probed = probe < low && probe > -V;
+        const Reach at_probe = probed ? residual(probe) : at_low;
+        if (probed && at_probe.distance <= 0) {
+          lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
+          hi = low, f_hi = at_low.distance, slope_hi = at_low.slope;
+        } else {
+          const Reach at_minus_v = residual(-V);
+          if (at_minus_v.distance >= 0) {
+            vp = -V;
+            cruise = at_minus_v.distance / V;
+          }
+          lo = -V, f_lo = at_minus_v.distance;
+          hi = probed ? probe : low, f_hi = at_probe.distance, slope_hi = at_probe.slope;
         }
-        lo = -V, f_lo = at_minus_v.distance, hi = low, f_hi = at_low.distance;
-        slope_hi = at_low.slope;
       } else {
         lo = low, f_lo = at_low.distance, hi = high, f_hi = at_high.distance;
       }
@@ -307,9 +334,14 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       const double model = anchor == anchor ? anchor + rest_to_rest_peak(-f_anchor, limits) : anchor;
       const bool model_inside = (model - lo) * (model - hi) < 0;
       if (!((resume - lo) * (resume - hi) < 0) && model_inside) u = to_u(model);
-      if (!((resume - lo) * (resume - hi) < 0) && !model_inside && !mapped) {
-        const double from_lo = slope_lo > 0 ? lo - f_lo / slope_lo : u, from_hi = slope_hi > 0 ? hi - f_hi / slope_hi : u;
-        const double start = std::abs(f_lo) <= std::abs(f_hi) ? from_lo : from_hi;
+      if (!((resume - lo) * (resume - hi) < 0) && !model_inside) {
+        // A Newton step from the end with the smaller residual (in u where mapped).
+        const auto newton_from = [&](double x, double f, double slope) {
+          const double ux = to_u(x);
+          if (!(slope > 0) || !std::isfinite(slope) || (mapped && !(ux > 0))) return std::numeric_limits<double>::quiet_NaN();
+          return ux - f / (mapped ? slope * 2 * ux * dir : slope);
+        };
+        const double start = std::abs(f_lo) <= std::abs(f_hi) ? newton_from(lo, f_lo, slope_lo) : newton_from(hi, f_hi, slope_hi);
         if (inside(start)) u = start;
       }
       if (!inside(u)) u = 0.5 * (u_lo + u_hi);
@@ -318,7 +350,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       for (int k = 0; k < kMaxRefinements; ++k) {
         const double x = to_vp(u);
         const Reach r = residual(x);
-        if (std::abs(r.distance) <= std::max(tolerance, slack.distance)) {
+        if (close_enough(r)) {
           vp = x;
           loose_ = std::abs(r.distance) > tolerance;
           break;
