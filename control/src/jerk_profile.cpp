@@ -27,14 +27,16 @@ static_assert(JerkProfile::kMaxEvaluations == 2 * kMaxWarmSteps + 3 + kMaxRefine
 
 /// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
 /// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
+/// (No member initialisers here and in Reach: the solve keeps one of each per plan and zeroing
+/// them each time was a measurable part of a plan's cost; `{}` value-initialises.)
 struct VelocityChange {
-  double s = 1;         ///< +1 raises the velocity past its natural value v0 + a0|a0|/(2J), -1 lowers it
-  double peak = 0;      ///< |peak acceleration|, <= A
-  double rise = 0;      ///< s (duration of the first jerk piece)
-  double hold = 0;      ///< s
-  double fall = 0;      ///< s
-  double distance = 0;  ///< units
-  double magnitude = 0;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
+  double s;          ///< +1 raises the velocity past its natural value v0 + a0|a0|/(2J), -1 lowers it
+  double peak;       ///< |peak acceleration|, <= A
+  double rise;       ///< s (duration of the first jerk piece)
+  double hold;       ///< s
+  double fall;       ///< s
+  double distance;   ///< units
+  double magnitude;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
 };
 
 VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k) {
@@ -49,6 +51,7 @@ VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k)
   const double peak_squared = std::max(0.0, J * dw + 0.5 * b0 * b0);
   if (peak_squared <= A * A) {
     c.peak = std::sqrt(peak_squared);
+    c.hold = 0;
   } else {
     c.peak = A;
     c.hold = std::max(0.0, (dw - 0.5 * (2 * A * A - b0 * b0) * k.inv_J) * k.inv_A);
@@ -77,15 +80,15 @@ double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * st
 /// v1 with peak m, d distance/d v1 = s v1/m + m/(2J); the stop from vp covers vp T/2 with
 /// T = m/J + |vp|/m, of slope |vp|/m + m/(2J).
 struct Reach {
-  double distance = 0;
-  double slope = 0;
-  double magnitude = 0;  ///< the distance is exact to a few ulps of this
-  double duration = 0;   ///< of the change and the stop (s): the plan's, but for a cruise
+  double distance;
+  double slope;
+  double magnitude;       ///< the distance is exact to a few ulps of this
+  double duration;        ///< of the change and the stop (s): the plan's, but for a cruise
   VelocityChange change;  ///< phase 1
 };
 
 Reach reach(double v0, double a0, double vp, const Bounds& k) {
-  Reach r;
+  Reach r;  // (every member is set below)
   r.change = velocity_change(v0, a0, vp, k);
   const VelocityChange& c = r.change;
   r.distance = c.distance;
@@ -402,8 +405,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   pieces_ = {Piece{change.rise, change.s * J},   Piece{change.hold, 0},     Piece{change.fall, -change.s * J},
              Piece{cruise, 0},                   Piece{stop_ramp, stop_jerk}, Piece{stop_hold, 0},
              Piece{stop_ramp, -stop_jerk}};
-  duration_ = 0;
-  for (const Piece& piece : pieces_) duration_ += piece.duration;
+  // (Summed from the values, not read back from pieces_ just stored.)
+  duration_ = ((change.rise + change.hold) + (change.fall + cruise)) + ((stop_ramp + stop_hold) + stop_ramp);
   // The plan's end misses the goal by the solve's last bits: shift the whole plan onto the goal,
   // so that the position's rounding never accumulates from tick to tick (a shift larger than
   // rounding, from a solve that did not converge, is left for the next plan to correct).

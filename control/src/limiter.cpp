@@ -72,7 +72,7 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     }
     c.evaluations = 0;
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) {
-      JerkProfile profile;
+      JerkProfile& profile = profile_;
       // Plans that last beyond two ticks may end a billionth of the channel's scale of motion
       // from the goal (never nearer a position limit than half the goal is), which saves a Newton
       // step or two; the next tick plans again from where this one got to.

@@ -92,6 +92,9 @@ class Limiter {
   static double extrapolated_peak(const Channel& c) noexcept;
 
   double dt_s_;
+  /// Planned into for each channel in turn (kept, not constructed per plan: zeroing it was a
+  /// tenth of the limiter's cost).
+  JerkProfile profile_;
   std::vector<Channel> channels_;
   std::vector<double> last_;
 };
