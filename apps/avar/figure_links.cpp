@@ -228,10 +228,11 @@ FigureLinks::FigureLinks(const control::Rig& rig, const LinkSelection& selection
     entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
     if (entry->simulated) {
       // A simulated device answers from a thread of this process, which a busy machine may keep
-      // waiting for longer than a real servo's reply timeout: give it room (it answers at once
+      // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
+      // saturated 2-core machine under the sanitizers): give it a second (it answers at once
       // when it runs, so only a lost reply would ever wait this long).
       control::Rig patched = rig;  // the drivers copy what they need from it
-      patched.links[i].bus.reply_timeout_ms = std::max(patched.links[i].bus.reply_timeout_ms, 200);
+      patched.links[i].bus.reply_timeout_ms = std::max(patched.links[i].bus.reply_timeout_ms, 1000);
       entry->link = make_link(patched, i, *entry->transport);
     } else {
       entry->link = make_link(rig, i, *entry->transport);
