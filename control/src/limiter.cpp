@@ -45,7 +45,11 @@ double Limiter::first_guess(const Channel& c) noexcept {
   const JerkLimits& k = c.jerk_limits;
   // From rest: the rest-to-rest move's peak, exact.
   if (c.state.v == 0 && c.state.a == 0) return rest_to_rest_peak(c.goal - c.state.p, k);
-  if (c.planned_ticks < 2 || !c.extrapolate) return c.peak_velocity;
+  // Extrapolate only a smooth run of peaks (the last two steps alike) that was extrapolated well
+  // last time: near reversals and where plans change branch the peak jumps.
+  const double step = c.peak_velocity - c.previous_peak, step_before = c.previous_peak - c.earlier_peak;
+  const bool smooth = c.planned_ticks >= 3 && std::abs(step - step_before) <= 0.5 * std::max(std::abs(step), std::abs(step_before));
+  if (!c.extrapolate || !smooth) return c.peak_velocity;
   return extrapolated_peak(c);
 }
 
