@@ -173,7 +173,10 @@ class Curve {
   /// One cache line: what every sample of the segment reads.
   struct alignas(64) Segment {
     double t0 = 0, t1 = 0;          ///< key times (s)
-    double inv_duration = 0;        ///< 1 / (t1 - t0)
+    /// 1 / (t1 - t0); bezier_table: pieces / (t1 - t0), a power of two times 1 / (t1 - t0), so
+    /// that (t - t0) * inv_duration is exactly `pieces` times the normalised time: the index of
+    /// the inverse's piece plus the position within it
+    double inv_duration = 0;
     double v0 = 0;
     double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic (in u for Bezier, in s otherwise)
     std::uint32_t extra = 0;        ///< bezier_table, bezier_closed, easing: index into extras_
@@ -184,32 +187,56 @@ class Curve {
   /// What the segments that solve or ease need beyond their Segment.
   struct SegmentExtra {
     double k1 = 0, k2 = 0, k3 = 0;  ///< Bezier: normalised time cubic s(u); easing: back, amplitude, period
-    std::uint32_t table = 0;        ///< bezier_table: first entry of this segment's inverse table
+    std::uint32_t table = 0;        ///< bezier_table: first piece of this segment's inverse table
+    std::uint32_t pieces = 0;       ///< bezier_table: how many equal pieces of s the table has
   };
-  /// Quintic Hermite piece of the inverse u(s) on one of kTablePieces equal intervals of s, in
-  /// the local coordinate w in [0, 1): u = a0 + a1 w + ... + a5 w^5, then `refinements` steps.
+  /// Quintic Hermite piece of the inverse u(s) on one of a segment's equal intervals of s, in the
+  /// local coordinate w in [0, 1): u = a0 + a1 w + ... + a5 w^5. A certified piece (a1 > 0, as
+  /// du/dw always is) needs nothing more: the build proved |s(u) - s| <= kMaxResidual over its
+  /// whole interval (see tabulate_inverse). An uncertified piece stores -a1 and its samples check
+  /// the residual and refine (evaluate_uncertified); a NaN piece always takes Blender's solve.
+  /// 48 bytes; a bezier_table segment costs its 64-byte Segment, a 32-byte SegmentExtra and
+  /// (pieces + 1) * 48 bytes of table: 8 to 64 pieces, about 2.8 KB for random free handles.
   struct InversePiece {
     double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0;
-    int refinements = 0;
+    /// u at w, split as Estrin does: independent halves, a shorter dependency chain than Horner.
+    double at(double w) const noexcept {
+      const double w2 = w * w;
+      return (a0 + w * a1) + w2 * ((a2 + w * a3) + w2 * (a4 + w * a5));
+    }
   };
-  static constexpr int kTablePieces = 32;
+  static constexpr std::uint32_t kMinTablePieces = 8;
+  static constexpr std::uint32_t kMaxTablePieces = 64;
   static constexpr int kMaxRefinements = 2;
 
   static void tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table);
-  static double refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept;
   void build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   void build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   /// The segment's value cubic at u (its normalised time for polynomial segments), split as
   /// Estrin does so that its halves evaluate in parallel: a shorter dependency chain than Horner.
   static double value_cubic(const Segment& s, double u) noexcept { return (s.v0 + u * s.e1) + (u * u) * (s.e2 + u * s.e3); }
-  /// t within [s.t0, s.t1].
+  /// t within [s.t0, s.t1]. Inline with the table lookup of Bezier segments: a certified piece,
+  /// the common case, is a quintic and the value cubic, with no call and no residual.
   double evaluate_in(const Segment& s, double t) const noexcept {
     const double x = (t - s.t0) * s.inv_duration;
     if (s.shape == Shape::linear) return s.v0 + x * s.e1;
     if (s.shape == Shape::polynomial) return value_cubic(s, x);
+    if (s.shape == Shape::bezier_table) {
+      // x in [0, pieces]: piece index and position; x == pieces (t rounds onto t1) reads the
+      // table's last entry, u = 1.
+      const SegmentExtra& b = extras_[s.extra];
+      const auto j = static_cast<std::uint32_t>(x);
+      const InversePiece& p = inverse_[b.table + j];
+      const double w = x - static_cast<double>(j);
+      if (p.a1 > 0.0) [[likely]] return value_cubic(s, p.at(w));
+      return evaluate_uncertified(s, b, p, w, x);
+    }
     return evaluate_solved(s, x, t);
   }
-  /// The shapes other than linear and polynomial; x is the normalised time.
+  /// A bezier_table sample on an uncertified piece: the residual checked, up to kMaxRefinements
+  /// steps, Blender's solve when that is not enough. scaled = pieces * normalised time.
+  static double evaluate_uncertified(const Segment& s, const SegmentExtra& b, const InversePiece& p, double w, double scaled) noexcept;
+  /// bezier_closed and easing; x is the normalised time.
   double evaluate_solved(const Segment& s, double x, double t) const noexcept;
   static double evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double normalised_time) noexcept;
   /// evaluate(t, cursor) when t is not strictly inside the cursor's segment.
@@ -223,7 +250,7 @@ class Curve {
   std::vector<double> times_;         ///< key times
   std::vector<Segment> segments_;     ///< times_.size() - 1 of them
   std::vector<SegmentExtra> extras_;  ///< one per bezier_table, bezier_closed and easing segment
-  std::vector<InversePiece> inverse_; ///< kTablePieces per bezier_table segment
+  std::vector<InversePiece> inverse_; ///< pieces + 1 per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
   double slope_before_ = 0, slope_after_ = 0;  ///< units per second; 0 for constant extrapolation
