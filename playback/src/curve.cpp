@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -202,7 +203,7 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
     const auto with_extra = [&](Shape shape, double k1, double k2, double k3) -> SegmentExtra& {
       s.shape = shape;
       s.extra = static_cast<std::uint32_t>(extras_.size());
-      return extras_.emplace_back(SegmentExtra{k1, k2, k3, 0});
+      return extras_.emplace_back(SegmentExtra{k1, k2, k3});
     };
     switch (k.interpolation) {
       case Interpolation::step: break;  // v0
@@ -251,9 +252,9 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
           break;
         }
         if (min_slope_on_window(s_of_u) >= kMinTableSlope && std::isfinite(kMaxTablePieces * s.inv_duration)) {
-          SegmentExtra& bezier = with_extra(Shape::bezier_table, s_of_u.c1, s_of_u.c2, s_of_u.c3);
-          tabulate_inverse(bezier, inverse_);
-          s.inv_duration *= bezier.pieces;  // a power of two: exact
+          s.shape = Shape::bezier_table;
+          s.extra = static_cast<std::uint32_t>(inverse_.size()) + 1;  // after the table's header
+          s.inv_duration *= tabulate_inverse(s_of_u.c1, s_of_u.c2, s_of_u.c3, inverse_);  // a power of two: exact
         } else {
           with_extra(Shape::bezier_closed, s_of_u.c1, s_of_u.c2, s_of_u.c3);
         }
@@ -322,8 +323,9 @@ void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedH
 // margins; the other halves cover rounding, orders of magnitude smaller: these coefficients in
 // double (~1e-14), the quintic evaluated at run time (a few ulps of u <= 1, times s' <= 3), the
 // piece's w exact (the fraction of (t - t0) * inv_duration, which is n x).
-void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table) {
-  const Cubic s{0.0, bezier.k1, bezier.k2, bezier.k3};
+std::uint32_t Curve::tabulate_inverse(double k1, double k2, double k3, std::vector<InversePiece>& table) {
+  static_assert(sizeof(TableHeader) == sizeof(InversePiece));
+  const Cubic s{0.0, k1, k2, k3};
   constexpr std::uint32_t finest = kMaxTablePieces;
   // u, du/ds and d2u/ds2 at s = i / finest; coarser tables take every (finest / n)-th.
   std::array<double, finest + 1> u{}, du_ds{}, d2u_ds2{};
@@ -348,9 +350,9 @@ void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& ta
     const auto [u_low, u_high] = bernstein_range<5>(q1);
     return -r_low <= kMaxResidual / 2 && r_high <= kMaxResidual / 2 && u_low >= kWindowLow / 2 && u_high <= 1.0 + (kWindowHigh - 1.0) / 2;
   };
-  bezier.table = static_cast<std::uint32_t>(table.size());
+  const std::size_t header = table.size();
   for (std::uint32_t n = kMinTablePieces;; n *= 2) {
-    table.resize(bezier.table);
+    table.resize(header + 1);
     const std::uint32_t stride = finest / n;
     const double h = 1.0 / n;  // ds/dw
     bool all_certified = true;
@@ -370,10 +372,10 @@ void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& ta
       table.push_back(piece);
     }
     if (all_certified || n == finest) {
-      bezier.pieces = n;
+      table[header] = std::bit_cast<InversePiece>(TableHeader{k1, k2, k3, static_cast<double>(n), {0, 0}});
       // x == 1: u = 1 (uncertified by its a1 = 0, so checked; only t rounding onto t1 reads it).
       table.push_back(InversePiece{1.0, 0.0, 0.0, 0.0, 0.0, 0.0});
-      return;
+      return n;
     }
   }
 }
@@ -382,7 +384,8 @@ void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& ta
 // each step multiplies the error by about the piece's relative error in du/dx, with no division.
 // A u is taken once it lies in Blender's window with |s(u) - x| <= kMaxResidual; that is the
 // certificate here, checked on every sample.
-double Curve::evaluate_uncertified(const Segment& s, const SegmentExtra& b, const InversePiece& p, double w, double scaled) noexcept {
+double Curve::evaluate_uncertified(const Segment& s, const InversePiece& p, double w, double scaled) const noexcept {
+  const auto b = std::bit_cast<TableHeader>(inverse_[s.extra - 1]);
   const double pieces = b.pieces;
   const double x = scaled / pieces;  // exact: a power of two
   const InversePiece q{p.a0, -p.a1, p.a2, p.a3, p.a4, p.a5};
@@ -392,20 +395,20 @@ double Curve::evaluate_uncertified(const Segment& s, const SegmentExtra& b, cons
   double u = q.at(w);
   double residual = residual_at(u);
   for (int step = 0; !(std::abs(residual) <= kMaxResidual && u >= kWindowLow && u <= kWindowHigh); ++step) {
-    if (step == kMaxRefinements) return evaluate_bezier_closed(s, b, x);
+    if (step == kMaxRefinements) return evaluate_bezier_closed(s, b.k1, b.k2, b.k3, x);
     u -= residual * du_dx;
     residual = residual_at(u);
   }
   return value_cubic(s, u);
 }
 
-double Curve::evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double x) noexcept {
+double Curve::evaluate_bezier_closed(const Segment& s, double k1, double k2, double k3, double x) noexcept {
   // Blender returns a key's own value when the time falls on it, whatever roots the cubic has.
   if (x == 0.0) return s.v0;
   double roots[3];
   // x(u) - x with x(0) = 0 <= x < 1 = x(1) always has a root in [0, 1]; if rounding at the very
   // ends of the segment loses it, the linear estimate of u stands in (Blender would return 0).
-  const double u = solve_cubic_in_unit_interval(-x, b.k1, b.k2, b.k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
+  const double u = solve_cubic_in_unit_interval(-x, k1, k2, k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
   return value_cubic(s, u);
 }
 
@@ -414,7 +417,10 @@ double Curve::evaluate_solved(const Segment& s, double x, double t) const noexce
     case Shape::linear:
     case Shape::polynomial:
     case Shape::bezier_table: break;  // evaluate_in's (linear: e2 = e3 = 0)
-    case Shape::bezier_closed: return evaluate_bezier_closed(s, extras_[s.extra], x);
+    case Shape::bezier_closed: {
+      const SegmentExtra& b = extras_[s.extra];
+      return evaluate_bezier_closed(s, b.k1, b.k2, b.k3, x);
+    }
     case Shape::easing: {
       const SegmentExtra& b = extras_[s.extra];
       const double duration = 1.0 / s.inv_duration;

@@ -179,37 +179,44 @@ class Curve {
     double inv_duration = 0;
     double v0 = 0;
     double e1 = 0, e2 = 0, e3 = 0;  ///< value cubic (in u for Bezier, in s otherwise)
-    std::uint32_t extra = 0;        ///< bezier_table, bezier_closed, easing: index into extras_
+    std::uint32_t extra = 0;        ///< bezier_closed, easing: index into extras_; bezier_table: of its first piece in inverse_
     Shape shape = Shape::linear;
     Interpolation family = Interpolation::step;  ///< easing segments
     Easing easing = Easing::automatic;           ///< easing segments
   };
   /// What the segments that solve or ease need beyond their Segment.
   struct SegmentExtra {
-    double k1 = 0, k2 = 0, k3 = 0;  ///< Bezier: normalised time cubic s(u); easing: back, amplitude, period
-    std::uint32_t table = 0;        ///< bezier_table: first piece of this segment's inverse table
-    std::uint32_t pieces = 0;       ///< bezier_table: how many equal pieces of s the table has
+    double k1 = 0, k2 = 0, k3 = 0;  ///< bezier_closed: normalised time cubic s(u); easing: back, amplitude, period
   };
   /// Quintic Hermite piece of the inverse u(s) on one of a segment's equal intervals of s, in the
   /// local coordinate w in [0, 1): u = a0 + a1 w + ... + a5 w^5. A certified piece (a1 > 0, as
   /// du/dw always is) needs nothing more: the build proved |s(u) - s| <= kMaxResidual over its
-  /// whole interval (see tabulate_inverse). An uncertified piece stores -a1 and its samples check
-  /// the residual and refine (evaluate_uncertified); a NaN piece always takes Blender's solve.
-  /// 48 bytes; a bezier_table segment costs its 64-byte Segment, a 32-byte SegmentExtra and
-  /// (pieces + 1) * 48 bytes of table: 8 to 64 pieces, about 2.8 KB for random free handles.
+  /// whole interval (see tabulate_inverse). An uncertified piece stores -a1; its samples check
+  /// the residual, refine, and take Blender's solve when that is not enough (evaluate_uncertified).
+  /// 48 bytes; a bezier_table segment costs its 64-byte Segment and (pieces + 2) * 48 bytes of
+  /// table (header, pieces, u = 1): 8 to 64 pieces, about 2.9 KB on average for handles 0.1 to
+  /// 0.6 of the segment long (the benchmark's), 1.8 KB + 64 B before certification.
   struct InversePiece {
     double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0;
-    /// u at w, split as Estrin does: independent halves, a shorter dependency chain than Horner.
+    /// u at w, split as Estrin does: three independent pairs, a shorter dependency chain than Horner.
     double at(double w) const noexcept {
       const double w2 = w * w;
-      return (a0 + w * a1) + w2 * ((a2 + w * a3) + w2 * (a4 + w * a5));
+      return ((a0 + w * a1) + w2 * (a2 + w * a3)) + (w2 * w2) * (a4 + w * a5);
     }
+  };
+  /// The entry of inverse_ just before a table's first piece, as many bytes as a piece (read and
+  /// written with std::bit_cast): what the table's uncertified pieces need.
+  struct TableHeader {
+    double k1 = 0, k2 = 0, k3 = 0;  ///< normalised time cubic s(u)
+    double pieces = 0;              ///< how many equal pieces of s the table has
+    double padding[2] = {0, 0};
   };
   static constexpr std::uint32_t kMinTablePieces = 8;
   static constexpr std::uint32_t kMaxTablePieces = 64;
   static constexpr int kMaxRefinements = 2;
 
-  static void tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table);
+  /// Appends the header, pieces and last entry of s's inverse table; returns how many pieces.
+  static std::uint32_t tabulate_inverse(double k1, double k2, double k3, std::vector<InversePiece>& table);
   void build_segments(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   void build_extrapolation(const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   /// The segment's value cubic at u (its normalised time for polynomial segments), split as
@@ -224,21 +231,21 @@ class Curve {
     if (s.shape == Shape::bezier_table) {
       // x in [0, pieces]: piece index and position; x == pieces (t rounds onto t1) reads the
       // table's last entry, u = 1.
-      const SegmentExtra& b = extras_[s.extra];
       const auto j = static_cast<std::uint32_t>(x);
-      const InversePiece& p = inverse_[b.table + j];
+      const InversePiece& p = inverse_[s.extra + j];
       const double w = x - static_cast<double>(j);
       if (p.a1 > 0.0) [[likely]] return value_cubic(s, p.at(w));
-      return evaluate_uncertified(s, b, p, w, x);
+      return evaluate_uncertified(s, p, w, x);
     }
     return evaluate_solved(s, x, t);
   }
   /// A bezier_table sample on an uncertified piece: the residual checked, up to kMaxRefinements
   /// steps, Blender's solve when that is not enough. scaled = pieces * normalised time.
-  static double evaluate_uncertified(const Segment& s, const SegmentExtra& b, const InversePiece& p, double w, double scaled) noexcept;
+  double evaluate_uncertified(const Segment& s, const InversePiece& p, double w, double scaled) const noexcept;
   /// bezier_closed and easing; x is the normalised time.
   double evaluate_solved(const Segment& s, double x, double t) const noexcept;
-  static double evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double normalised_time) noexcept;
+  /// Blender's solve of the time cubic k1 u + k2 u^2 + k3 u^3 = normalised_time, then the value.
+  static double evaluate_bezier_closed(const Segment& s, double k1, double k2, double k3, double normalised_time) noexcept;
   /// evaluate(t, cursor) when t is not strictly inside the cursor's segment.
   double evaluate_moved(double t, CurveCursor& cursor) const noexcept;
   std::size_t find_segment(double t) const noexcept;
@@ -249,8 +256,8 @@ class Curve {
 
   std::vector<double> times_;         ///< key times
   std::vector<Segment> segments_;     ///< times_.size() - 1 of them
-  std::vector<SegmentExtra> extras_;  ///< one per bezier_table, bezier_closed and easing segment
-  std::vector<InversePiece> inverse_; ///< pieces + 1 per bezier_table segment
+  std::vector<SegmentExtra> extras_;  ///< one per bezier_closed and easing segment
+  std::vector<InversePiece> inverse_; ///< pieces + 2 per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
   double slope_before_ = 0, slope_after_ = 0;  ///< units per second; 0 for constant extrapolation
