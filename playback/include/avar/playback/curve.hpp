@@ -165,7 +165,7 @@ class Curve {
     /// v0 + s (e1 + s (e2 + s e3)): the Hermite-family splines, the B-spline, and Bezier segments
     /// whose time handles sit at thirds (time linear in the parameter: u = s, no solve)
     polynomial,
-    bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse + refinement
+    bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse (certified pieces, or checked)
     bezier_closed,    ///< Bezier with handles that let time stall or run backwards: Blender's solve
     easing,           ///< one of Blender's easing equations
   };
@@ -195,7 +195,7 @@ class Curve {
   /// the residual, refine, and take Blender's solve when that is not enough (evaluate_uncertified).
   /// 48 bytes; a bezier_table segment costs its 64-byte Segment and (pieces + 2) * 48 bytes of
   /// table (header, pieces, u = 1): 8 to 64 pieces, about 2.9 KB on average for handles 0.1 to
-  /// 0.6 of the segment long (the benchmark's), 1.8 KB + 64 B before certification.
+  /// 0.6 of the segment long (the benchmark's).
   struct InversePiece {
     double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0;
     /// u at w, split as Estrin does: three independent pairs, a shorter dependency chain than Horner.
@@ -213,6 +213,8 @@ class Curve {
   };
   static constexpr std::uint32_t kMinTablePieces = 8;
   static constexpr std::uint32_t kMaxTablePieces = 64;
+  static_assert((kMaxTablePieces & (kMaxTablePieces - 1)) == 0 && kMaxTablePieces % kMinTablePieces == 0,
+                "piece counts are powers of two: the piece index and position are exact");
   static constexpr int kMaxRefinements = 2;
 
   /// Appends the header, pieces and last entry of s's inverse table; returns how many pieces.
