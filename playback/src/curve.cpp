@@ -44,15 +44,21 @@ double min_slope_on_window(const Cubic& s) noexcept {
   return low;
 }
 
-// u in [0, 1] with s(u) = target, for s strictly increasing on [0, 1] with s(0) = 0, s(1) = 1.
-double invert_increasing(const Cubic& s, double target) noexcept {
-  double lo = 0.0, hi = 1.0;
-  for (int i = 0; i < 200 && lo < hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (mid <= lo || mid >= hi) break;
-    (s.at(mid) < target ? lo : hi) = mid;
+// u in [0, 1] with s(u) = target, for s strictly increasing on [0, 1] with s(0) = 0, s(1) = 1:
+// Newton's steps from `guess`, kept inside the bracket that the signs of s(u) - target leave
+// (halving it when a step would leave it), until u stops moving; to the last bit or so.
+double invert_increasing(const Cubic& s, double target, double guess) noexcept {
+  double lo = 0.0, hi = 1.0, u = std::clamp(guess, lo, hi);
+  for (int i = 0; i < 100; ++i) {
+    const double residual = s.at(u) - target;
+    if (residual == 0.0) break;
+    (residual < 0.0 ? lo : hi) = u;
+    double next = u - residual / s.slope_at(u);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next <= lo || next >= hi || next == u) break;
+    u = next;
   }
-  return std::abs(s.at(lo) - target) <= std::abs(s.at(hi) - target) ? lo : hi;
+  return u;
 }
 
 constexpr double binomial(int n, int k) noexcept {
@@ -329,8 +335,10 @@ std::uint32_t Curve::tabulate_inverse(double k1, double k2, double k3, std::vect
   constexpr std::uint32_t finest = kMaxTablePieces;
   // u, du/ds and d2u/ds2 at s = i / finest; coarser tables take every (finest / n)-th.
   std::array<double, finest + 1> u{}, du_ds{}, d2u_ds2{};
+  constexpr double dx = 1.0 / finest;
   for (std::uint32_t i = 0; i <= finest; ++i) {
-    u[i] = i == 0 ? 0.0 : i == finest ? 1.0 : invert_increasing(s, static_cast<double>(i) / finest);
+    // From the previous knot's Taylor step: a few Newton steps (the certification checks the result).
+    u[i] = i == 0 ? 0.0 : i == finest ? 1.0 : invert_increasing(s, i * dx, u[i - 1] + dx * (du_ds[i - 1] + 0.5 * dx * d2u_ds2[i - 1]));
     const double slope = s.slope_at(u[i]), bend = 2.0 * s.c2 + 6.0 * s.c3 * u[i];
     du_ds[i] = 1.0 / slope;
     d2u_ds2[i] = -bend / (slope * slope * slope);
@@ -356,7 +364,8 @@ std::uint32_t Curve::tabulate_inverse(double k1, double k2, double k3, std::vect
     const std::uint32_t stride = finest / n;
     const double h = 1.0 / n;  // ds/dw
     bool all_certified = true;
-    for (std::uint32_t j = 0; j < n; ++j) {
+    // Below the finest table, the first uncertified piece is enough to try the next.
+    for (std::uint32_t j = 0; j < n && (all_certified || n == finest); ++j) {
       const std::uint32_t a = j * stride, b = a + stride;
       const double step = u[b] - u[a], m0 = du_ds[a] * h, m1 = du_ds[b] * h, c0 = d2u_ds2[a] * h * h, c1 = d2u_ds2[b] * h * h;
       InversePiece piece{u[a],
