@@ -225,18 +225,20 @@ class Curve {
   /// Estrin does so that its halves evaluate in parallel: a shorter dependency chain than Horner.
   static double value_cubic(const Segment& s, double u) noexcept { return (s.v0 + u * s.e1) + (u * u) * (s.e2 + u * s.e3); }
   /// t within [s.t0, s.t1]. Inline with the table lookup of Bezier segments: a certified piece,
-  /// the common case, is a quintic and the value cubic, with no call and no residual.
+  /// the common case, is a quintic and the value cubic, with no call and no residual. The hint
+  /// keeps polynomial segments (auto handles, the Hermite family, the B-spline) on the straight
+  /// path, as they were before the table was inlined (GCC otherwise lays the table path there).
   double evaluate_in(const Segment& s, double t) const noexcept {
     const double x = (t - s.t0) * s.inv_duration;
     if (s.shape == Shape::linear) return s.v0 + x * s.e1;
-    if (s.shape == Shape::polynomial) return value_cubic(s, x);
+    if (s.shape == Shape::polynomial) [[likely]] return value_cubic(s, x);
     if (s.shape == Shape::bezier_table) {
       // x in [0, pieces]: piece index and position; x == pieces (t rounds onto t1) reads the
       // table's last entry, u = 1.
       const auto j = static_cast<std::uint32_t>(x);
       const InversePiece& p = inverse_[s.extra + j];
       const double w = x - static_cast<double>(j);
-      if (p.a1 > 0.0) [[likely]] return value_cubic(s, p.at(w));
+      if (p.a1 > 0.0) return value_cubic(s, p.at(w));
       return evaluate_uncertified(s, p, w, x);
     }
     return evaluate_solved(s, x, t);
