@@ -1,6 +1,8 @@
 #include "avar/playback/curve.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -42,15 +44,47 @@ double min_slope_on_window(const Cubic& s) noexcept {
   return low;
 }
 
-// u in [0, 1] with s(u) = target, for s strictly increasing on [0, 1] with s(0) = 0, s(1) = 1.
-double invert_increasing(const Cubic& s, double target) noexcept {
-  double lo = 0.0, hi = 1.0;
-  for (int i = 0; i < 200 && lo < hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (mid <= lo || mid >= hi) break;
-    (s.at(mid) < target ? lo : hi) = mid;
+// u in [0, 1] with s(u) = target, for s strictly increasing on [0, 1] with s(0) = 0, s(1) = 1:
+// Newton's steps from `guess`, kept inside the bracket that the signs of s(u) - target leave
+// (halving it when a step would leave it), until u stops moving; to the last bit or so.
+double invert_increasing(const Cubic& s, double target, double guess) noexcept {
+  double lo = 0.0, hi = 1.0, u = std::clamp(guess, lo, hi);
+  for (int i = 0; i < 100; ++i) {
+    const double residual = s.at(u) - target;
+    if (residual == 0.0) break;
+    (residual < 0.0 ? lo : hi) = u;
+    double next = u - residual / s.slope_at(u);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next <= lo || next >= hi || next == u) break;
+    u = next;
   }
-  return std::abs(s.at(lo) - target) <= std::abs(s.at(hi) - target) ? lo : hi;
+  return u;
+}
+
+constexpr double binomial(int n, int k) noexcept {
+  double c = 1;  // C(n - k + i, i) after step i: exact integers
+  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+  return c;
+}
+
+// Bernstein coefficients on [0, 1] of the polynomial with power coefficients p[0..Degree]:
+// b_i = sum over k <= i of C(i, k) / C(Degree, k) p_k. The polynomial's values on [0, 1] are
+// convex combinations of them, so their least and greatest bound it on the whole interval.
+template <int Degree>
+std::pair<double, double> bernstein_range(const std::array<double, Degree + 1>& p) noexcept {
+  static constexpr auto weights = [] {
+    std::array<std::array<double, Degree + 1>, Degree + 1> w{};
+    for (int i = 0; i <= Degree; ++i)
+      for (int k = 0; k <= i; ++k) w[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = binomial(i, k) / binomial(Degree, k);
+    return w;
+  }();
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (std::size_t i = 0; i <= Degree; ++i) {
+    double b = 0;
+    for (std::size_t k = 0; k <= i; ++k) b += weights[i][k] * p[k];
+    low = std::min(low, b), high = std::max(high, b);
+  }
+  return {low, high};
 }
 
 std::string seconds(double t) { return format_number(t) + " s"; }
@@ -175,7 +209,7 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
     const auto with_extra = [&](Shape shape, double k1, double k2, double k3) -> SegmentExtra& {
       s.shape = shape;
       s.extra = static_cast<std::uint32_t>(extras_.size());
-      return extras_.emplace_back(SegmentExtra{k1, k2, k3, 0});
+      return extras_.emplace_back(SegmentExtra{k1, k2, k3});
     };
     switch (k.interpolation) {
       case Interpolation::step: break;  // v0
@@ -223,8 +257,10 @@ void Curve::build_segments(const RawCurve& raw, const std::vector<ResolvedHandle
           s.shape = Shape::polynomial;  // in u = s
           break;
         }
-        if (min_slope_on_window(s_of_u) >= kMinTableSlope) {
-          tabulate_inverse(with_extra(Shape::bezier_table, s_of_u.c1, s_of_u.c2, s_of_u.c3), inverse_);
+        if (min_slope_on_window(s_of_u) >= kMinTableSlope && std::isfinite(kMaxTablePieces * s.inv_duration)) {
+          s.shape = Shape::bezier_table;
+          s.extra = static_cast<std::uint32_t>(inverse_.size()) + 1;  // after the table's header
+          s.inv_duration *= tabulate_inverse(s_of_u.c1, s_of_u.c2, s_of_u.c3, inverse_);  // a power of two: exact
         } else {
           with_extra(Shape::bezier_closed, s_of_u.c1, s_of_u.c2, s_of_u.c3);
         }
@@ -277,102 +313,123 @@ void Curve::build_extrapolation(const RawCurve& raw, const std::vector<ResolvedH
   slope_after_ = slope_at(false);
 }
 
-// From the table's estimate of u, steps u -= (s(u) - x) du/ds with du/ds also from the table:
-// each step multiplies the error by about the table's relative error in du/ds, with no division.
-// residual = s(u) - x at the returned u. Always inlined: the per-sample path needs u and the
-// residual in registers.
-[[gnu::always_inline]] inline double Curve::refine(const SegmentExtra& b, const InversePiece& p, double w, double x, double& residual) noexcept {
-  // Polynomials split as Estrin does: independent halves, a shorter dependency chain than Horner.
+// The inverse u(s) of a strictly increasing time cubic as equal pieces of s: on each, the quintic
+// Hermite interpolant q(w) that matches u, du/ds = 1 / s'(u) and d2u/ds2 = -s''(u) / s'(u)^3 at
+// both ends. The table has the fewest pieces (a power of two, kMinTablePieces to kMaxTablePieces)
+// for which every piece is certified, or kMaxTablePieces, and one more entry, u = 1, for the
+// normalised time 1 itself.
+//
+// Certification, the contract of a certified piece j of n: for every w in [0, 1], with
+// x = (j + w) / n, the parameter u = q(w) lies in Blender's window and |s(u) - x| <= kMaxResidual,
+// so that (s'(u) >= kMinTableSlope over the window) u is within 1e-9 of the one root there.
+// r(w) = s(q(w)) - x is a polynomial of degree 15 in w and q one of degree 5: in the Bernstein
+// basis of [0, 1] their values are convex combinations of their coefficients, whose extremes
+// therefore bound them over the whole piece, not only at sample points. A piece is certified when
+// its r coefficients are within kMaxResidual / 2 and its q coefficients within half the window's
+// margins; the other halves cover rounding, orders of magnitude smaller: these coefficients in
+// double (~1e-14), the quintic evaluated at run time (a few ulps of u <= 1, times s' <= 3), the
+// piece's w exact (the fraction of (t - t0) * inv_duration, which is n x).
+std::uint32_t Curve::tabulate_inverse(double k1, double k2, double k3, std::vector<InversePiece>& table) {
+  static_assert(sizeof(TableHeader) == sizeof(InversePiece));
+  const Cubic s{0.0, k1, k2, k3};
+  constexpr std::uint32_t finest = kMaxTablePieces;
+  // u, du/ds and d2u/ds2 at s = i / finest; coarser tables take every (finest / n)-th.
+  std::array<double, finest + 1> u{}, du_ds{}, d2u_ds2{};
+  constexpr double dx = 1.0 / finest;
+  for (std::uint32_t i = 0; i <= finest; ++i) {
+    // From the previous knot's Taylor step: a few Newton steps (the certification checks the result).
+    u[i] = i == 0 ? 0.0 : i == finest ? 1.0 : invert_increasing(s, i * dx, u[i - 1] + dx * (du_ds[i - 1] + 0.5 * dx * d2u_ds2[i - 1]));
+    const double slope = s.slope_at(u[i]), bend = 2.0 * s.c2 + 6.0 * s.c3 * u[i];
+    du_ds[i] = 1.0 / slope;
+    d2u_ds2[i] = -bend / (slope * slope * slope);
+  }
+  const auto certified = [&](const InversePiece& q, double x0, double h) {
+    const std::array<double, 6> q1{q.a0, q.a1, q.a2, q.a3, q.a4, q.a5};
+    std::array<double, 11> q2{};
+    std::array<double, 16> r{};
+    for (std::size_t i = 0; i < 6; ++i)
+      for (std::size_t k = 0; k < 6; ++k) q2[i + k] += q1[i] * q1[k];
+    for (std::size_t i = 0; i < 11; ++i)
+      for (std::size_t k = 0; k < 6; ++k) r[i + k] += s.c3 * (q2[i] * q1[k]);
+    for (std::size_t i = 0; i < 11; ++i) r[i] += s.c2 * q2[i];
+    for (std::size_t i = 0; i < 6; ++i) r[i] += s.c1 * q1[i];
+    r[0] -= x0, r[1] -= h;
+    const auto [r_low, r_high] = bernstein_range<15>(r);
+    const auto [u_low, u_high] = bernstein_range<5>(q1);
+    return -r_low <= kMaxResidual / 2 && r_high <= kMaxResidual / 2 && u_low >= kWindowLow / 2 && u_high <= 1.0 + (kWindowHigh - 1.0) / 2;
+  };
+  const std::size_t header = table.size();
+  for (std::uint32_t n = kMinTablePieces;; n *= 2) {
+    table.resize(header + 1);
+    const std::uint32_t stride = finest / n;
+    const double h = 1.0 / n;  // ds/dw
+    bool all_certified = true;
+    // Below the finest table, the first uncertified piece is enough to try the next.
+    for (std::uint32_t j = 0; j < n && (all_certified || n == finest); ++j) {
+      const std::uint32_t a = j * stride, b = a + stride;
+      const double step = u[b] - u[a], m0 = du_ds[a] * h, m1 = du_ds[b] * h, c0 = d2u_ds2[a] * h * h, c1 = d2u_ds2[b] * h * h;
+      InversePiece piece{u[a],
+                         m0,
+                         0.5 * c0,
+                         10.0 * step - 6.0 * m0 - 4.0 * m1 - 1.5 * c0 + 0.5 * c1,
+                         -15.0 * step + 8.0 * m0 + 7.0 * m1 + 1.5 * c0 - c1,
+                         6.0 * step - 3.0 * m0 - 3.0 * m1 - 0.5 * c0 + 0.5 * c1};
+      if (!certified(piece, j * h, h)) {
+        piece.a1 = -piece.a1;  // the mark of an uncertified piece: du/dw is positive
+        all_certified = false;
+      }
+      table.push_back(piece);
+    }
+    if (all_certified || n == finest) {
+      table[header] = std::bit_cast<InversePiece>(TableHeader{k1, k2, k3, static_cast<double>(n), {0, 0}});
+      // x == 1: u = 1 (uncertified by its a1 = 0, so checked; only t rounding onto t1 reads it).
+      table.push_back(InversePiece{1.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+      return n;
+    }
+  }
+}
+
+// From the piece's estimate of u, steps u -= (s(u) - x) du/dx with du/dx also from the piece:
+// each step multiplies the error by about the piece's relative error in du/dx, with no division.
+// A u is taken once it lies in Blender's window with |s(u) - x| <= kMaxResidual; that is the
+// certificate here, checked on every sample.
+double Curve::evaluate_uncertified(const Segment& s, const InversePiece& p, double w, double scaled) const noexcept {
+  const auto b = std::bit_cast<TableHeader>(inverse_[s.extra - 1]);
+  const double pieces = b.pieces;
+  const double x = scaled / pieces;  // exact: a power of two
+  const InversePiece q{p.a0, -p.a1, p.a2, p.a3, p.a4, p.a5};
   const auto residual_at = [&](double u) { return (u * b.k1 - x) + (u * u) * (b.k2 + u * b.k3); };
   const double w2 = w * w;
-  double u = (p.a0 + w * p.a1) + w2 * ((p.a2 + w * p.a3) + w2 * (p.a4 + w * p.a5));
-  residual = residual_at(u);
-  if (p.refinements > 0) {
-    const double du_dw = (p.a1 + w * (2.0 * p.a2)) + w2 * ((3.0 * p.a3 + w * (4.0 * p.a4)) + w2 * (5.0 * p.a5));
-    const double du_dx = du_dw * kTablePieces;
-    static_assert(kMaxRefinements == 2);
+  const double du_dx = ((q.a1 + w * (2.0 * q.a2)) + w2 * ((3.0 * q.a3 + w * (4.0 * q.a4)) + w2 * (5.0 * q.a5))) * pieces;
+  double u = q.at(w);
+  double residual = residual_at(u);
+  for (int step = 0; !(std::abs(residual) <= kMaxResidual && u >= kWindowLow && u <= kWindowHigh); ++step) {
+    if (step == kMaxRefinements) return evaluate_bezier_closed(s, b.k1, b.k2, b.k3, x);
     u -= residual * du_dx;
     residual = residual_at(u);
-    if (p.refinements > 1) {
-      u -= residual * du_dx;
-      residual = residual_at(u);
-    }
   }
-  return u;
+  return value_cubic(s, u);
 }
 
-// The inverse u(s) of a strictly increasing time cubic, as kTablePieces quintic Hermite pieces:
-// on each equal interval of s a piece matches u, du/ds = 1 / s'(u) and d2u/ds2 = -s''(u) / s'(u)^3
-// at both ends. Each piece is checked at build time at points across its interval and given the
-// fewest refinement steps (0 to kMaxRefinements) that reach the residual there; a piece that does
-// not (near an end where s'(u) is small the inverse bends too fast for a quintic) is filled with
-// NaN, so that its samples always take Blender's closed form.
-void Curve::tabulate_inverse(SegmentExtra& bezier, std::vector<InversePiece>& table) {
-  const Cubic s{0.0, bezier.k1, bezier.k2, bezier.k3};
-  constexpr int n = kTablePieces;
-  double u[n + 1], du_dw[n + 1], d2u_dw2[n + 1];
-  for (int j = 0; j <= n; ++j) {
-    u[j] = j == 0 ? 0.0 : j == n ? 1.0 : invert_increasing(s, static_cast<double>(j) / n);
-    const double slope = s.slope_at(u[j]), bend = 2.0 * s.c2 + 6.0 * s.c3 * u[j];
-    du_dw[j] = 1.0 / (slope * n);  // du/dw = du/ds * ds/dw, with ds/dw = 1 / n
-    d2u_dw2[j] = -bend / (slope * slope * slope * n * n);
-  }
-  bezier.table = static_cast<std::uint32_t>(table.size());
-  for (int j = 0; j < n; ++j) {
-    const double step = u[j + 1] - u[j], m0 = du_dw[j], m1 = du_dw[j + 1], c0 = d2u_dw2[j], c1 = d2u_dw2[j + 1];
-    InversePiece piece{u[j],
-                       m0,
-                       0.5 * c0,
-                       10.0 * step - 6.0 * m0 - 4.0 * m1 - 1.5 * c0 + 0.5 * c1,
-                       -15.0 * step + 8.0 * m0 + 7.0 * m1 + 1.5 * c0 - c1,
-                       6.0 * step - 3.0 * m0 - 3.0 * m1 - 0.5 * c0 + 0.5 * c1,
-                       0};
-    const auto reaches = [&] {
-      constexpr int kChecks = 32;
-      for (int k = 0; k <= kChecks; ++k) {
-        const double w = static_cast<double>(k) / kChecks;
-        double residual = 0;
-        refine(bezier, piece, w, (j + w) / n, residual);
-        if (!(std::abs(residual) <= kMaxResidual / 4)) return false;
-      }
-      return true;
-    };
-    while (!reaches()) {
-      if (++piece.refinements > kMaxRefinements) {
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        piece = {nan, nan, nan, nan, nan, nan, 0};
-        break;
-      }
-    }
-    table.push_back(piece);
-  }
-}
-
-double Curve::evaluate_bezier_closed(const Segment& s, const SegmentExtra& b, double x) noexcept {
+double Curve::evaluate_bezier_closed(const Segment& s, double k1, double k2, double k3, double x) noexcept {
   // Blender returns a key's own value when the time falls on it, whatever roots the cubic has.
   if (x == 0.0) return s.v0;
   double roots[3];
   // x(u) - x with x(0) = 0 <= x < 1 = x(1) always has a root in [0, 1]; if rounding at the very
   // ends of the segment loses it, the linear estimate of u stands in (Blender would return 0).
-  const double u = solve_cubic_in_unit_interval(-x, b.k1, b.k2, b.k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
+  const double u = solve_cubic_in_unit_interval(-x, k1, k2, k3, roots) > 0 ? roots[0] : std::clamp(x, 0.0, 1.0);
   return value_cubic(s, u);
 }
 
 double Curve::evaluate_solved(const Segment& s, double x, double t) const noexcept {
   switch (s.shape) {
     case Shape::linear:
-    case Shape::polynomial: break;  // evaluate_in's (linear: e2 = e3 = 0)
-    case Shape::bezier_table: {
+    case Shape::polynomial:
+    case Shape::bezier_table: break;  // evaluate_in's (linear: e2 = e3 = 0)
+    case Shape::bezier_closed: {
       const SegmentExtra& b = extras_[s.extra];
-      const double scaled = x * kTablePieces;
-      const int j = std::min(static_cast<int>(scaled), kTablePieces - 1);
-      double residual = 0;
-      const double u = refine(b, inverse_[b.table + static_cast<std::size_t>(j)], scaled - j, x, residual);
-      // |u - root| <= |residual| / min s'(u) <= 1e-9; otherwise (a NaN piece) Blender's solve.
-      if (!(std::abs(residual) <= kMaxResidual)) return evaluate_bezier_closed(s, b, x);
-      return value_cubic(s, u);
+      return evaluate_bezier_closed(s, b.k1, b.k2, b.k3, x);
     }
-    case Shape::bezier_closed: return evaluate_bezier_closed(s, extras_[s.extra], x);
     case Shape::easing: {
       const SegmentExtra& b = extras_[s.extra];
       const double duration = 1.0 / s.inv_duration;
