@@ -137,9 +137,9 @@ double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept {
 
 void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint, PlanSlack slack) noexcept {
   evaluations_ = 0;
-  if (plan_once(from, goal, limits, hint, true, slack) && !(loose_ && duration_ <= slack.after)) return;
-  // Solved again to rounding, from where the first solve got to.
-  plan_once(from, goal, limits, std::isfinite(peak_) ? peak_ : hint, false, PlanSlack{});
+  // (A residual within the slack is accepted only from a plan that outlasts slack.after, so only
+  // an uncertified predicted step is solved again, from where it got to, to rounding.)
+  if (!plan_once(from, goal, limits, hint, true, slack)) plan_once(from, goal, limits, std::isfinite(peak_) ? peak_ : hint, false, PlanSlack{});
 }
 
 bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict,

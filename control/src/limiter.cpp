@@ -55,8 +55,7 @@ double Limiter::first_guess(const Channel& c) noexcept {
 
 double Limiter::extrapolated_peak(const Channel& c) noexcept {
   // While the target moves smoothly the peak does too: the last three plans' peaks extrapolated
-  // by a parabola (the last two by a line after two plans).
-  if (c.planned_ticks < 3) return 2 * c.peak_velocity - c.previous_peak;
+  // by a parabola (meaningful once planned_ticks >= 3).
   return 3 * (c.peak_velocity - c.previous_peak) + c.earlier_peak;
 }
 
@@ -84,8 +83,8 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       profile.plan(c.state, c.goal, c.jerk_limits, first_guess(c), {std::min(c.slack, 0.5 * edge), 2 * dt_s_});
       // Near reversals and where the plan changes branch the peak jumps: extrapolate next time
       // only if that would have guessed this plan's peak better than the last peak did.
-      const double extrapolated = c.planned_ticks >= 2 ? extrapolated_peak(c) : c.peak_velocity;
-      c.extrapolate = std::abs(extrapolated - profile.peak_velocity()) < std::abs(c.peak_velocity - profile.peak_velocity());
+      c.extrapolate = c.planned_ticks < 3 ||
+                      std::abs(extrapolated_peak(c) - profile.peak_velocity()) < std::abs(c.peak_velocity - profile.peak_velocity());
       c.earlier_peak = c.previous_peak;
       c.previous_peak = c.peak_velocity;
       ++c.planned_ticks;
