@@ -115,6 +115,10 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--worst" && i + 1 < argc) {
       show_worst = std::atoi(argv[++i]);
+      if (show_worst <= 0) {
+        std::fprintf(stderr, "avar-bench-loop: --worst expects a positive number of ticks, got '%s'\n", argv[i]);
+        return 2;
+      }
     } else if (arg == "--help" || arg == "-h") {
       std::printf("usage: avar-bench-loop [SECONDS] [--worst N]\n"
                   "  SECONDS    length of each latency loop (default 20)\n"
