@@ -20,21 +20,21 @@
 namespace avar::app {
 namespace {
 
-const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml";
-const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+const std::string kLayeredShow = AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml";
+const std::string kLayeredRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
 
 using Result = testing::CliResult;
 
 TEST(LayeredShow, SampleWritesTheComposedChannelsOverTheRigsRestPose) {
-  const Result r = testing::run_avar({"sample", kShow, "--rig", kRig, "--rate", "20"});
+  const Result r = testing::run_avar({"sample", kLayeredShow, "--rig", kLayeredRig, "--rate", "20"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   std::stringstream out(r.out);
   const auto rows = testing::csv_rows(out);
   // The show's tracks first, then the channels its layers touch, in file order.
   ASSERT_EQ(rows[0], (std::vector<std::string>{"seconds", "lid_left", "lid_right", "neck_pan", "neck_tilt", "eyes_pan", "jaw"}));
   ASSERT_EQ(rows.size(), 1u + 14 * 20 + 1);
-  const control::Rig rig = config::load_rig_file(kRig);
-  const playback::Show show = config::load_show_file(kShow);
+  const control::Rig rig = config::load_rig_file(kLayeredRig);
+  const playback::Show show = config::load_show_file(kLayeredShow);
   std::vector<std::string> names;
   for (const auto& c : rig.channels) names.push_back(c.name);
   playback::Sampler sampler(show, names, rig.rest_frame());
@@ -54,19 +54,19 @@ TEST(LayeredShow, SampleWritesTheComposedChannelsOverTheRigsRestPose) {
   EXPECT_LT(lid_min, 30);  // the additive blinks close the lids from 90 %
   // Without a rig the composition is over 0 where the show has no track: the same here, whose
   // unlayered channels rest at 0 and whose lids have tracks.
-  const Result bare = testing::run_avar({"sample", kShow, "--rate", "20"});
+  const Result bare = testing::run_avar({"sample", kLayeredShow, "--rate", "20"});
   EXPECT_EQ(bare.out, r.out);
 }
 
 TEST(LayeredShow, SampleRefusesARigWithoutTheShowsChannels) {
-  const Result r = testing::run_avar({"sample", kShow, "--rig", AVAR_SOURCE_DIR "/examples/rigs/dynamixel-arm.yaml"});
+  const Result r = testing::run_avar({"sample", kLayeredShow, "--rig", AVAR_SOURCE_DIR "/examples/rigs/dynamixel-arm.yaml"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("layered-head.yaml:9:3: unknown channel 'lid_left'"), std::string::npos) << r.err;
 }
 
 TEST(LayeredShow, PlaysOnTheSimulatedHeadFollowingTheComposedTargets) {
   const std::string trace = testing::temp_path("layered-trace.csv");
-  const Result r = testing::run_avar({"play", kShow, "--rig", kRig, "--fast", "--no-progress", "--trace", trace});
+  const Result r = testing::run_avar({"play", kLayeredShow, "--rig", kLayeredRig, "--fast", "--no-progress", "--trace", trace});
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   EXPECT_NE(r.out.find("deadline misses 0"), std::string::npos) << r.out;
   std::ifstream csv(trace);
@@ -84,11 +84,11 @@ TEST(LayeredShow, PlaysOnTheSimulatedHeadFollowingTheComposedTargets) {
 }
 
 TEST(LayeredShow, CheckFitsTheRigAndRetimeIsRefusedWithAReason) {
-  const Result ok = testing::run_avar({"check", kShow, "--rig", kRig});
+  const Result ok = testing::run_avar({"check", kLayeredShow, "--rig", kLayeredRig});
   ASSERT_EQ(ok.code, kExitOk) << ok.err << ok.out;
   EXPECT_NE(ok.out.find("4 clips on 3 layers"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("0 segment(s) ask more"), std::string::npos) << ok.out;
-  const Result retime = testing::run_avar({"check", kShow, "--rig", kRig, "--retime", testing::temp_path("retimed.yaml")});
+  const Result retime = testing::run_avar({"check", kLayeredShow, "--rig", kLayeredRig, "--retime", testing::temp_path("retimed.yaml")});
   EXPECT_EQ(retime.code, kExitBadInput);
   EXPECT_NE(retime.err.find("has layers of clips, which retiming cannot stretch honestly"), std::string::npos) << retime.err;
 }

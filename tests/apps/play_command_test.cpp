@@ -22,8 +22,8 @@
 namespace avar::app {
 namespace {
 
-const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
-const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
+const std::string kHelloRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+const std::string kHelloShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
 
 using Result = testing::CliResult;
 Result avar(std::vector<std::string> args) { return testing::run_avar(std::move(args)); }
@@ -38,7 +38,7 @@ std::string read_file(const std::string& path) {
 }
 
 std::string bundled_show_with(const std::string& from, const std::string& to) {
-  std::string text = read_file(kShow);
+  std::string text = read_file(kHelloShow);
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return text.replace(at, from.size(), to);
@@ -47,7 +47,7 @@ std::string bundled_show_with(const std::string& from, const std::string& to) {
 TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   const std::string trace = testing::temp_path("trace.csv");
   const std::string plot = testing::temp_path("plot.svg");
-  const Result r = avar({"play", kShow, "--rig", kRig, "--fast", "--trace", trace, "--plot", plot});
+  const Result r = avar({"play", kHelloShow, "--rig", kHelloRig, "--fast", "--trace", trace, "--plot", plot});
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   for (const char* channel : {"jaw", "neck_pan", "neck_tilt", "neck_roll", "eyes_pan", "eyes_tilt", "lid_left", "lid_right"})
     EXPECT_NE(r.out.find(channel), std::string::npos) << channel;
@@ -104,11 +104,11 @@ TEST(PlayCommand, PlaysTheDynamixelArmOnTheSimulatedBusAndReportsTheWire) {
 
 TEST(PlayCommand, PlaysTheBundledShowThroughAnSsc32) {
   // The hello-head figure rewired to a Lynxmotion SSC-32: same channels, same pulse windows.
-  std::string rig = read_file(kRig);
+  std::string rig = read_file(kHelloRig);
   rig.replace(rig.find("maestro: {model: mini12}"), 24, "ssc32: {}");
   for (std::string::size_type at; (at = rig.find("protocol: maestro, ")) != std::string::npos;) rig.erase(at, 19);
   const std::string path = write_temp("ssc32-head.yaml", rig);
-  const Result r = avar({"play", kShow, "--rig", path, "--fast", "--no-progress"});
+  const Result r = avar({"play", kHelloShow, "--rig", path, "--fast", "--no-progress"});
   ASSERT_EQ(r.code, kExitOk) << r.err << r.out;
   EXPECT_NE(r.out.find("simulated SSC-32"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("jaw "), std::string::npos);
@@ -188,8 +188,8 @@ TEST(PlayCommand, PlaysATargetThroughInverseKinematics) {
 TEST(PlayCommand, FastRunsAreDeterministic) {
   const std::string a = testing::temp_path("a.csv");
   const std::string b = testing::temp_path("b.csv");
-  ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", a}).code, kExitOk);
-  ASSERT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--trace", b}).code, kExitOk);
+  ASSERT_EQ(avar({"play", kHelloShow, "--rig", kHelloRig, "--fast", "--trace", a}).code, kExitOk);
+  ASSERT_EQ(avar({"play", kHelloShow, "--rig", kHelloRig, "--fast", "--trace", b}).code, kExitOk);
   EXPECT_EQ(read_file(a), read_file(b));
 }
 
@@ -197,18 +197,18 @@ TEST(CheckCommand, ListsWhatTheRigCannotDoAndRetimes) {
   const std::string fast_show = write_temp("fast.yaml", "duration: 4\ntracks:\n  jaw:\n    - {time: 0, value: 0}\n"
                                                          "    - {time: 0.05, value: 30}\n    - {time: 4, value: 0}\n");
   const std::string out = testing::temp_path("retimed.yaml");
-  const Result r = avar({"check", fast_show, "--rig", kRig, "--retime", out});
+  const Result r = avar({"check", fast_show, "--rig", kHelloRig, "--retime", out});
   EXPECT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("infeasible: " + fast_show + ":4:7: jaw 0-0.05 s: speed 600 deg/s, allowed 300 deg/s"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("retimed show: " + out), std::string::npos) << r.out;
-  const Result again = avar({"check", out, "--rig", kRig});
+  const Result again = avar({"check", out, "--rig", kHelloRig});
   EXPECT_EQ(again.code, kExitOk);
   EXPECT_NE(again.out.find("0 segment(s) ask more"), std::string::npos) << again.out;
 }
 
 TEST(CheckCommand, AcceptsTheBundledShow) {
-  const Result r = avar({"check", kShow, "--rig", kRig});
+  const Result r = avar({"check", kHelloShow, "--rig", kHelloRig});
   EXPECT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("ok: show 'hello-head'"), std::string::npos) << r.out;
 }
@@ -223,7 +223,7 @@ struct WatchedPort {
 void expect_rejected(const std::string& show_text, const std::string& expected_message) {
   WatchedPort port;
   const std::string show = write_temp("bad-show.yaml", show_text);
-  const Result r = avar({"play", show, "--rig", kRig, "--port", port.host.slave_path()});
+  const Result r = avar({"play", show, "--rig", kHelloRig, "--port", port.host.slave_path()});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find(expected_message), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("error: " + show + ":"), std::string::npos) << "the message must start with the file: " << r.err;
@@ -253,16 +253,16 @@ TEST(PlayCommand, UnknownInterpolationIsRejectedBeforeAnythingIsSent) {
 }
 
 TEST(PlayCommand, BadRigIsRejectedWithItsLocation) {
-  std::string rig = read_file(kRig);
+  std::string rig = read_file(kHelloRig);
   rig.replace(rig.find("protocol: maestro"), 17, "protocol: maestr0");
   const std::string path = write_temp("bad-rig.yaml", rig);
-  const Result r = avar({"play", kShow, "--rig", path, "--fast"});
+  const Result r = avar({"play", kHelloShow, "--rig", path, "--fast"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find(path + ":25:36: unknown protocol 'maestr0'; expected one of: maestro"), std::string::npos) << r.err;
 }
 
 TEST(PlayCommand, MissingPortIsNamed) {
-  const Result r = avar({"play", kShow, "--rig", kRig, "--port", "/dev/ttyACM_avar_absent"});
+  const Result r = avar({"play", kHelloShow, "--rig", kHelloRig, "--port", "/dev/ttyACM_avar_absent"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("/dev/ttyACM_avar_absent: cannot open serial port"), std::string::npos) << r.err;
 }
@@ -274,7 +274,7 @@ TEST(PlayCommand, BusyPortIsRefused) {
   std::FILE* other = std::fopen(path.c_str(), "r+");
   ASSERT_NE(other, nullptr);
   ASSERT_EQ(::flock(::fileno(other), LOCK_EX | LOCK_NB), 0);
-  const Result r = avar({"play", kShow, "--rig", kRig, "--port", path});
+  const Result r = avar({"play", kHelloShow, "--rig", kHelloRig, "--port", path});
   std::fclose(other);
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find(path + ": serial port is busy"), std::string::npos) << r.err;
@@ -283,7 +283,7 @@ TEST(PlayCommand, BusyPortIsRefused) {
 
 TEST(PlayCommand, FastNeedsTheSimulator) {
   WatchedPort port;
-  const Result r = avar({"play", kShow, "--rig", kRig, "--port", port.host.slave_path(), "--fast"});
+  const Result r = avar({"play", kHelloShow, "--rig", kHelloRig, "--port", port.host.slave_path(), "--fast"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("--fast runs on a simulated clock"), std::string::npos) << r.err;
   EXPECT_EQ(port.bytes(), 0u);
@@ -293,9 +293,9 @@ TEST(Cli, HelpTeachesAndBadOptionsExitWithTwo) {
   const Result help = avar({"--help"});
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.out.find("Examples:"), std::string::npos);
-  EXPECT_EQ(avar({"play", kShow}).code, kExitBadInput);  // --rig is required
-  EXPECT_EQ(avar({"play", kShow, "--rig", kRig, "--rate", "5000"}).code, kExitBadInput);
-  EXPECT_EQ(avar({"play", kShow, "--rig", kRig, "--fast", "--realtime"}).code, kExitBadInput);
+  EXPECT_EQ(avar({"play", kHelloShow}).code, kExitBadInput);  // --rig is required
+  EXPECT_EQ(avar({"play", kHelloShow, "--rig", kHelloRig, "--rate", "5000"}).code, kExitBadInput);
+  EXPECT_EQ(avar({"play", kHelloShow, "--rig", kHelloRig, "--fast", "--realtime"}).code, kExitBadInput);
 }
 
 }  // namespace

@@ -10,13 +10,13 @@
 namespace avar::app {
 namespace {
 
-const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
-const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml";
+const std::string kGazeRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
+const std::string kFigureEightShow = AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml";
 
 TEST(PlayPathExample, ChecksAndPlaysTheFigureEightOnTheGazeHead) {
-  const testing::CliResult check = testing::run_avar({"check", kShow, "--rig", kRig});
+  const testing::CliResult check = testing::run_avar({"check", kFigureEightShow, "--rig", kGazeRig});
   ASSERT_EQ(check.code, kExitOk) << check.err << check.out;
-  const testing::CliResult play = testing::run_avar({"play", kShow, "--rig", kRig, "--sim", "--fast", "--no-progress"});
+  const testing::CliResult play = testing::run_avar({"play", kFigureEightShow, "--rig", kGazeRig, "--sim", "--fast", "--no-progress"});
   ASSERT_EQ(play.code, kExitOk) << play.err << play.out;
   EXPECT_NE(play.out.find("neck_pan"), std::string::npos) << play.out;
   EXPECT_NE(play.out.find(" 0 degraded (target out of reach: closest pose used), 0 failed"), std::string::npos) << play.out;

@@ -19,7 +19,7 @@
 namespace avar::app {
 namespace {
 
-const std::string kShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
+const std::string kSampledShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
 
 // Two tracks: a ramp (linear 0 -> 10 over 1 s, then held) and a step channel.
 const char* const kSmallShow = R"(name: small
@@ -40,11 +40,11 @@ Result sample(std::vector<std::string> args) {
 }
 
 TEST(SampleCommand, WritesEveryChannelOfTheShowOnTheGridWithTheCurvesValuesExactly) {
-  const Result r = sample({kShow, "--rate", "4"});
+  const Result r = sample({kSampledShow, "--rate", "4"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   const auto rows = testing::csv_rows(r.out);
-  const playback::Show show = config::load_show_file(kShow);
+  const playback::Show show = config::load_show_file(kSampledShow);
   ASSERT_EQ(rows.size(), 1u + 12 * 4 + 1);  // header, then 0, 0.25, ..., 12 s
   ASSERT_EQ(rows[0].size(), 1 + show.tracks.size());
   EXPECT_EQ(rows[0][0], "seconds");
@@ -148,7 +148,7 @@ TEST(SampleCommand, RejectsABadShowWholeWithFileAndLine) {
 }
 
 TEST(SampleCommand, TheBinaryWritesCsvToStandardOutputAndTeachesInItsHelp) {
-  testing::ChildProcess run({AVAR_BINARY, "sample", kShow, "--rate", "1", "--channels", "jaw"});
+  testing::ChildProcess run({AVAR_BINARY, "sample", kSampledShow, "--rate", "1", "--channels", "jaw"});
   ASSERT_TRUE(run.started());
   EXPECT_EQ(run.wait(), kExitOk) << run.err();
   const auto rows = testing::csv_rows(run.out());

@@ -9,7 +9,7 @@
 namespace avar::config {
 namespace {
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig_under_test.yaml"); }
+std::string rig_error(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig_under_test.yaml"); }
 using avar::testing::replace;
 
 
@@ -64,45 +64,45 @@ TEST(RigFile, MissingFileIsNamed) {
 }
 
 TEST(RigFile, MalformedYamlGivesLineAndColumn) {
-  EXPECT_EQ(error_of("name: x\nchannels: {jaw: [1, 2}\n"), ":2:22: malformed YAML: illegal flow end");
+  EXPECT_EQ(rig_error("name: x\nchannels: {jaw: [1, 2}\n"), ":2:22: malformed YAML: illegal flow end");
 }
 
 TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kGoodRig, "name: two", "name: two\nspeed: 3")), ":2:1: unknown field 'speed' in the rig file; expected one of: name, rate_hz, links, channels, actuators, kinematics");
-  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw,", "{channel: chin,")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "name: two", "name: two\nspeed: 3")), ":2:1: unknown field 'speed' in the rig file; expected one of: name, rate_hz, links, channels, actuators, kinematics");
+  EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw,", "{channel: chin,")),
             ":8:15: unknown channel 'chin'; expected one of the rig's channels: jaw, pan");
-  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),
             ":8:30: unknown protocol 'dynamixl'; expected one of: maestro, dynamixel, feetech, ssc32, dmx");
-  EXPECT_EQ(error_of(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixel")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixel")),
             ":8:30: link 'head' speaks maestro, not dynamixel; expected protocol: maestro");
-  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 12")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "device_channel: 3", "device_channel: 12")),
             ":9:67: expected device_channel from 0 to 11 on maestro link 'head', found '12'");
-  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3", "device_channel: 0")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "device_channel: 3", "device_channel: 0")),
             ":9:67: device_channel 0 of maestro link 'head' is used by two actuators");
-  EXPECT_EQ(error_of(replace(kGoodRig, ", maestro: {model: mini12}", "")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, ", maestro: {model: mini12}", "")),
             ":3:9: expected link 'head' to name its protocol with a settings block, one of: maestro, dynamixel, feetech, "
             "ssc32, dmx (for example `dynamixel: {}`)");
-  EXPECT_EQ(error_of(replace(kGoodRig, "maestro: {model: mini12}", "maestro: {model: mini12}, dmx: {}")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "maestro: {model: mini12}", "maestro: {model: mini12}, dmx: {}")),
             ":3:66: link 'head' names two protocols; expected exactly one of: maestro, dynamixel, feetech, ssc32, dmx");
-  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: -3, rest: 0")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: -3, rest: 0")),
             ":5:33: expected max of channel 'jaw' to be greater than its min 0, found -3");
-  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 40")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 40")),
             ":5:43: expected rest of channel 'jaw' inside its limits [0, 30], found 40");
-  EXPECT_EQ(error_of(replace(kGoodRig, "baud: 115200", "baud: 12345")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "baud: 115200", "baud: 12345")),
             ":3:27: expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found '12345'");
-  EXPECT_EQ(error_of(replace(kGoodRig, "baud: 115200", "baud: 115200, watchdog_ms: 0")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "baud: 115200", "baud: 115200, watchdog_ms: 0")),
             ":3:48: expected watchdog_ms of link 'head' from 1 to 60000 milliseconds, found '0'");
-  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 0, soft_margin: 20")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 0, soft_margin: 20")),
             ":5:59: expected soft_margin of channel 'jaw' from 0 to less than half the range (15), found '20'");
-  EXPECT_EQ(error_of(replace(kGoodRig, "device_channel: 3,", "device_channel: 3, failsafe: drop,")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "device_channel: 3,", "device_channel: 3, failsafe: drop,")),
             ":9:80: unknown fail-safe action 'drop'; expected one of: hold, rest, release");
-  EXPECT_EQ(error_of(replace(kGoodRig, "model: mini12", "model: mega")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "model: mini12", "model: mega")),
             ":3:52: unknown Maestro model 'mega'; expected one of: micro6, mini12, mini18, mini24");
-  EXPECT_EQ(error_of(replace(kGoodRig, "max: 30, rest: 0", "max: thirty, rest: 0")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: thirty, rest: 0")),
             ":5:33: expected max of channel 'jaw' to be a finite number, found 'thirty'");
-  EXPECT_EQ(error_of(replace(kGoodRig, "min_us: 1200, max_us: 1650", "min_us: 1200")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "min_us: 1200, max_us: 1650", "min_us: 1200")),
             ":8:83: missing field 'max_us' in the calibration of actuator 1");
-  EXPECT_EQ(error_of(replace(kGoodRig, "link: head, device_channel: 0", "link: body, device_channel: 0")),
+  EXPECT_EQ(rig_error(replace(kGoodRig, "link: head, device_channel: 0", "link: body, device_channel: 0")),
             ":8:45: unknown link 'body'; expected one of the rig's links: head");
 }
 
@@ -151,32 +151,32 @@ TEST(RigFile, EveryProtocolLoadsWithItsAddressingAndSettings) {
 }
 
 TEST(RigFile, RejectsBadBusEntriesWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kBusRig, "baud: 1000000, dynamixel", "baud: 500000, dynamixel")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "baud: 1000000, dynamixel", "baud: 500000, dynamixel")),
             ":3:26: a dynamixel device cannot run at '500000' baud; expected one of: 9600, 57600, 115200, 1000000, 2000000, "
             "3000000, 4000000");
-  EXPECT_EQ(error_of(replace(kBusRig, "baud: 115200, ssc32", "baud: 57600, ssc32")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "baud: 115200, ssc32", "baud: 57600, ssc32")),
             ":5:28: a ssc32 device cannot run at '57600' baud; expected one of: 2400, 9600, 38400, 115200");
-  EXPECT_EQ(error_of(replace(kBusRig, "id: 7,", "id: 254,")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "id: 7,", "id: 254,")),
             ":15:37: expected id from 0 to 253 on feetech link 'legs', found '254'");
-  EXPECT_EQ(error_of(replace(kBusRig, "link: arm, id: 1,", "link: arm, id: 253,")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "link: arm, id: 1,", "link: arm, id: 253,")),
             ":14:40: expected id from 0 to 252 on dynamixel link 'arm', found '253'");
-  EXPECT_EQ(error_of(replace(kBusRig, "link: legs, id: 7,", "link: arm, id: 1,")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "link: legs, id: 7,", "link: arm, id: 1,")),
             ":15:36: id 1 of dynamixel link 'arm' is used by two actuators");
-  EXPECT_EQ(error_of(replace(kBusRig, "address: 1}", "address: 3}")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "address: 1}", "address: 3}")),
             ":18:44: address 3 of dmx link 'lights' is used by two actuators");
-  EXPECT_EQ(error_of(replace(kBusRig, "address: 2, fine", "address: 512, fine")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "address: 2, fine", "address: 512, fine")),
             ":18:44: expected address from 1 to 511 on dmx link 'lights', found '512'");
-  EXPECT_EQ(error_of(replace(kBusRig, "link: arm, id: 1", "link: arm, device_channel: 1")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "link: arm, id: 1", "link: arm, device_channel: 1")),
             ":14:52: device_channel does not address a dynamixel actuator; expected id");
-  EXPECT_EQ(error_of(replace(kBusRig, "max_position: 800", "max_position: 1800")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "max_position: 800", "max_position: 1800")),
             ":15:87: expected max_position from 0 to 1023 position steps, found '1800'");
-  EXPECT_EQ(error_of(replace(kBusRig, "readback: position", "readback: everything")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "readback: position", "readback: everything")),
             ":3:57: unknown readback 'everything'; expected one of: none, position, full");
-  EXPECT_EQ(error_of(replace(kBusRig, "series: scs", "series: sms")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "series: scs", "series: sms")),
             ":4:39: unknown Feetech series 'sms'; expected one of: sts, scs");
-  EXPECT_EQ(error_of(replace(kBusRig, "address: 1}", "address: 1, fine: true}")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "address: 1}", "address: 1, fine: true}")),
             ":18:44: address 2 of dmx link 'lights' is used by two actuators");
-  EXPECT_EQ(error_of(replace(kBusRig, "device_channel: 31,", "device_channel: 31, fine: true,")),
+  EXPECT_EQ(rig_error(replace(kBusRig, "device_channel: 31,", "device_channel: 31, fine: true,")),
             ":16:60: fine (16-bit DMX) applies to dmx links only; link 'board' speaks ssc32");
 }
 

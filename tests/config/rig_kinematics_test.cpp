@@ -14,7 +14,7 @@
 namespace avar::config {
 namespace {
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig.yaml"); }
+std::string kinematics_error(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig.yaml"); }
 using avar::testing::replace;
 
 
@@ -64,25 +64,25 @@ TEST(RigKinematics, JointsInAnyOrderBindToTheirChannelsWithTheChannelsLimits) {
 }
 
 TEST(RigKinematics, RejectsBadTreesWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kHead, "{type: revolute, axis: [0, 0, 1]", "{type: revolute, parent: neck_tilt, axis: [0, 0, 1]")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "{type: revolute, axis: [0, 0, 1]", "{type: revolute, parent: neck_tilt, axis: [0, 0, 1]")),
             ":14:25: joint 'neck_tilt' is its own ancestor (neck_tilt -> neck_pan -> neck_tilt); expected a tree: every "
             "chain of parents ends at the base");
-  EXPECT_EQ(error_of(replace(kHead, "parent: neck_pan,", "parent: neck,")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "parent: neck_pan,", "parent: neck,")),
             ":14:25: unknown parent joint 'neck' of joint 'neck_tilt'; expected one of: neck_tilt, neck_pan, skull, "
             "jaw_slide (or no parent: the base)");
-  EXPECT_EQ(error_of(replace(kHead, "type: revolute", "type: ball")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "type: revolute", "type: ball")),
             ":15:23: unknown joint type 'ball' of joint 'neck_pan'; expected one of: revolute, prismatic, fixed");
-  EXPECT_NE(error_of(replace(kHead, "axis: [0, 0, 1]", "axis: [0, 0, 0]")).find("axis"), std::string::npos);
-  EXPECT_EQ(error_of(replace(kHead, ", channel: pan}", "}")),
+  EXPECT_NE(kinematics_error(replace(kHead, "axis: [0, 0, 1]", "axis: [0, 0, 0]")).find("axis"), std::string::npos);
+  EXPECT_EQ(kinematics_error(replace(kHead, ", channel: pan}", "}")),
             ":15:16: missing field 'channel' in joint 'neck_pan' (the channel that drives it)");
-  EXPECT_EQ(error_of(replace(kHead, "jaw:  {unit: mm", "jaw:  {unit: notches")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "jaw:  {unit: mm", "jaw:  {unit: notches")),
             ":17:76: channel 'jaw' is in 'notches', which joint 'jaw_slide' cannot convert; expected the channel's unit "
             "to be m, cm or mm, or a scale (joint metres per channel unit)");
-  EXPECT_EQ(error_of(replace(kHead, "{type: fixed, parent: neck_tilt,", "{type: fixed, axis: [1, 0, 0], parent: neck_tilt,")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "{type: fixed, parent: neck_tilt,", "{type: fixed, axis: [1, 0, 0], parent: neck_tilt,")),
             ":16:36: axis does not apply to the fixed joint 'skull'");
-  EXPECT_EQ(error_of(replace(kHead, "{joint: skull,", "{joint: nose,")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "{joint: skull,", "{joint: nose,")),
             ":19:19: unknown joint 'nose' for effector 'gaze'; expected one of: neck_tilt, neck_pan, skull, jaw_slide");
-  EXPECT_EQ(error_of(replace(kHead, "axis: [0, 1, 0]", "axis: [0, 1]")),
+  EXPECT_EQ(kinematics_error(replace(kHead, "axis: [0, 1, 0]", "axis: [0, 1]")),
             ":14:41: expected the axis of joint 'neck_tilt' to have 3 numbers [x, y, z], found 2");
 }
 
@@ -112,9 +112,9 @@ TEST(RigKinematics, AUrdfBindsItsJointsToChannelsWithTheNarrowerLimits) {
   EXPECT_NEAR(m.lower_limits()[0], -60 * std::numbers::pi / 180, 1e-12);
   EXPECT_NEAR(m.upper_limits()[1], 0.8, 1e-12);
   EXPECT_NEAR(m.lower_limits()[1], -20 * std::numbers::pi / 180, 1e-12);
-  EXPECT_EQ(error_of(replace(kImported, "    tilt: {channel: tilt}\n", "")),
+  EXPECT_EQ(kinematics_error(replace(kImported, "    tilt: {channel: tilt}\n", "")),
             ":13:5: joint 'tilt' has no channel; expected tilt: {channel: ...} among the joints");
-  EXPECT_EQ(error_of(replace(kImported, "    tilt: {channel: tilt}", "    tilt: {channel: tilt}\n    roll: {channel: pan}")),
+  EXPECT_EQ(kinematics_error(replace(kImported, "    tilt: {channel: tilt}", "    tilt: {channel: tilt}\n    roll: {channel: pan}")),
             ":15:5: unknown movable joint 'roll'; expected one of: pan, tilt");
 }
 
@@ -126,7 +126,7 @@ TEST(RigKinematics, ADenavitHartenbergChainBindsJoint1ToN) {
   ASSERT_TRUE(rig.kinematics);
   EXPECT_EQ(rig.kinematics->model.dof(), 2u);
   EXPECT_TRUE(rig.kinematics->model.find_effector("tip"));
-  EXPECT_NE(error_of(replace(dh, "convention: standard", "convention: craig")).find("unknown DH convention 'craig'; expected one of: standard, modified"),
+  EXPECT_NE(kinematics_error(replace(dh, "convention: standard", "convention: craig")).find("unknown DH convention 'craig'; expected one of: standard, modified"),
             std::string::npos);
 }
 

@@ -19,11 +19,11 @@ namespace {
 using avar::testing::replace;
 
 const std::string kExample = AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml";
-const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+const std::string kClipsRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+std::string clips_error(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
 
-const std::string kShow = R"(duration: 10
+const std::string kClipsShow = R"(duration: 10
 clips:
   idle: {duration: 4, mode: loop, tracks: {neck_pan: [{time: 0, value: -5}, {time: 2, value: 5}, {time: 4, value: -5}]}}
   wave:
@@ -42,7 +42,7 @@ layers:
 )";
 
 TEST(ShowClips, LoadsClipsLayersAndPlacementsResolvingDefaultEnds) {
-  const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kShow));
+  const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kClipsShow));
   EXPECT_TRUE(show.tracks.empty());
   ASSERT_EQ(show.clips.size(), 2u);
   EXPECT_EQ(show.clips[0].mode, playback::ClipMode::loop);
@@ -65,42 +65,42 @@ TEST(ShowClips, LoadsClipsLayersAndPlacementsResolvingDefaultEnds) {
 
 TEST(ShowClips, RejectsBadClipsAndLayersWithFileLineAndWhatWasExpected) {
   const std::pair<std::string, std::string> cases[] = {
-      {replace(kShow, "clip: wave, start: 2", "clip: wav, start: 2"), ":15:16: unknown clip 'wav'; expected one of the show's clips: idle, wave"},
-      {replace(kShow, "mode: hold", "mode: bounce"), ":6:11: unknown clip mode 'bounce'; expected one of: hold, loop, ping_pong"},
-      {replace(kShow, "blend: override", "blend: multiply"), ":12:12: unknown blend 'multiply'; expected one of: override, additive"},
-      {replace(kShow, "duration: 3", "duration: -3"),
+      {replace(kClipsShow, "clip: wave, start: 2", "clip: wav, start: 2"), ":15:16: unknown clip 'wav'; expected one of the show's clips: idle, wave"},
+      {replace(kClipsShow, "mode: hold", "mode: bounce"), ":6:11: unknown clip mode 'bounce'; expected one of: hold, loop, ping_pong"},
+      {replace(kClipsShow, "blend: override", "blend: multiply"), ":12:12: unknown blend 'multiply'; expected one of: override, additive"},
+      {replace(kClipsShow, "duration: 3", "duration: -3"),
        ":5:15: expected the duration of clip 'wave' to be more than 0 seconds, found '-3'"},
-      {replace(kShow, "speed: 1.5", "speed: 0"),
+      {replace(kClipsShow, "speed: 1.5", "speed: 0"),
        ":16:41: expected the speed of clip 'wave' to be more than 0 clip seconds per show second (reverse: true plays it backwards), found 0"},
-      {replace(kShow, "speed: 1.5", "speed: .nan"), ":16:41: expected the speed (clip seconds per show second) to be a finite number, found '.nan'"},
-      {replace(kShow, "fade_in: 0.5, fade_out: 0.5", "fade_in: 2, fade_out: 1.5"),
+      {replace(kClipsShow, "speed: 1.5", "speed: .nan"), ":16:41: expected the speed (clip seconds per show second) to be a finite number, found '.nan'"},
+      {replace(kClipsShow, "fade_in: 0.5, fade_out: 0.5", "fade_in: 2, fade_out: 1.5"),
        ":15:54: the fades of clip 'wave' (in 2 s + out 1.5 s) are longer than its placement (3 s, 2 to 5 s); expected them to fit within it"},
-      {replace(kShow, "{time: 3, value: 20}", "{time: 3.5, value: 20}"),
+      {replace(kClipsShow, "{time: 3, value: 20}", "{time: 3.5, value: 20}"),
        ":8:41: key time 3.5 s of track 'jaw' is outside clip 'wave', which runs from 0 to 3 s"},
-      {replace(kShow, "tracks:\n      jaw: [{time: 0, value: 0}, {time: 3, value: 20}]", "tracks: {}"),
+      {replace(kClipsShow, "tracks:\n      jaw: [{time: 0, value: 0}, {time: 3, value: 20}]", "tracks: {}"),
        ":7:13: clip 'wave' has no tracks; expected at least one channel with keys"},
-      {replace(kShow, "channels: [jaw, neck_pan]", "channels: []"),
+      {replace(kClipsShow, "channels: [jaw, neck_pan]", "channels: []"),
        ":13:15: the mask of layer 'top' lists no channels; expected at least one (leave channels out for every channel its clips drive)"},
-      {replace(kShow, "channels: [jaw, neck_pan]", "channels: [jaw, jaw]"),
+      {replace(kClipsShow, "channels: [jaw, neck_pan]", "channels: [jaw, jaw]"),
        ":13:21: channel 'jaw' is listed twice in the mask of layer 'top'; expected each once"},
-      {replace(kShow, "start: 4.5, speed: 1.5", "start: 8, speed: 0.5"),
+      {replace(kClipsShow, "start: 4.5, speed: 1.5", "start: 8, speed: 0.5"),
        ":16:9: clip 'wave' from 8 s at speed 0.5 ends at 12 s, after the show's end 10 s; expected it to end by then (give an end, or "
        "lengthen the show)"},
-      {replace(kShow, "start: 0, end: 10", "start: 0, end: 11"),
+      {replace(kClipsShow, "start: 0, end: 10", "start: 0, end: 11"),
        ":10:54: expected the end of clip 'idle' after its start 0 s and by the show's end 10 s, found 11 s"},
-      {replace(kShow, "fade_in: 0.5}", "fade_in: 0.5, fade: 1}"),
+      {replace(kClipsShow, "fade_in: 0.5}", "fade_in: 0.5, fade: 1}"),
        ":16:86: unknown field 'fade' in a placement in layer 'top'; expected one of: clip, start, end, speed, offset, reverse, fade_in, "
        "fade_out"},
-      {replace(kShow, "offset: 1", "offset: 3"), ":16:54: expected the offset into clip 'wave' to be at least 0 and below its duration 3 s, found 3 s"},
-      {replace(kShow, "blend: override", "blend: override\n    weight: 1.5"), ":13:13: expected the weight of layer 'top' within [0, 1], found '1.5'"},
-      {replace(kShow, "name: top", "name: base"), ":11:5: layer 'base' is named twice; expected unique layer names"},
-      {kShow.substr(0, kShow.find("layers:")), ":3:3: the show has clips but no layers; expected layers: placing them on the timeline"},
+      {replace(kClipsShow, "offset: 1", "offset: 3"), ":16:54: expected the offset into clip 'wave' to be at least 0 and below its duration 3 s, found 3 s"},
+      {replace(kClipsShow, "blend: override", "blend: override\n    weight: 1.5"), ":13:13: expected the weight of layer 'top' within [0, 1], found '1.5'"},
+      {replace(kClipsShow, "name: top", "name: base"), ":11:5: layer 'base' is named twice; expected unique layer names"},
+      {kClipsShow.substr(0, kClipsShow.find("layers:")), ":3:3: the show has clips but no layers; expected layers: placing them on the timeline"},
   };
-  for (const auto& [text, expected] : cases) EXPECT_EQ(error_of(text), expected) << text;
+  for (const auto& [text, expected] : cases) EXPECT_EQ(clips_error(text), expected) << text;
 }
 
 TEST(ShowClips, TheWriterRoundTripsClipsAndLayersExactly) {
-  for (const std::string& path : {kExample, avar::testing::write_temp_file("show.yaml", kShow)}) {
+  for (const std::string& path : {kExample, avar::testing::write_temp_file("show.yaml", kClipsShow)}) {
     SCOPED_TRACE(path);
     const playback::Show original = load_show_file(path);
     const std::string copy = avar::testing::temp_path("layered-copy.yaml");
@@ -147,9 +147,9 @@ TEST(ShowClips, TheWriterRoundTripsClipsAndLayersExactly) {
 }
 
 TEST(ShowClips, TheCheckRejectsUnknownChannelsInClipsAndMasksNamingTheRigsChannels) {
-  const control::Rig rig = load_rig_file(kRig);
+  const control::Rig rig = load_rig_file(kClipsRig);
   const std::string path =
-      avar::testing::write_temp_file("show.yaml", replace(replace(kShow, "channels: [jaw, neck_pan]", "channels: [jaw, neck_yaw]"),
+      avar::testing::write_temp_file("show.yaml", replace(replace(kClipsShow, "channels: [jaw, neck_pan]", "channels: [jaw, neck_yaw]"),
                                                           "      jaw: [", "      chin: ["));
   const ShowCheck check = check_show_against_rig(load_show_file(path), rig);
   ASSERT_EQ(check.errors.size(), 2u);
@@ -164,13 +164,13 @@ TEST(ShowClips, TheCheckRejectsUnknownChannelsInClipsAndMasksNamingTheRigsChanne
 }
 
 TEST(ShowClips, FeasibilityJudgesTheComposedMotionAndRetimeRefusesLayeredShows) {
-  const control::Rig rig = load_rig_file(kRig);
+  const control::Rig rig = load_rig_file(kClipsRig);
   const playback::Show example = load_show_file(kExample);
   EXPECT_TRUE(check_feasibility(example, rig).empty());
   // The idle sway (10 deg in 2 s) played 40 times faster asks neck_pan for 200 deg/s, more than
   // its 180; and a cut with no fade jumps.
   const std::string fast = avar::testing::write_temp_file(
-      "show.yaml", replace(replace(kShow, "{clip: idle, start: 0, end: 10}", "{clip: idle, start: 0, end: 10, speed: 40}"),
+      "show.yaml", replace(replace(kClipsShow, "{clip: idle, start: 0, end: 10}", "{clip: idle, start: 0, end: 10, speed: 40}"),
                            "{clip: wave, start: 2, fade_in: 0.5, fade_out: 0.5}", "{clip: wave, start: 2, fade_out: 0.5, offset: 1.5}"));
   const std::vector<Infeasible> found = check_feasibility(load_show_file(fast), rig);
   bool speed = false, jump = false;

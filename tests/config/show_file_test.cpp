@@ -14,7 +14,7 @@
 namespace avar::config {
 namespace {
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+std::string show_error(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
 using avar::testing::replace;
 
 
@@ -91,35 +91,35 @@ tracks:
 
 TEST(ShowFile, RejectsMalformedCurveFieldsWithWhereAndWhat) {
   const std::string head = "duration: 3\ntracks:\n  jaw:\n";
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, tension: 0.5}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, tension: 0.5}\n"),
             ":4:36: field 'tension' does not belong to a key with linear interpolation; expected it only on cardinal and "
             "kochanek_bartels keys");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: sine, back: 2}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: sine, back: 2}\n"),
             ":4:54: field 'back' does not belong to a key with sine interpolation; expected it only on back keys");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, easing: ease_in}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, easing: ease_in}\n"),
             ":4:35: field 'easing' does not belong to a key with linear interpolation; expected it only on keys with an easing "
             "interpolation (sine, quad, cubic, quart, quint, expo, circ, back, bounce, elastic)");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, in_slope: 2}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, in_slope: 2}\n"),
             ":4:37: field 'in_slope' does not belong to a key with linear interpolation; expected it only on keys that end a "
             "hermite segment (after a hermite key)");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: quad, easing: sideways}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: quad, easing: sideways}\n"),
             ":4:56: unknown easing 'sideways'; expected one of: auto, ease_in, ease_out, ease_in_out");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, left_type: smooth}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, left_type: smooth}\n"),
             ":4:38: unknown handle type 'smooth'; expected one of: free, aligned, vector, auto, auto_clamped");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: hermite}\n    - {time: 1, value: 2}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: hermite}\n    - {time: 1, value: 2}\n"),
             ":4:7: the key at 0 s starts a hermite segment but has no out_slope; expected out_slope: <units per second>");
-  EXPECT_EQ(error_of(head + "    extrapolation: cyclic\n    keys: [{time: 0, value: 1}]\n"),
+  EXPECT_EQ(show_error(head + "    extrapolation: cyclic\n    keys: [{time: 0, value: 1}]\n"),
             ":4:20: unknown extrapolation 'cyclic'; expected one of: constant, linear");
-  EXPECT_EQ(error_of(head + "    cycles: {after: pingpong}\n    keys: [{time: 0, value: 1}]\n"),
+  EXPECT_EQ(show_error(head + "    cycles: {after: pingpong}\n    keys: [{time: 0, value: 1}]\n"),
             ":4:21: unknown cycle mode 'pingpong'; expected one of: none, repeat, repeat_offset, mirror");
-  EXPECT_EQ(error_of(head + "    cycles: {after: repeat, after_count: -1}\n    keys: [{time: 0, value: 1}]\n"),
+  EXPECT_EQ(show_error(head + "    cycles: {after: repeat, after_count: -1}\n    keys: [{time: 0, value: 1}]\n"),
             ":4:42: expected a cycle count of 0 (forever) or more, found '-1'");
-  EXPECT_EQ(error_of(head + "    auto_smoothing: lots\n    keys: [{time: 0, value: 1}]\n"),
+  EXPECT_EQ(show_error(head + "    auto_smoothing: lots\n    keys: [{time: 0, value: 1}]\n"),
             ":4:21: unknown auto_smoothing 'lots'; expected one of: none, continuous_acceleration");
-  EXPECT_EQ(error_of(head + "    extrapolation: linear\n"), ":4:5: missing field 'keys' in track 'jaw'");
-  EXPECT_EQ(error_of(head + "    keyz: []\n"),
+  EXPECT_EQ(show_error(head + "    extrapolation: linear\n"), ":4:5: missing field 'keys' in track 'jaw'");
+  EXPECT_EQ(show_error(head + "    keyz: []\n"),
             ":4:5: unknown field 'keyz' in track 'jaw'; expected one of: extrapolation, cycles, auto_smoothing, keys");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: elastic, period: .nan}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: elastic, period: .nan}\n"),
             ":4:59: expected the period (seconds) to be a finite number, found '.nan'");
 }
 
@@ -181,29 +181,29 @@ TEST(ShowFile, BundledExampleLoads) {
 
 TEST(ShowFile, RejectsEachBadInputWithWhereAndWhat) {
   const std::string head = "duration: 3\ntracks:\n  jaw:\n";
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1}\n    - {time: 0, value: 2}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1}\n    - {time: 0, value: 2}\n"),
             ":5:7: key time 0 s is not after the previous key's 0 s; key times must strictly increase");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: cubical}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: cubical}\n"),
             ":4:42: unknown interpolation 'cubical'; expected one of: constant (or step), linear, bezier, sine, quad, cubic, quart, "
             "quint, expo, circ, back, bounce, elastic, hermite, catmull_rom, cardinal, kochanek_bartels, bspline");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolaton: step}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolaton: step}\n"),
             ":4:27: unknown field 'interpolaton' in a key of track 'jaw'; expected one of: time, value, interpolation, left, right, "
             "left_type, right_type, easing, back, amplitude, period, in_slope, out_slope, tension, continuity, bias");
-  EXPECT_EQ(error_of(head + "    - {time: 4, value: 1}\n"), ":4:14: key time 4 s is outside the show, which runs from 0 to 3 s");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: .nan}\n"), ":4:24: expected the key value to be a finite number, found '.nan'");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, interpolation: bezier, right_type: free}\n    - {time: 1, value: 2}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 4, value: 1}\n"), ":4:14: key time 4 s is outside the show, which runs from 0 to 3 s");
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: .nan}\n"), ":4:24: expected the key value to be a finite number, found '.nan'");
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: bezier, right_type: free}\n    - {time: 1, value: 2}\n"),
             ":4:7: the right handle of the key at 0 s is free but not given; expected right: [time, value], or right_type auto, "
             "auto_clamped or vector to compute it");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1, right: [1, 2, 3]}\n"),
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, right: [1, 2, 3]}\n"),
             ":4:34: expected the right handle to be [time, value], found a list");
-  EXPECT_EQ(error_of(head + "    - {value: 1}\n"), ":4:7: missing field 'time' in a key of track 'jaw'");
-  EXPECT_EQ(error_of(head + "    []\n"), ":3:3: track 'jaw' has no keys; expected at least one");
-  EXPECT_EQ(error_of(head + "    - {time: 0, value: 1}\n  jaw:\n    - {time: 0, value: 1}\n"),
+  EXPECT_EQ(show_error(head + "    - {value: 1}\n"), ":4:7: missing field 'time' in a key of track 'jaw'");
+  EXPECT_EQ(show_error(head + "    []\n"), ":3:3: track 'jaw' has no keys; expected at least one");
+  EXPECT_EQ(show_error(head + "    - {time: 0, value: 1}\n  jaw:\n    - {time: 0, value: 1}\n"),
             ":5:3: channel 'jaw' has two tracks; expected one track per channel");
-  EXPECT_EQ(error_of("duration: -1\ntracks: {}\n"), ":1:11: expected the duration to be more than 0 seconds, found '-1'");
-  EXPECT_EQ(error_of("tracks: {}\n"), ":1:1: missing field 'duration' in the show file");
-  EXPECT_EQ(error_of("duration: 3\ntracks:\n  jaw: 5\n"), ":3:8: expected the keys of track 'jaw' to be a list, found '5'");
-  EXPECT_EQ(error_of(""), ":1:1: the file is empty; expected a YAML map");
+  EXPECT_EQ(show_error("duration: -1\ntracks: {}\n"), ":1:11: expected the duration to be more than 0 seconds, found '-1'");
+  EXPECT_EQ(show_error("tracks: {}\n"), ":1:1: missing field 'duration' in the show file");
+  EXPECT_EQ(show_error("duration: 3\ntracks:\n  jaw: 5\n"), ":3:8: expected the keys of track 'jaw' to be a list, found '5'");
+  EXPECT_EQ(show_error(""), ":1:1: the file is empty; expected a YAML map");
 }
 
 }  // namespace

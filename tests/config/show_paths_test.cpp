@@ -18,10 +18,10 @@
 namespace avar::config {
 namespace {
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+std::string paths_error(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
 using avar::testing::replace;
 
-const std::string kShow = R"(duration: 6
+const std::string kPathsShow = R"(duration: 6
 targets:
   hand:
     path:
@@ -59,7 +59,7 @@ std::string text_of(const std::string& path) {
 playback::Show load(const std::string& text) { return load_show_file(avar::testing::write_temp_file("paths.yaml", text)); }
 
 TEST(ShowPaths, PathTargetsAndOrientationKeysLoad) {
-  const playback::Show show = load(kShow);
+  const playback::Show show = load(kPathsShow);
   ASSERT_EQ(show.targets.size(), 3u);
   const playback::TargetTrack& hand = show.targets[0];
   EXPECT_EQ(hand.kind, playback::TargetKind::pose);
@@ -79,55 +79,55 @@ TEST(ShowPaths, PathTargetsAndOrientationKeysLoad) {
 }
 
 TEST(ShowPaths, BadPathsAndKeysAreRejectedWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kShow, "[[0.3, 0, 0.2], [0.3, 0.1, 0.3], [0.2, 0.2, 0.3], [0.1, 0.2, 0.2]]", "[[0.3, 0, 0.2]]")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "[[0.3, 0, 0.2], [0.3, 0.1, 0.3], [0.2, 0.2, 0.3], [0.1, 0.2, 0.2]]", "[[0.3, 0, 0.2]]")),
             ":5:15: expected the path of target 'hand' to have at least 2 points, found 1");
-  EXPECT_EQ(error_of(replace(kShow, "[0.3, 0.1, 0.3]", "[0.3, 0.1]")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "[0.3, 0.1, 0.3]", "[0.3, 0.1]")),
             ":5:31: expected a point of the path of target 'hand' (m) to have 3 numbers [x, y, z], found 2");
-  EXPECT_EQ(error_of(replace(kShow, "spline: catmull_rom", "spline: nurbs")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "spline: catmull_rom", "spline: nurbs")),
             ":6:15: unknown path spline 'nurbs'; expected one of: linear, catmull_rom, cardinal, kochanek_bartels, bspline, bezier");
-  EXPECT_EQ(error_of(replace(kShow, "to: 4.0", "to: 1.0")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "to: 4.0", "to: 1.0")),
             ":8:11: expected the path's end time `to` (1 s) to come after its start time `from` (1 s)");
-  EXPECT_EQ(error_of(replace(kShow, "to: 4.0", "to: 7.0")), ":8:11: path end time 7 s is outside the show, which runs from 0 to 6 s");
-  EXPECT_EQ(error_of(replace(kShow, "shape: sine_constant_middle", "shape: smooth")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "to: 4.0", "to: 7.0")), ":8:11: path end time 7 s is outside the show, which runs from 0 to 6 s");
+  EXPECT_EQ(paths_error(replace(kPathsShow, "shape: sine_constant_middle", "shape: smooth")),
             ":9:22: unknown speed shape 'smooth'; expected one of: linear, sine, sine_constant_middle, parabolic, cubic");
-  EXPECT_EQ(error_of(replace(kShow, "k1: 0.2, k2: 0.8", "k1: 0.9, k2: 0.8")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "k1: 0.2, k2: 0.8", "k1: 0.9, k2: 0.8")),
             ":9:14: expected 0 <= k1 <= k2 <= 1 (normalised times ending the ease in and starting the ease out) in the speed of "
             "target 'hand', found k1 0.9, k2 0.8");
-  EXPECT_EQ(error_of(replace(kShow, "{time: 0.5, value: 0.2}", "{time: 0.5, value: -0.2}")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "{time: 0.5, value: 0.2}", "{time: 0.5, value: -0.2}")),
             ":26:15: expected a user distance-time curve (normalised time -> normalised distance) to rise from 0 to 1 without "
             "ever going back, but between 0 and 0.5 it reaches -0.00078125 at 0.00195312 after 0");
-  EXPECT_EQ(error_of(replace(kShow, "{time: 1, value: 1}]", "{time: 1, value: 0.9}]")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "{time: 1, value: 1}]", "{time: 1, value: 0.9}]")),
             ":26:61: expected a user distance-time curve (normalised time -> normalised distance) to end with a key at time 1, "
             "value 1; found time 1, value 0.9");
-  EXPECT_EQ(error_of(replace(kShow, "{time: 0.5, value: 0.2}", "{tim: 0.5, value: 0.2}")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "{time: 0.5, value: 0.2}", "{tim: 0.5, value: 0.2}")),
             ":26:37: unknown field 'tim' in a key of track 'eyes.speed'; expected one of: time, value, interpolation, left, right, "
             "left_type, right_type, easing, back, amplitude, period, in_slope, out_slope, tension, continuity, bias");
-  EXPECT_EQ(error_of(replace(kShow, "along: tangent", "along: sideways")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "along: tangent", "along: sideways")),
             ":10:23: unknown orientation along the path 'sideways'; expected one of: frenet, tangent, or a map {along: frenet | "
             "tangent, up: [x, y, z]} or {look_at: [x, y, z], up: [x, y, z]}");
-  EXPECT_EQ(error_of(replace(kShow, "along: tangent", "along: frenet")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "along: tangent", "along: frenet")),
             ":10:35: field 'up' does not belong to a Frenet frame (its axes come from the path's bending); expected it only with "
             "along: tangent or look_at");
-  EXPECT_EQ(error_of(replace(kShow, "    aim: [1, 0, 0]\n", "    aim: [1, 0, 0]\n    point: [1, 0, 0]\n")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "    aim: [1, 0, 0]\n", "    aim: [1, 0, 0]\n    point: [1, 0, 0]\n")),
             ":23:7: target 'eyes' has both a path and a point; expected one or the other");
-  EXPECT_EQ(error_of(replace(kShow, "      orient: {along: tangent, up: [0, 0, 1]}\n",
+  EXPECT_EQ(paths_error(replace(kPathsShow, "      orient: {along: tangent, up: [0, 0, 1]}\n",
                              "      orient: frenet\n    orientation_keys: {keys: [{time: 0, euler: [0, 0, 0]}]}\n")),
             ":11:23: target 'hand' has orientation_keys and a path that orients it; expected one or the other");
-  EXPECT_EQ(error_of(replace(kShow, "interpolation: squad", "interpolation: bezier")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "interpolation: squad", "interpolation: bezier")),
             ":14:22: unknown orientation interpolation 'bezier'; expected one of: slerp, squad");
-  EXPECT_EQ(error_of(replace(kShow, "order: zyx", "order: xyx")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "order: zyx", "order: xyx")),
             ":13:14: unknown Euler order 'xyx'; expected one of: xyz, xzy, yxz, yzx, zxy, zyx");
-  EXPECT_EQ(error_of(replace(kShow, "{time: 2, quaternion", "{time: 0, quaternion")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "{time: 2, quaternion", "{time: 0, quaternion")),
             ":17:11: orientation key time 0 s does not come after the previous key's 0 s; expected strictly increasing times");
-  EXPECT_EQ(error_of(replace(kShow, "quaternion: [0.7071067811865476, 0, 0, 0.7071067811865476]", "quaternion: [1, 0, 0]")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "quaternion: [0.7071067811865476, 0, 0, 0.7071067811865476]", "quaternion: [1, 0, 0]")),
             ":17:33: expected a quaternion [w, x, y, z] of 4 numbers, found 3");
-  EXPECT_EQ(error_of(replace(kShow, "{time: 0, euler: [0, 0, 0]}", "{time: 0}")),
+  EXPECT_EQ(paths_error(replace(kPathsShow, "{time: 0, euler: [0, 0, 0]}", "{time: 0}")),
             ":16:11: expected an orientation key of target 'wrist' ({time, quaternion: [w, x, y, z]} or {time, euler: [x, y, z]}) "
             "to have either quaternion or euler, not neither");
 }
 
 /// The hand's path as a Bezier: handles on some points, automatic on the others.
-const std::string kBezierShow = replace(replace(kShow, "[[0.3, 0, 0.2], [0.3, 0.1, 0.3], [0.2, 0.2, 0.3], [0.1, 0.2, 0.2]]",
+const std::string kBezierShow = replace(replace(kPathsShow, "[[0.3, 0, 0.2], [0.3, 0.1, 0.3], [0.2, 0.2, 0.3], [0.1, 0.2, 0.2]]",
                                                 "[[0.3, 0, 0.2], {at: [0.3, 0.1, 0.3], left: [0.31, 0.05, 0.28], right: [0.29, 0.15, 0.32]},\n"
                                                 "               {at: [0.2, 0.2, 0.3], right: [0.17, 0.21, 0.29]}, [0.1, 0.2, 0.2]]"),
                                         "spline: catmull_rom", "spline: bezier");
@@ -146,28 +146,28 @@ TEST(ShowPaths, BezierPathsLoadWithHandlesAndAutomaticHandles) {
   EXPECT_TRUE(path.derivative_at(1).isApprox(3 * (Eigen::Vector3d(0.29, 0.15, 0.32) - Eigen::Vector3d(0.3, 0.1, 0.3)), 1e-12));
   EXPECT_TRUE(show.targets[0].path->sample(5).position.isApprox(Eigen::Vector3d(0.1, 0.2, 0.2), 1e-12));
   // Without any handle, the plain form gives automatic handles and no handle lists.
-  const playback::Show plain = load(replace(kShow, "spline: catmull_rom", "spline: bezier"));
+  const playback::Show plain = load(replace(kPathsShow, "spline: catmull_rom", "spline: bezier"));
   EXPECT_TRUE(plain.targets[0].path->spec().left.empty());
   EXPECT_TRUE(plain.targets[0].path->spec().right.empty());
 }
 
 TEST(ShowPaths, BadBezierPointsAreRejectedWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kBezierShow, "left: [0.31, 0.05, 0.28]", "left: [0.31, .nan, 0.28]")),
+  EXPECT_EQ(paths_error(replace(kBezierShow, "left: [0.31, 0.05, 0.28]", "left: [0.31, .nan, 0.28]")),
             ":5:66: expected the left handle of a point of the path of target 'hand' (m) to be a finite number, found '.nan'");
-  EXPECT_EQ(error_of(replace(kBezierShow, "right: [0.17, 0.21, 0.29]", "right: [0.17, 0.21]")),
+  EXPECT_EQ(paths_error(replace(kBezierShow, "right: [0.17, 0.21, 0.29]", "right: [0.17, 0.21]")),
             ":6:45: expected the right handle of a point of the path of target 'hand' (m) to have 3 numbers [x, y, z], found 2");
-  EXPECT_EQ(error_of(replace(kBezierShow, "spline: bezier", "spline: catmull_rom")),
+  EXPECT_EQ(paths_error(replace(kBezierShow, "spline: bezier", "spline: catmull_rom")),
             ":5:59: field 'left' (a handle) does not belong to a catmull_rom path; expected handles only on bezier paths");
-  EXPECT_EQ(error_of(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{right")),
+  EXPECT_EQ(paths_error(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{right")),
             ":6:16: missing field 'at' in a point of the path of target 'hand' ({at: [x, y, z], left: [x, y, z], right: [x, y, z]})");
-  EXPECT_EQ(error_of(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{at: [0.2, 0.2, 0.3], middle")),
+  EXPECT_EQ(paths_error(replace(kBezierShow, "{at: [0.2, 0.2, 0.3], right", "{at: [0.2, 0.2, 0.3], middle")),
             ":6:38: unknown field 'middle' in a point of the path of target 'hand'; expected one of: at, left, right");
 }
 
 TEST(ShowPaths, PathTargetsAndOrientationKeysSurviveAWriterRoundTripExactly) {
-  for (const std::string& text : {kShow, kBezierShow, replace(kBezierShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
-                                  replace(kShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: {look_at: [1, 0, 0]}"),
-                                  replace(replace(kShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
+  for (const std::string& text : {kPathsShow, kBezierShow, replace(kBezierShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
+                                  replace(kPathsShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: {look_at: [1, 0, 0]}"),
+                                  replace(replace(kPathsShow, "orient: {along: tangent, up: [0, 0, 1]}", "orient: frenet"),
                                           "spline: catmull_rom", "spline: kochanek_bartels\n      tension: 0.2\n      bias: -0.3")}) {
     const playback::Show original = load(text);
     const std::string copy = avar::testing::temp_path("paths-copy.yaml");
@@ -202,7 +202,7 @@ TEST(ShowPaths, TheExampleChecksAgainstItsRigAndUnknownEffectorsAreReported) {
   const control::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml");
   const ShowCheck ok = check_show_against_rig(load_show_file(AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml"), rig);
   EXPECT_TRUE(ok.errors.empty()) << ok.errors.front().to_string();
-  const ShowCheck bad = check_show_against_rig(load(kShow), rig);
+  const ShowCheck bad = check_show_against_rig(load(kPathsShow), rig);
   ASSERT_EQ(bad.errors.size(), 2u);
   EXPECT_NE(bad.errors[0].to_string().find("unknown effector 'hand'; expected one of the rig's effectors: eyes"), std::string::npos);
 }

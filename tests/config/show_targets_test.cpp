@@ -13,13 +13,13 @@
 namespace avar::config {
 namespace {
 
-std::string error_of(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
+std::string targets_error(const std::string& text) { return avar::testing::load_error(load_show_file, text, "show.yaml"); }
 using avar::testing::replace;
 
 
-const std::string kRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
+const std::string kTargetsRig = AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml";
 
-const std::string kShow = R"(name: look
+const std::string kTargetsShow = R"(name: look
 duration: 4
 targets:
   eyes:
@@ -32,7 +32,7 @@ tracks:
 )";
 
 TEST(ShowTargets, CurvesAndStaticPointsLoad) {
-  const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kShow));
+  const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", kTargetsShow));
   ASSERT_EQ(show.targets.size(), 1u);
   const playback::TargetTrack& t = show.targets[0];
   EXPECT_EQ(t.effector, "eyes");
@@ -68,33 +68,33 @@ targets:
 }
 
 TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
-  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
+  EXPECT_EQ(targets_error(replace(kTargetsShow, "aim: [1, 0, 0]", "aim: [0, 0, 0]")),
             ":5:10: expected the aim axis of target 'eyes' to be a non-zero direction, found [0, 0, 0]");
-  EXPECT_EQ(error_of(replace(kShow, "    x: [{time: 0, value: 1}]\n", "")),
+  EXPECT_EQ(targets_error(replace(kTargetsShow, "    x: [{time: 0, value: 1}]\n", "")),
             ":5:5: missing field 'x' in target 'eyes' (a static point, or x, y and z curves in m)");
-  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
+  EXPECT_EQ(targets_error(replace(kTargetsShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    point: [1, 2, 3]")),
             ":7:8: target 'eyes' has both point and x; expected a static point or three curves");
-  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
+  EXPECT_EQ(targets_error(replace(kTargetsShow, "aim: [1, 0, 0]", "look: [1, 0, 0]")),
             ":5:5: unknown field 'look' in target 'eyes'; expected one of: aim, point, x, y, z, path, orientation, roll, pitch, yaw, orientation_keys");
-  EXPECT_EQ(error_of(replace(kShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    orientation: [0, 0, 1]")),
+  EXPECT_EQ(targets_error(replace(kTargetsShow, "aim: [1, 0, 0]", "aim: [1, 0, 0]\n    orientation: [0, 0, 1]")),
             ":5:10: target 'eyes' both aims and sets an orientation; expected one or the other");
 }
 
 TEST(ShowTargets, TheRigMustHaveTheEffectorAndTracksMustNotFightTheSolver) {
-  const control::Rig rig = load_rig_file(kRig);
+  const control::Rig rig = load_rig_file(kTargetsRig);
   const auto check = [&](const std::string& text) {
     return check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", text)), rig);
   };
-  EXPECT_TRUE(check(kShow).ok());
-  const ShowCheck unknown = check(replace(kShow, "  eyes:", "  nose:"));
+  EXPECT_TRUE(check(kTargetsShow).ok());
+  const ShowCheck unknown = check(replace(kTargetsShow, "  eyes:", "  nose:"));
   ASSERT_EQ(unknown.errors.size(), 1u);
   EXPECT_NE(unknown.errors[0].message.find("unknown effector 'nose'; expected one of the rig's effectors: eyes"), std::string::npos);
-  const ShowCheck both = check(replace(kShow, "  jaw:", "  neck_pan: [{time: 0, value: 0}]\n  jaw:"));
+  const ShowCheck both = check(replace(kTargetsShow, "  jaw:", "  neck_pan: [{time: 0, value: 0}]\n  jaw:"));
   ASSERT_EQ(both.errors.size(), 1u);
   EXPECT_EQ(both.errors[0].message,
             "channel 'neck_pan' is moved by target 'eyes' (inverse kinematics) and also has a track; expected one or the other");
   const control::Rig plain = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
-  const ShowCheck no_kinematics = check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", kShow)), plain);
+  const ShowCheck no_kinematics = check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", kTargetsShow)), plain);
   ASSERT_FALSE(no_kinematics.ok());
   EXPECT_NE(no_kinematics.errors.back().message.find("has no kinematics section"), std::string::npos);
 }

@@ -8,33 +8,12 @@
 #include <random>
 #include <vector>
 
+#include "../support/recording_link.hpp"
+
 namespace avar::control {
 namespace {
 
-/// Records every frame it is sent; can be told to fail.
-class RecordingLink final : public firmware_iface::ActuatorLink {
- public:
-  Status start() override { return Status::ok; }
-  Status read_positions(std::span<double>, std::span<bool>) override { return Status::ok; }
-  Status send(std::span<const double> frame) noexcept override {
-    if (fail_from_send >= 0 && static_cast<int>(frames.size()) >= fail_from_send) return Status::io_error;
-    frames.emplace_back(frame.begin(), frame.end());
-    return Status::ok;
-  }
-  Status release() noexcept override {
-    ++releases;
-    return Status::ok;
-  }
-  void release_channel(std::size_t channel) noexcept override { released_channels.push_back(channel); }
-  std::uint64_t saturated_pulses() const noexcept override { return 0; }
-  const std::string& describe() const noexcept override { return name; }
-
-  std::vector<std::vector<double>> frames;
-  std::vector<std::size_t> released_channels;
-  int fail_from_send = -1;
-  int releases = 0;
-  std::string name = "recording link";
-};
+using testing::RecordingLink;
 
 Rig two_channel_rig() {
   Rig rig;

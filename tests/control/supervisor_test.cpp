@@ -8,26 +8,12 @@
 
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
+#include "../support/recording_link.hpp"
 
 namespace avar::control {
 namespace {
 
-class RecordingLink final : public firmware_iface::ActuatorLink {
- public:
-  Status start() override { return Status::ok; }
-  Status read_positions(std::span<double>, std::span<bool>) override { return Status::ok; }
-  Status send(std::span<const double> frame) noexcept override {
-    frames.emplace_back(frame.begin(), frame.end());
-    return Status::ok;
-  }
-  Status release() noexcept override { return Status::ok; }
-  void release_channel(std::size_t channel) noexcept override { released.push_back(channel); }
-  std::uint64_t saturated_pulses() const noexcept override { return 0; }
-  const std::string& describe() const noexcept override { return name; }
-  std::vector<std::vector<double>> frames;
-  std::vector<std::size_t> released;
-  std::string name = "recording";
-};
+using testing::RecordingLink;
 
 /// Three channels, one per fail-safe action: hold, rest, release.
 Rig rig() {
@@ -113,12 +99,12 @@ TEST(Supervisor, EveryFaultFromEveryStateTakesTheFailsafePathAndLatches) {
         EXPECT_FALSE(c.active());
         c.tick(t);
         EXPECT_EQ(link.frames.size(), sent_before);
-        EXPECT_TRUE(link.released.empty());
+        EXPECT_TRUE(link.released_channels.empty());
         EXPECT_TRUE(c.reset());
         EXPECT_EQ(c.phase(), Phase::disabled);
         continue;
       }
-      EXPECT_EQ(link.released, std::vector<std::size_t>{2});  // only the "release" channel
+      EXPECT_EQ(link.released_channels, std::vector<std::size_t>{2});  // only the "release" channel
       EXPECT_TRUE(c.active());
       EXPECT_FALSE(c.reset());  // not while the fail-safe motions run
       for (; c.active() && k < 5000; ++k) c.tick(k * kDt);

@@ -18,8 +18,8 @@ namespace {
 using testing::build;
 using testing::key;
 
-constexpr Interpolation kLinear = Interpolation::linear;
-constexpr Interpolation kBezier = Interpolation::bezier;
+constexpr Interpolation kLinearKey = Interpolation::linear;
+constexpr Interpolation kBezierKey = Interpolation::bezier;
 
 std::vector<double> roots_of(double c0, double c1, double c2, double c3) {
   double r[3];
@@ -102,7 +102,7 @@ TEST(BezierHandleCorrection, HandlesWithinTheSegmentAndBackwardHandlesStay) {
 TEST(BezierCurve, SymmetricSCurvePassesThroughItsMidpoint) {
   // Flat handles 0.39 of the segment long (Blender's automatic length): an ease-in/ease-out S
   // from 0 to 10 over 2 s, point-symmetric about its middle.
-  const Curve c = build({key(1, 0, kBezier, {}, Handle{1.78, 0}), key(3, 10, kLinear, Handle{2.22, 10})});
+  const Curve c = build({key(1, 0, kBezierKey, {}, Handle{1.78, 0}), key(3, 10, kLinearKey, Handle{2.22, 10})});
   EXPECT_NEAR(c.evaluate(2), 5, 1e-12);
   for (double d = 0.05; d < 1; d += 0.05) EXPECT_NEAR(c.evaluate(2 - d) + c.evaluate(2 + d), 10, 1e-9) << d;
   EXPECT_LT(c.evaluate(1.1), 0.1);
@@ -111,12 +111,12 @@ TEST(BezierCurve, SymmetricSCurvePassesThroughItsMidpoint) {
 }
 
 TEST(BezierCurve, HandlesOnTheChordGiveAStraightLine) {
-  const Curve c = build({key(0, 0, kBezier, {}, Handle{1, 3}), key(3, 9, kLinear, Handle{2, 6})});
+  const Curve c = build({key(0, 0, kBezierKey, {}, Handle{1, 3}), key(3, 9, kLinearKey, Handle{2, 6})});
   for (double t = 0; t <= 3; t += 0.1) EXPECT_NEAR(c.evaluate(t), 3 * t, 1e-9) << t;
 }
 
 TEST(BezierCurve, FourEqualValuesGiveBlendersConstantShortcut) {
-  const Curve c = build({key(0, 4, kBezier, {}, Handle{2, 4}), key(1, 4, kLinear, Handle{-3, 4})});
+  const Curve c = build({key(0, 4, kBezierKey, {}, Handle{2, 4}), key(1, 4, kLinearKey, Handle{-3, 4})});
   for (double t = 0; t <= 1; t += 0.1) EXPECT_EQ(c.evaluate(t), 4) << t;
 }
 
@@ -124,8 +124,8 @@ TEST(BezierCurve, AHandleThatWouldMakeTimeRunBackwardsIsCorrectedAsBlenderDoes) 
   // The right handle reaches 2 s into a 1 s segment, so uncorrected the time x(u) would pass the
   // end key and come back. Blender scales it by 1/2 (time and value): the curve is the one
   // authored with the handle at (1, 5), and time never runs backwards along it.
-  const Curve too_long = build({key(0, 0, kBezier, {}, Handle{2, 10}), key(1, 0, kLinear, Handle{0.75, 0})});
-  const Curve corrected = build({key(0, 0, kBezier, {}, Handle{1, 5}), key(1, 0, kLinear, Handle{0.75, 0})});
+  const Curve too_long = build({key(0, 0, kBezierKey, {}, Handle{2, 10}), key(1, 0, kLinearKey, Handle{0.75, 0})});
+  const Curve corrected = build({key(0, 0, kBezierKey, {}, Handle{1, 5}), key(1, 0, kLinearKey, Handle{0.75, 0})});
   for (double t = 0; t <= 1.0; t += 0.01) EXPECT_NEAR(too_long.evaluate(t), corrected.evaluate(t), 1e-12) << t;
   const double uncorrected[4] = {0, 2, 0.75, 1}, fixed[4] = {0, 1, 0.75, 1};
   double max_uncorrected = 0;
@@ -140,7 +140,7 @@ TEST(BezierCurve, BothHandlesAtFullLengthStillGiveAFunctionOfTime) {
   // Each handle is 5 s long in a 1 s segment and is corrected to reach the other key:
   // x(u) = 3u - 6u^2 + 4u^3 rises with a flat inflection at u = 1/2, where by symmetry the value
   // is the average of the keys. The value rises with time everywhere (its control values do).
-  const Curve c = build({key(0, -2, kBezier, {}, Handle{5, 8}), key(1, 6, kLinear, Handle{-4, -4})});
+  const Curve c = build({key(0, -2, kBezierKey, {}, Handle{5, 8}), key(1, 6, kLinearKey, Handle{-4, -4})});
   EXPECT_NEAR(c.evaluate(0.5), 2, 1e-6);
   for (double t = 0; t < 1; t += 0.001) {
     ASSERT_TRUE(std::isfinite(c.evaluate(t)));
@@ -153,7 +153,7 @@ TEST(BezierCurve, BackwardRightHandleTakesBlendersRoot) {
   // time just after the key has three roots: about -t/1.5, 0.36 and 1.6. Blender tries the
   // largest (outside), then the smallest: while it lies within [-1e-10, 0] the value stays at the
   // key; a little later it falls outside and the middle root, far along the segment, takes over.
-  const Curve c = build({key(0, 0, kBezier, {}, Handle{-0.5, 50}), key(1, 10, kLinear, Handle{0.7, 10})});
+  const Curve c = build({key(0, 0, kBezierKey, {}, Handle{-0.5, 50}), key(1, 10, kLinearKey, Handle{0.7, 10})});
   EXPECT_NEAR(c.evaluate(1e-12), 0, 1e-9);
   const double u = (5.1 - std::sqrt(5.1 * 5.1 - 4 * 2.6 * 1.5)) / 5.2;  // middle root for x -> 0
   const double f[4] = {0, 50, 10, 10};
@@ -236,7 +236,7 @@ TEST(BezierCurve, AgreesWithBlendersAlgorithmOverRandomCurves) {
         }
       };
       const double left = reach(), right = reach();
-      keys.push_back(key(t, v, kBezier, Handle{t - left, v + 200 * (u(rng) - 0.5) * left},
+      keys.push_back(key(t, v, kBezierKey, Handle{t - left, v + 200 * (u(rng) - 0.5) * left},
                          Handle{t + right, v + 200 * (u(rng) - 0.5) * right}));
       t += 0.05 + 2 * u(rng);
     }
@@ -271,7 +271,7 @@ TEST(BezierCurve, TabulatedInverseMatchesTheClosedForm) {
     const double t0 = 100 * u(rng), d = 0.01 + 5 * u(rng);
     const double a = u(rng), b = u(rng);  // handle extents as fractions of the segment
     const double v0 = -50 + 100 * u(rng), v1 = -50 + 100 * u(rng), h0 = -50 + 100 * u(rng), h1 = -50 + 100 * u(rng);
-    const Curve c = build({key(t0, v0, kBezier, {}, Handle{t0 + a * d, h0}), key(t0 + d, v1, kLinear, Handle{t0 + d - b * d, h1})});
+    const Curve c = build({key(t0, v0, kBezierKey, {}, Handle{t0 + a * d, h0}), key(t0 + d, v1, kLinearKey, Handle{t0 + d - b * d, h1})});
     const double times[4] = {t0, t0 + a * d, t0 + d - b * d, t0 + d};
     const double values[4] = {v0, h0, h1, v1};
     for (int k = 0; k < 200; ++k) {

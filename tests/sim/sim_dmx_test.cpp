@@ -99,7 +99,7 @@ TEST(SimDmx, PacketsGoOutAtTheOutputRateAndFixturesFollow) {
   EXPECT_THROW(SimDmx{bad}, std::invalid_argument);
 }
 
-fw::DmxLinkConfig link_config() {
+fw::DmxLinkConfig dmx_link_config() {
   fw::DmxLinkConfig c;
   c.actuators.push_back({0, 1, false, {-90, 90, 0, 255, false, 0}});
   c.actuators.push_back({1, 3, true, {-90, 90, 0, 65535, false, 0}});
@@ -112,7 +112,7 @@ TEST(DmxLink, EachTickSendsTheWholeUniverseOnce) {
   c.fixtures = {{1, false, 1000, 2000, 1500}, {3, true, 1000, 2000, 1500}};
   SimDmx widget(c);
   SimWire t(widget);
-  fw::DmxLink link(t, link_config());
+  fw::DmxLink link(t, dmx_link_config());
   ASSERT_EQ(link.start(), Status::ok);
   EXPECT_EQ(link.widget_parameters().output_rate, 40);
   EXPECT_EQ(link.slot_count(), 30u);
@@ -141,7 +141,7 @@ TEST(DmxLink, EachTickSendsTheWholeUniverseOnce) {
 TEST(DmxLink, ReleaseSendsLevelZero) {
   SimDmx widget({});
   SimWire t(widget);
-  fw::DmxLink link(t, link_config());
+  fw::DmxLink link(t, dmx_link_config());
   ASSERT_EQ(link.send(std::array<double, 3>{90, 90, 0}), Status::ok);
   link.release_channel(1);
   ASSERT_EQ(link.send(std::array<double, 3>{90, 90, 0}), Status::ok);
@@ -156,16 +156,16 @@ TEST(DmxLink, ReleaseSendsLevelZero) {
 TEST(DmxLink, RefusesSlotsThatDoNotFitOrOverlap) {
   SimDmx widget({});
   SimWire t(widget);
-  fw::DmxLinkConfig overlap = link_config();
+  fw::DmxLinkConfig overlap = dmx_link_config();
   overlap.actuators[2].address = 4;  // inside the 16-bit pair 3-4
   EXPECT_THROW(fw::DmxLink(t, overlap), std::invalid_argument);
-  fw::DmxLinkConfig outside = link_config();
+  fw::DmxLinkConfig outside = dmx_link_config();
   outside.actuators[1].address = 512;  // fine needs 513
   EXPECT_THROW(fw::DmxLink(t, outside), std::invalid_argument);
-  fw::DmxLinkConfig short_count = link_config();
+  fw::DmxLinkConfig short_count = dmx_link_config();
   short_count.slot_count = 10;
   EXPECT_THROW(fw::DmxLink(t, short_count), std::invalid_argument);
-  fw::DmxLinkConfig full = link_config();
+  fw::DmxLinkConfig full = dmx_link_config();
   full.slot_count = 512;
   EXPECT_EQ(fw::DmxLink(t, full).slot_count(), 512u);
 }
@@ -176,7 +176,7 @@ TEST(DmxLink, EndToEndThroughTheSerialTransportAndAPseudoTerminal) {
   SimDmx widget(c);
   PtyDeviceHost host(widget, PtyDeviceHost::Clock::stepped);
   fw::SerialTransport port(host.slave_path(), 115200);
-  fw::DmxLinkConfig config = link_config();
+  fw::DmxLinkConfig config = dmx_link_config();
   config.reply_timeout = 2000ms;
   fw::DmxLink link(port, config);
   ASSERT_EQ(link.start(), Status::ok);

@@ -6,6 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "../support/encode.hpp"
+
 namespace avar::sim {
 namespace {
 
@@ -32,13 +34,6 @@ Bytes replies(SimFeetech& d) {
   return Bytes(out.begin(), out.begin() + static_cast<long>(n));
 }
 
-template <class F>
-Bytes packet(F&& f) {
-  std::array<std::uint8_t, ft::kMaxPacketSize> buf{};
-  const std::size_t n = f(std::span<std::uint8_t>(buf));
-  return Bytes(buf.begin(), buf.begin() + static_cast<long>(n));
-}
-
 TEST(SimFeetech, F1_PingIsAnsweredWithAnEmptyStatus) {
   SimFeetech d(bus());
   d.receive(Bytes{0xFF, 0xFF, 0x01, 0x02, 0x01, 0xFB});
@@ -55,7 +50,7 @@ TEST(SimFeetech, F2_F3_ReadPresentPositionLittleEndianOnSts) {
 
 TEST(SimFeetech, ScsKeepsWordsBigEndian) {
   SimFeetech d(bus(ft::Series::scs));
-  d.receive(packet([](auto o) { return ft::encode_read(o, 1, ft::kPresentPosition, 2); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_read(o, 1, ft::kPresentPosition, 2); }));
   const Bytes r = replies(d);
   ASSERT_EQ(r.size(), 8u);
   EXPECT_EQ(r[5], 0x02);  // 512 high byte first
@@ -70,12 +65,12 @@ TEST(SimFeetech, ScsKeepsWordsBigEndian) {
 TEST(SimFeetech, F7_SyncWriteIsSilentAndMovesTheServosOnceTorqueIsOn) {
   SimFeetech d(bus());
   const Bytes on{1};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, ft::kBroadcastId, ft::kTorqueEnable, on); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, ft::kBroadcastId, ft::kTorqueEnable, on); }));
   EXPECT_TRUE(replies(d).empty());  // broadcasts are never answered
   // F7 asks ID 1 for 2048 (where it is) and ID 2 for 1024 (where it is): swap them instead.
   const std::uint8_t ids[2] = {1, 2};
   const std::uint16_t goals[2] = {1024, 2048};
-  d.receive(packet([&](auto o) { return ft::encode_sync_write_words(o, ft::Series::sts, ft::kGoalPosition, ids, goals); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_sync_write_words(o, ft::Series::sts, ft::kGoalPosition, ids, goals); }));
   EXPECT_TRUE(replies(d).empty());
   d.advance(0.1);
   EXPECT_LT(d.position(0), 2048 - 100);
@@ -106,9 +101,9 @@ TEST(SimFeetech, SpeedAndAccelerationLimitTheMove) {
   std::array<std::uint8_t, 7> block{10};  // 1000 steps/s², goal 3048, time 0, speed 500 steps/s
   ft::put_word(ft::Series::sts, std::span<std::uint8_t, 2>(&block[1], 2), 3048);
   ft::put_word(ft::Series::sts, std::span<std::uint8_t, 2>(&block[5], 2), 500);
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 1, ft::kAcceleration, block); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 1, ft::kAcceleration, block); }));
   const Bytes on{1};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 1, ft::kTorqueEnable, on); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 1, ft::kTorqueEnable, on); }));
   replies(d);
   d.advance(0.2);  // accelerating: at most 1000/2 * 0.2² = 20 steps
   EXPECT_LE(d.position(0) - 2048, 20.5);
@@ -123,39 +118,39 @@ TEST(SimFeetech, SpeedAndAccelerationLimitTheMove) {
 TEST(SimFeetech, ErrorRepliesForBadChecksumUnknownInstructionAndOutOfRangeWrites) {
   SimFeetech d(bus());
   d.receive(Bytes{0xFF, 0xFF, 0x01, 0x02, 0x01, 0xFA});  // ping with a wrong checksum
-  EXPECT_EQ(replies(d), packet([](auto o) { return ft::encode_packet(o, 1, ft::kErrorChecksum, {}); }));
+  EXPECT_EQ(replies(d), testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_packet(o, 1, ft::kErrorChecksum, {}); }));
   EXPECT_EQ(d.checksum_errors(), 1u);
-  d.receive(packet([](auto o) { return ft::encode_packet(o, 1, 0x30, {}); }));  // no such instruction
-  EXPECT_EQ(replies(d), packet([](auto o) { return ft::encode_packet(o, 1, ft::kErrorInstruction, {}); }));
-  const Bytes range_reply = packet([](auto o) { return ft::encode_packet(o, 1, ft::kErrorRange, {}); });
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_packet(o, 1, 0x30, {}); }));  // no such instruction
+  EXPECT_EQ(replies(d), testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_packet(o, 1, ft::kErrorInstruction, {}); }));
+  const Bytes range_reply = testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_packet(o, 1, ft::kErrorRange, {}); });
   // Goal outside the position limits: refused, nothing written.
-  d.receive(packet([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kGoalPosition, 5000); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kGoalPosition, 5000); }));
   EXPECT_EQ(replies(d), range_reply);
   EXPECT_EQ(d.read_word(0, ft::kGoalPosition), 2048);
   // Read-only register, torque value that does not exist, past the end of the table.
-  d.receive(packet([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kPresentPosition, 1); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kPresentPosition, 1); }));
   EXPECT_EQ(replies(d), range_reply);
   const Bytes three{3};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 1, ft::kTorqueEnable, three); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 1, ft::kTorqueEnable, three); }));
   EXPECT_EQ(replies(d), range_reply);
-  d.receive(packet([](auto o) { return ft::encode_read(o, 1, 70, 4); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_read(o, 1, 70, 4); }));
   EXPECT_EQ(replies(d), range_reply);
   // None of that reaches anyone on a broadcast.
   d.receive(Bytes{0xFF, 0xFF, 0xFE, 0x02, 0x01, 0x00});
-  d.receive(packet([](auto o) { return ft::encode_write_word(o, ft::Series::sts, ft::kBroadcastId, ft::kGoalPosition, 5000); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_write_word(o, ft::Series::sts, ft::kBroadcastId, ft::kGoalPosition, 5000); }));
   EXPECT_TRUE(replies(d).empty());
 }
 
 TEST(SimFeetech, ResponseLevelZeroAnswersOnlyReadAndPing) {
   SimFeetech d(bus());
   const Bytes zero{0};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 1, ft::kResponseLevel, zero); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 1, ft::kResponseLevel, zero); }));
   EXPECT_EQ(replies(d).size(), 6u);  // the level in force when the write arrived
-  d.receive(packet([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kGoalPosition, 2000); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_write_word(o, ft::Series::sts, 1, ft::kGoalPosition, 2000); }));
   EXPECT_TRUE(replies(d).empty());
-  d.receive(packet([](auto o) { return ft::encode_ping(o, 1); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_ping(o, 1); }));
   EXPECT_EQ(replies(d).size(), 6u);
-  d.receive(packet([](auto o) { return ft::encode_read(o, 1, ft::kGoalPosition, 2); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_read(o, 1, ft::kGoalPosition, 2); }));
   EXPECT_EQ(replies(d).size(), 8u);
 }
 
@@ -164,10 +159,10 @@ TEST(SimFeetech, RegWriteWaitsForAction) {
   std::array<std::uint8_t, 2> word{};
   ft::put_word(ft::Series::sts, word, 1500);
   Bytes params{ft::kGoalPosition, word[0], word[1]};
-  d.receive(packet([&](auto o) { return ft::encode_packet(o, 1, ft::kRegWrite, params); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_packet(o, 1, ft::kRegWrite, params); }));
   EXPECT_EQ(replies(d).size(), 6u);
   EXPECT_EQ(d.read_word(0, ft::kGoalPosition), 2048);
-  d.receive(packet([](auto o) { return ft::encode_packet(o, ft::kBroadcastId, ft::kAction, {}); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_packet(o, ft::kBroadcastId, ft::kAction, {}); }));
   EXPECT_TRUE(replies(d).empty());
   EXPECT_EQ(d.read_word(0, ft::kGoalPosition), 1500);
 }
@@ -177,7 +172,7 @@ TEST(SimFeetech, TemperatureRisesWithLoadUntilTheOverheatProtectionCutsTorque) {
   c.servos[0].heating_c_per_s_at_full_load = 10;
   SimFeetech d(c);
   const Bytes on{1};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, ft::kBroadcastId, ft::kTorqueEnable, on); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, ft::kBroadcastId, ft::kTorqueEnable, on); }));
   d.set_external_load(0, 0.8);
   d.advance(1.0);
   EXPECT_GT(d.temperature_c(0), 31);
@@ -188,7 +183,7 @@ TEST(SimFeetech, TemperatureRisesWithLoadUntilTheOverheatProtectionCutsTorque) {
   EXPECT_EQ(d.read_u8(0, ft::kStatus) & ft::kErrorOverheat, ft::kErrorOverheat);
   EXPECT_EQ(d.read_u8(0, ft::kTorqueEnable), 0);
   // Every reply now carries the overheat bit.
-  d.receive(packet([](auto o) { return ft::encode_ping(o, 1); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([](auto o) { return ft::encode_ping(o, 1); }));
   const Bytes r = replies(d);
   ASSERT_EQ(r.size(), 6u);
   EXPECT_EQ(r[4], ft::kErrorOverheat);
@@ -200,7 +195,7 @@ TEST(SimFeetech, ModelsItsLineRateAndReturnDelay) {
   EXPECT_EQ(d.read_u8(0, ft::kBaudRate), 0);
   EXPECT_DOUBLE_EQ(d.reply_delay_s(0), 0);
   const Bytes delay{250};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 1, ft::kReturnDelay, delay); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 1, ft::kReturnDelay, delay); }));
   EXPECT_DOUBLE_EQ(d.reply_delay_s(0), 500e-6);
   EXPECT_EQ(SimFeetech::baud_code(115200), 4);
   EXPECT_EQ(SimFeetech::baud_code(123), -1);
@@ -216,7 +211,7 @@ TEST(SimFeetech, RecentreMakesThePresentPositionTheCentre) {
   SimFeetechConfig c = bus();
   SimFeetech d(c);
   const Bytes centre{128};
-  d.receive(packet([&](auto o) { return ft::encode_write(o, 2, ft::kTorqueEnable, centre); }));
+  d.receive(testing::encode_into<ft::kMaxPacketSize>([&](auto o) { return ft::encode_write(o, 2, ft::kTorqueEnable, centre); }));
   EXPECT_EQ(replies(d).size(), 6u);
   EXPECT_EQ(d.read_word(1, ft::kPresentPosition), 2048);
   EXPECT_EQ(d.read_u8(1, ft::kTorqueEnable), 0);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/maestro_codec.hpp"
+#include "../support/encode.hpp"
 
 namespace avar::sim {
 namespace {
@@ -32,13 +33,6 @@ Bytes replies(SimMaestro& d) {
   std::array<std::uint8_t, 256> out{};
   const std::size_t n = d.take_replies(out);
   return Bytes(out.begin(), out.begin() + static_cast<long>(n));
-}
-
-template <class F>
-Bytes packet(F&& encode) {
-  std::array<std::uint8_t, maestro::kMaxPacketSize> buf{};
-  const std::size_t n = encode(std::span<std::uint8_t>(buf));
-  return Bytes(buf.begin(), buf.begin() + static_cast<long>(n));
 }
 
 /// Advances in 1 ms steps until channel ch reaches its target; returns the time taken.
@@ -147,42 +141,42 @@ TEST(SimMaestro, EveryCommandTheCodecEncodesIsDecodedAsSent) {
       std::size_t reply_size = 0;
       switch (k) {
         case 0:
-          p = packet([&](auto o) { return maestro::encode_set_target(o, f, ch, v); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_set_target(o, f, ch, v); });
           expected = {maestro::kSetTarget, ch, {v}, expected.form};
           break;
         case 1: {
           const int count = std::uniform_int_distribution<int>(1, 24 - ch)(rng);
           Values targets(static_cast<std::size_t>(count));
           for (auto& t : targets) t = static_cast<std::uint16_t>(value(rng));
-          p = packet([&](auto o) { return maestro::encode_set_multiple_targets(o, f, ch, targets); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_set_multiple_targets(o, f, ch, targets); });
           expected = {maestro::kSetMultipleTargets, ch, targets, expected.form};
           break;
         }
         case 2:
-          p = packet([&](auto o) { return maestro::encode_set_speed(o, f, ch, v); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_set_speed(o, f, ch, v); });
           expected = {maestro::kSetSpeed, ch, {v}, expected.form};
           break;
         case 3:
-          p = packet([&](auto o) { return maestro::encode_set_acceleration(o, f, ch, v); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_set_acceleration(o, f, ch, v); });
           expected = {maestro::kSetAcceleration, ch, {std::min(v, maestro::kMaxAcceleration)}, expected.form};
           break;
         case 4:
-          p = packet([&](auto o) { return maestro::encode_get_position(o, f, ch); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_get_position(o, f, ch); });
           expected = {maestro::kGetPosition, ch, {}, expected.form};
           reply_size = 2;
           break;
         case 5:
-          p = packet([&](auto o) { return maestro::encode_get_moving_state(o, f); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_get_moving_state(o, f); });
           expected = {maestro::kGetMovingState, 0, {}, expected.form};
           reply_size = 1;
           break;
         case 6:
-          p = packet([&](auto o) { return maestro::encode_get_errors(o, f); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_get_errors(o, f); });
           expected = {maestro::kGetErrors, 0, {}, expected.form};
           reply_size = 2;
           break;
         default:
-          p = packet([&](auto o) { return maestro::encode_go_home(o, f); });
+          p = testing::encode_into<maestro::kMaxPacketSize>([&](auto o) { return maestro::encode_go_home(o, f); });
           expected = {maestro::kGoHome, 0, {}, expected.form};
           break;
       }
@@ -491,7 +485,7 @@ TEST(SimMaestro, SpeedLimitMatchesTheGuidesWorkedExample) {
   d.receive(Bytes{0x84, 0x05, 0x20, 0x1F});  // 1000 µs (first pulse: immediate)
   d.receive(Bytes{0x87, 0x05, 0x0C, 0x01});  // M6: speed 140
   EXPECT_EQ(d.speed(5), 140);
-  d.receive(packet([](auto o) { return maestro::encode_set_target(o, {}, 5, 5400); }));
+  d.receive(testing::encode_into<maestro::kMaxPacketSize>([](auto o) { return maestro::encode_set_target(o, {}, 5, 5400); }));
   for (int i = 0; i < 99; ++i) d.advance(0.001);
   EXPECT_NEAR(d.output_pulse(5), 4000 + 14 * 99, 1e-6);
   d.receive(Bytes{0x90, 0x05});

@@ -115,7 +115,7 @@ TEST(SimSsc32, ModelsItsLineRate) {
 
 std::string text(const std::vector<std::uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
 
-fw::Ssc32LinkConfig link_config() {
+fw::Ssc32LinkConfig ssc32_link_config() {
   fw::Ssc32LinkConfig c;
   c.actuators.push_back({0, 0, {-90, 90, 1000, 2000, false, 0}, {}});
   c.actuators.push_back({1, 7, {-90, 90, 1000, 2000, true, 0}, {}});
@@ -126,7 +126,7 @@ fw::Ssc32LinkConfig link_config() {
 TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
   SimSsc32 board({});
   SimWire t(board);
-  fw::Ssc32Link link(t, link_config());
+  fw::Ssc32Link link(t, ssc32_link_config());
   ASSERT_EQ(link.start(), Status::ok);
   const std::uint64_t writes = t.writes();
   ASSERT_EQ(link.send(std::array<double, 3>{0, 45, 50}), Status::ok);
@@ -153,7 +153,7 @@ TEST(Ssc32Link, EachTickIsOneGroupMoveTimedToTheTick) {
 TEST(Ssc32Link, ReleasedChannelsAreHeldLowOnce) {
   SimSsc32 board({});
   SimWire t(board);
-  fw::Ssc32Link link(t, link_config());
+  fw::Ssc32Link link(t, ssc32_link_config());
   const std::array<double, 3> frame{0, 0, 50};
   ASSERT_EQ(link.send(frame), Status::ok);
   link.release_channel(1);
@@ -183,12 +183,12 @@ class SilentDevice final : public ByteDevice {
 TEST(Ssc32Link, ASilentBoardIsATimeoutAndBadSetupIsRefused) {
   SilentDevice silent;
   SimWire t(silent);
-  fw::Ssc32Link link(t, link_config());
+  fw::Ssc32Link link(t, ssc32_link_config());
   EXPECT_EQ(link.start(), Status::timeout);
-  fw::Ssc32LinkConfig twice = link_config();
+  fw::Ssc32LinkConfig twice = ssc32_link_config();
   twice.actuators[1].device_channel = 0;
   EXPECT_THROW(fw::Ssc32Link(t, twice), std::invalid_argument);
-  fw::Ssc32LinkConfig outside = link_config();
+  fw::Ssc32LinkConfig outside = ssc32_link_config();
   outside.actuators[1].device_channel = 32;
   EXPECT_THROW(fw::Ssc32Link(t, outside), std::invalid_argument);
 }
@@ -197,7 +197,7 @@ TEST(Ssc32Link, EndToEndThroughTheSerialTransportAndAPseudoTerminal) {
   SimSsc32 board({});
   PtyDeviceHost host(board, PtyDeviceHost::Clock::stepped);
   fw::SerialTransport port(host.slave_path(), 115200);
-  fw::Ssc32LinkConfig config = link_config();
+  fw::Ssc32LinkConfig config = ssc32_link_config();
   config.reply_timeout = 2000ms;
   fw::Ssc32Link link(port, config);
   ASSERT_EQ(link.start(), Status::ok);
