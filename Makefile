@@ -29,15 +29,19 @@ demo: build
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer, then the suites whose code runs
 # threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link) under
-# ThreadSanitizer. `make test-fast` runs every test on the optimised build instead.
+# ThreadSanitizer; the limiter's tests are left out there (it runs on the caller's thread only,
+# and its property family is the suite's longest test). `make test-fast` runs every test on the
+# optimised build instead. The sanitizer builds use -O1, as the sanitizers' authors advise: at
+# -O0 the Eigen-heavy tests ran 5x slower.
 TSAN_SUITES = control sim firmware_iface
+TSAN_EXCLUDE = ^Limiter\.
 test: test-sanitize test-tsan
 
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-sanitize: deps
-	@cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" -DAVAR_SANITIZE=ON \
+	@cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DAVAR_SANITIZE=ON \
 	  -DAVAR_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
@@ -46,7 +50,7 @@ test-tsan: deps
 	@cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
 	  -DAVAR_TSAN=ON -DAVAR_BUILD_BENCH=OFF -DAVAR_TEST_MODULES="$(TSAN_SUITES)" >/dev/null
 	@cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(patsubst %,avar_%_tests,$(TSAN_SUITES))
-	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS) -E '$(TSAN_EXCLUDE)'
 
 # KDL is the IK benchmark's peer; installing it before configuring lets avar-bench-ik find it.
 bench: EXTRA_DEPS = liborocos-kdl-dev
