@@ -154,19 +154,22 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
   // the plan is shifted by that onto the goal, below).
   double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
-  // The last evaluation, kept for the plan when the solve ends on it.
-  double last_vp = std::numeric_limits<double>::quiet_NaN();
-  Reach last;
+  // The last two evaluations: the solve comes back to branch ends and bracket ends it has
+  // evaluated, and ends on one of them (whose change the plan keeps).
+  double last_vp = std::numeric_limits<double>::quiet_NaN(), earlier_vp = last_vp;
+  Reach last, earlier;
   // A residual within rounding, or within the slack for a plan that lasts beyond its horizon.
   const auto close_enough = [&](const Reach& r) {
     return std::abs(r.distance) <= tolerance || (std::abs(r.distance) <= slack.distance && r.duration > slack.after);
   };
   const auto residual = [&](double vp) {
-    if (vp == last_vp) return last;  // (the warm start may stop on a branch end the bracket needs)
+    if (vp == last_vp) return last;
+    if (vp == earlier_vp) return earlier;
     ++evaluations_;
     Reach r = reach(v0, a0, vp, bounds);
     r.distance -= d;
     tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
+    if (last_vp == last_vp) earlier_vp = last_vp, earlier = last;  // (last is unset before the first)
     last_vp = vp;
     last = r;
     return r;
@@ -182,6 +185,33 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   const double unsnapped = std::clamp(v0 + release, -V, V);
   const double natural = std::abs(unsnapped) <= 8 * DBL_EPSILON * std::abs(v0) ? 0.0 : unsnapped;
   const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
+  // Where the root lies by a model, from a branch end `end` (0 or the natural velocity) with
+  // residual r there. From the natural velocity (release the acceleration), or from 0 when the
+  // start is at rest, the rest of the distance is a move from rest: rest_to_rest_peak, exact
+  // from rest. From 0 otherwise (brake to rest first), the braking change's distance is smooth
+  // in vp there (slope r.slope, the change's peak acceleration staying well away from 0) and
+  // the stop from vp adds vp sqrt(|vp|/J): with vp = -sign(r) y², y solves
+  // sqrt(1/J) y³ + slope y² = |r|, by Newton from above (convex: monotone, 3 steps suffice for
+  // a start).
+  // Beyond the natural velocity, away from 0, where reaching vp means reversing the
+  // acceleration (the side where D has its square-root corner), D is smooth in
+  // u = sqrt(|vp - natural|) with slope corner_slope at u = 0: there vp = natural ± (r/slope)².
+  const double corner_slope = 2 * natural * std::sqrt(bounds.inv_J);
+  const bool corner_beyond = natural != 0 && (natural > 0 ? a0 <= 0 : a0 >= 0);
+  const auto model_from = [&](double end, const Reach& r, bool beyond) {
+    const double peak_at_end = r.change.peak;
+    if (end == natural && beyond && corner_beyond) {
+      const double u = -r.distance / corner_slope;
+      if (u > 0) return natural + (natural > 0 ? u * u : -u * u);
+    }
+    if (end != 0 || natural == 0 || !(r.slope > 0) || !std::isfinite(r.slope)) return end + rest_to_rest_peak(-r.distance, limits);
+    const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
+    double y = std::min(std::sqrt(target / r.slope), std::cbrt(target / k));
+    for (int i = 0; i < 3 && y > 0; ++i) y -= (y * y * (k * y + r.slope) - target) / (y * (3 * k * y + 2 * r.slope));
+    const double vp = r.distance > 0 ? -y * y : y * y;
+    // Linear only while J |vp| stays small next to the change's peak acceleration squared.
+    return J * std::abs(vp) <= 0.25 * peak_at_end * peak_at_end ? vp : end + rest_to_rest_peak(-r.distance, limits);
+  };
 
   double vp = std::numeric_limits<double>::quiet_NaN();
   double cruise = 0;
@@ -199,13 +229,15 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     double previous_residual = 0;
     const double lo = hint >= high ? high : hint <= low ? -V : low;
     const double hi = hint >= high ? V : hint <= low ? low : high;
-    // At the natural velocity itself, take the branch's side of it (where D has a finite slope).
-    double x = std::clamp(hint, lo, hi);
-    if (x == natural) x = std::nextafter(x, hint >= high ? V : -V);
     // On a branch that starts at the natural velocity, D grows like sqrt(|vp - natural|) there
     // (a state on the stopping part of a plan has its root right at that corner): Newton runs in
-    // u = sqrt(|vp - natural|), where D is smooth, as in the bracketed refinement below.
+    // u = sqrt(|vp - natural|), where D is smooth, as in the bracketed refinement below; at the
+    // corner itself (u = 0) with corner_slope.
     const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
+    // At the natural velocity itself on a smooth branch, take the branch's side of it (the
+    // distance's slope there is that side's).
+    double x = std::clamp(hint, lo, hi);
+    if (x == natural && !mapped) x = std::nextafter(x, hint >= high ? V : -V);
     const double dir = lo == natural ? 1.0 : -1.0;
     const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
     double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
@@ -226,7 +258,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       }
       double next = 0;
       if (mapped) {
-        const double u_next = std::clamp(u - r.distance / (r.slope * 2 * u * dir), 0.0, u_end);
+        const double slope_u = u > 0 ? r.slope * 2 * u * dir : corner_slope;
+        const double u_next = std::clamp(u - r.distance / slope_u, 0.0, u_end);
         if (!(u_next > 0)) break;  // at the corner itself: the bracketed refinement takes over
         next = std::clamp(natural + dir * u_next * u_next, lo, hi);
         u = u_next;
@@ -257,6 +290,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     // The slope at a bracket end next to the root's side of 0 or the natural velocity, where
     // the residual is often far smaller than at ±V: a Newton step from there starts the solve.
     double slope_lo = 0, slope_hi = 0;
+    // Between 0 and the natural velocity: where model_from puts the root from each end.
+    double model_lo = std::numeric_limits<double>::quiet_NaN(), model_hi = model_lo;
     const bool warm_bracket = below == below && above == above;
     const Reach at_high = warm_bracket ? Reach{} : residual(high);
     if (warm_bracket) {
@@ -265,42 +300,89 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       // The root is in [high, V]. First the model: brake (or release) to `high`, then the rest
       // of the distance as a move from rest; it usually brackets the root with `high` and spares
       // the evaluation at V.
-      const double probe = high + rest_to_rest_peak(-at_high.distance, limits);
+      const double probe = model_from(high, at_high, true);
       const bool probed = probe > high && probe < V;
       const Reach at_probe = probed ? residual(probe) : at_high;
-      if (probed && at_probe.distance >= 0) {
+      if (probed && close_enough(at_probe)) {
+        vp = probe;
+        loose_ = std::abs(at_probe.distance) > tolerance;
+      } else if (probed && at_probe.distance >= 0) {
         lo = high, f_lo = at_high.distance, slope_lo = at_high.slope;
         hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
       } else {
-        const Reach at_v = residual(V);
-        if (at_v.distance <= 0) {
-          vp = V;
-          cruise = -at_v.distance / V;
+        // Short of the goal: a Newton step from the probe (which usually lands close) before V.
+        double short_x = probed ? probe : high;
+        Reach at_short = at_probe;
+        bool bracketed = false;
+        const double step = probed && at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
+        if (step > probe && step < V) {
+          const Reach at_step = residual(step);
+          if (close_enough(at_step)) {
+            vp = step;
+            loose_ = std::abs(at_step.distance) > tolerance;
+          } else if (at_step.distance >= 0) {
+            lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
+            hi = step, f_hi = at_step.distance, slope_hi = at_step.slope;
+            bracketed = true;
+          } else {
+            short_x = step, at_short = at_step;
+          }
         }
-        lo = probed ? probe : high, f_lo = at_probe.distance, slope_lo = at_probe.slope;
-        hi = V, f_hi = at_v.distance;
+        if (!(vp == vp) && !bracketed) {
+          const Reach at_v = residual(V);
+          if (at_v.distance <= 0) {
+            vp = V;
+            cruise = -at_v.distance / V;
+          }
+          lo = short_x, f_lo = at_short.distance, slope_lo = at_short.slope;
+          hi = V, f_hi = at_v.distance;
+        }
       }
     } else {
       const Reach at_low = low == high ? at_high : residual(low);
       if (at_low.distance >= 0) {
         // The root is in [-V, low]: as above, mirrored.
-        const double probe = low + rest_to_rest_peak(-at_low.distance, limits);
+        const double probe = model_from(low, at_low, true);
         const bool probed = probe < low && probe > -V;
         const Reach at_probe = probed ? residual(probe) : at_low;
-        if (probed && at_probe.distance <= 0) {
+        if (probed && close_enough(at_probe)) {
+          vp = probe;
+          loose_ = std::abs(at_probe.distance) > tolerance;
+        } else if (probed && at_probe.distance <= 0) {
           lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
           hi = low, f_hi = at_low.distance, slope_hi = at_low.slope;
         } else {
-          const Reach at_minus_v = residual(-V);
-          if (at_minus_v.distance >= 0) {
-            vp = -V;
-            cruise = at_minus_v.distance / V;
+          double short_x = probed ? probe : low;
+          Reach at_short = at_probe;
+          bool bracketed = false;
+          const double step = probed && at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
+          if (step < probe && step > -V) {
+            const Reach at_step = residual(step);
+            if (close_enough(at_step)) {
+              vp = step;
+              loose_ = std::abs(at_step.distance) > tolerance;
+            } else if (at_step.distance <= 0) {
+              lo = step, f_lo = at_step.distance, slope_lo = at_step.slope;
+              hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
+              bracketed = true;
+            } else {
+              short_x = step, at_short = at_step;
+            }
           }
-          lo = -V, f_lo = at_minus_v.distance;
-          hi = probed ? probe : low, f_hi = at_probe.distance, slope_hi = at_probe.slope;
+          if (!(vp == vp) && !bracketed) {
+            const Reach at_minus_v = residual(-V);
+            if (at_minus_v.distance >= 0) {
+              vp = -V;
+              cruise = at_minus_v.distance / V;
+            }
+            lo = -V, f_lo = at_minus_v.distance;
+            hi = short_x, f_hi = at_short.distance, slope_hi = at_short.slope;
+          }
         }
       } else {
-        lo = low, f_lo = at_low.distance, hi = high, f_hi = at_high.distance;
+        lo = low, f_lo = at_low.distance, slope_lo = at_low.slope;
+        hi = high, f_hi = at_high.distance, slope_hi = at_high.slope;
+        model_lo = model_from(low, at_low, false), model_hi = model_from(high, at_high, false);
       }
     }
     // Safeguarded Newton: a step that leaves the bracket becomes a regula falsi or bisection.
@@ -328,13 +410,9 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
       const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
       double u = (resume - lo) * (resume - hi) < 0 ? to_u(resume) : secant();
-      // Else a model: from a bracket end at 0 (brake to rest) or at the natural velocity (release
-      // the acceleration), the rest of the distance as a move from rest (exact from rest, close
-      // while the change before it is small next to the move); the end nearer the root is used.
-      double anchor = std::numeric_limits<double>::quiet_NaN(), f_anchor = anchor;
-      for (const auto& [end, f] : {std::pair{lo, f_lo}, std::pair{hi, f_hi}})
-        if ((end == natural || end == 0) && !(std::abs(f) >= std::abs(f_anchor))) anchor = end, f_anchor = f;
-      const double model = anchor == anchor ? anchor + rest_to_rest_peak(-f_anchor, limits) : anchor;
+      // Else, between 0 and the natural velocity, the model (model_from) from the end nearer the
+      // root.
+      const double model = std::abs(f_lo) <= std::abs(f_hi) ? model_lo : model_hi;
       const bool model_inside = (model - lo) * (model - hi) < 0;
       if (!((resume - lo) * (resume - hi) < 0) && model_inside) u = to_u(model);
       if (!((resume - lo) * (resume - hi) < 0) && !model_inside) {
@@ -396,8 +474,9 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   }
   peak_ = vp;
 
-  const bool evaluated = vp == last_vp;
-  const VelocityChange change = evaluated ? last.change : velocity_change(v0, a0, vp, bounds);
+  const bool evaluated = vp == last_vp || vp == earlier_vp;
+  const Reach& ended_on = vp == last_vp ? last : earlier;
+  const VelocityChange change = evaluated ? ended_on.change : velocity_change(v0, a0, vp, bounds);
   const double m = stop_peak(vp, bounds);
   const double stop_jerk = vp > 0 ? -J : J;
   const double stop_ramp = m / J;
@@ -419,7 +498,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     offset_ = 0;
     return true;
   }
-  const double miss = evaluated && !predicted ? -last.distance - cruise * vp : goal - follow(duration_).p;
+  const double miss = evaluated && !predicted ? -ended_on.distance - cruise * vp : goal - follow(duration_).p;
   if (predicted && !(std::abs(miss) <= kCertified * tolerance)) return false;
   // (A plan that ends within its slack is not shifted: shifts that come and go from tick to
   // tick would add their size to the commands' third differences.)

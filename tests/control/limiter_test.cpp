@@ -263,6 +263,37 @@ TEST(JerkProfile, RestToRestPeakIsThePlansPeak) {
   }
 }
 
+TEST(JerkProfile, StatesWhereEveryChannelTurnsAtOncePlanInFewEvaluations) {
+  // States of the 32-channel bench rig at the ticks that cost most (homing hands over to the
+  // show): braking onto a goal just ahead (root next to 0, found by the braking model), a hint
+  // on the corner at the natural velocity (Newton in u from the corner), and a goal that starts
+  // moving back (root beyond 0, the probe then one Newton step). Evaluations before: 6, 8, 6.
+  const JerkLimits limits{400, 4000, 80000};
+  const PlanSlack slack{6e-8, 0.002};
+  struct Case {
+    MotionState from;
+    double goal;
+    double hint;
+    int evaluations;
+  };
+  const Case cases[] = {
+      {{-0x1.dffefcd22d16ep+5, -0x1.4cde43edb2414p-2, 0x1.9035997ade6fdp+5}, -0x1.ep+5, -0.34070798656625606, 4},
+      {{-0x1.97361f53fbee3p+4, -0x1.49948f876679fp-5, 0x1.e9a855a6e8a32p+5}, -0x1.97363b9b9ba9p+4, -0.016817467848897809, 3},
+      {{0x1.8f803c994300ep+4, 0x1.7e73aeba4cf68p-7, -0x1.950e492963a3cp+4}, 0x1.8f7d39a7ad9f4p+4, 0.015677125496682851, 5},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE("goal " + std::to_string(c.goal));
+    JerkProfile plan;
+    plan.plan(c.from, c.goal, limits, c.hint, slack);
+    EXPECT_LE(plan.evaluations(), c.evaluations);
+    JerkProfile exact;
+    exact.plan(c.from, c.goal, limits);
+    // Within its slack of the exact plan: the tick it is followed for barely differs.
+    EXPECT_NEAR(plan.at(0.001).p, exact.at(0.001).p, 1e-9);
+    EXPECT_NEAR(plan.at(plan.duration()).p, c.goal, slack.distance);
+  }
+}
+
 TEST(JerkProfile, SlackLetsLongPlansEndNearTheGoalAndShortOnesExactly) {
   const JerkLimits limits{400, 4000, 80000};
   const MotionState from{0, 120, -900};

@@ -10,7 +10,10 @@
 // and the cruise fills the rest. D is increasing beyond both 0 and the natural velocity
 // v + a|a|/(2J); the root is bracketed on that branch (or between them) and found by Newton
 // steps from the previous plan's peak, safeguarded by regula falsi and bisection, in the variable
-// sqrt(|vp - natural|) where D has a square-root corner. The plan is then shifted by the solve's
+// sqrt(|vp - natural|) where D has a square-root corner. When the peak jumps (a goal that stops
+// or turns back), models from the branch ends start the solve next to the root: a move from
+// rest after releasing the acceleration, the corner's slope in sqrt(|vp - natural|), or
+// braking to rest plus the stop's vp sqrt(|vp|/J). The plan is then shifted by the solve's
 // last bits so that it ends exactly on the goal. A state on a plan re-plans to the same plan, so
 // re-planning every tick toward a held goal follows one optimal profile. Units: any length unit,
 // seconds. plan() and at() are real-time safe (no allocation, exception or lock) and bounded
