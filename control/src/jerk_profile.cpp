@@ -206,11 +206,14 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     }
     if (end != 0 || natural == 0 || !(r.slope > 0) || !std::isfinite(r.slope)) return end + rest_to_rest_peak(-r.distance, limits);
     const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
-    double y = std::min(std::sqrt(target / r.slope), std::cbrt(target / k));
+    // The change is linear only while J |vp| stays small next to its peak acceleration squared:
+    // y up to y_valid. A root beyond that is left to the move from rest.
+    const double y_valid = 0.5 * peak_at_end * k;
+    if (y_valid * y_valid * (k * y_valid + r.slope) < target) return end + rest_to_rest_peak(-r.distance, limits);
+    // y_valid and the quadratic term alone both bound y from above.
+    double y = std::min(y_valid, std::sqrt(target / r.slope));
     for (int i = 0; i < 3 && y > 0; ++i) y -= (y * y * (k * y + r.slope) - target) / (y * (3 * k * y + 2 * r.slope));
-    const double vp = r.distance > 0 ? -y * y : y * y;
-    // Linear only while J |vp| stays small next to the change's peak acceleration squared.
-    return J * std::abs(vp) <= 0.25 * peak_at_end * peak_at_end ? vp : end + rest_to_rest_peak(-r.distance, limits);
+    return r.distance > 0 ? -y * y : y * y;
   };
 
   double vp = std::numeric_limits<double>::quiet_NaN();
@@ -290,8 +293,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     // The slope at a bracket end next to the root's side of 0 or the natural velocity, where
     // the residual is often far smaller than at ±V: a Newton step from there starts the solve.
     double slope_lo = 0, slope_hi = 0;
-    // Between 0 and the natural velocity: where model_from puts the root from each end.
-    double model_lo = std::numeric_limits<double>::quiet_NaN(), model_hi = model_lo;
+    // Between 0 and the natural velocity: where model_from puts the root, from the end nearer it.
+    double model = std::numeric_limits<double>::quiet_NaN();
     const bool warm_bracket = below == below && above == above;
     const Reach at_high = warm_bracket ? Reach{} : residual(high);
     if (warm_bracket) {
@@ -382,7 +385,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       } else {
         lo = low, f_lo = at_low.distance, slope_lo = at_low.slope;
         hi = high, f_hi = at_high.distance, slope_hi = at_high.slope;
-        model_lo = model_from(low, at_low, false), model_hi = model_from(high, at_high, false);
+        model = std::abs(at_low.distance) <= std::abs(at_high.distance) ? model_from(low, at_low, false) : model_from(high, at_high, false);
       }
     }
     // Safeguarded Newton: a step that leaves the bracket becomes a regula falsi or bisection.
@@ -410,9 +413,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
       const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
       double u = (resume - lo) * (resume - hi) < 0 ? to_u(resume) : secant();
-      // Else, between 0 and the natural velocity, the model (model_from) from the end nearer the
-      // root.
-      const double model = std::abs(f_lo) <= std::abs(f_hi) ? model_lo : model_hi;
+      // Else, between 0 and the natural velocity, the model.
       const bool model_inside = (model - lo) * (model - hi) < 0;
       if (!((resume - lo) * (resume - hi) < 0) && model_inside) u = to_u(model);
       if (!((resume - lo) * (resume - hi) < 0) && !model_inside) {
