@@ -264,7 +264,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         const double slope_u = u > 0 ? r.slope * 2 * u * dir : corner_slope;
         const double u_next = std::clamp(u - r.distance / slope_u, 0.0, u_end);
         if (!(u_next > 0)) break;  // at the corner itself: the bracketed refinement takes over
-        next = std::clamp(natural + dir * u_next * u_next, lo, hi);
+        // (At the branch's far end exactly that end, which the bracketed solve may evaluate.)
+        next = u_next == u_end ? (dir > 0 ? hi : lo) : std::clamp(natural + dir * u_next * u_next, lo, hi);
         u = u_next;
       } else {
         next = std::clamp(x - r.distance / r.slope, lo, hi);
