@@ -293,11 +293,6 @@ Status Controller::tick(double now_s) noexcept {
   }
   lap(Stage::send, mark);
 
-  // After the commands are out: bring the show's next segments into cache a tick before a key,
-  // the show's start (while homing) or a looping show's wrap needs them.
-  if (phase_ == Phase::homing) sampler_.prefetch(0.0);
-  if (sampled_show) sampler_.prefetch(show_time_ + options_.tick_period_s);
-
   if (phase_ == Phase::stopping && ramp_done(now_s)) phase_ = Phase::disabled;
   return result;
 }

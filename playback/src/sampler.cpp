@@ -119,9 +119,4 @@ void Sampler::sample(double show_time_s, std::span<double> frame) noexcept {
   for (LayerRun& run : layers_) compose_layer(run, t, frame);
 }
 
-void Sampler::prefetch(double show_time_s) const noexcept {
-  const double t = show_.local_time(show_time_s);
-  for (std::size_t i = 0; i < channel_of_track_.size(); ++i) show_.tracks[i].curve.prefetch(t, cursors_[i]);
-}
-
 }  // namespace avar::playback

@@ -55,14 +55,12 @@ TEST(CurveProperty, CursorAndRandomAccessAgreeBitForBit) {
         default: t += 0.001 + 0.01 * u(rng); break;                      // a tick forward
       }
       if (t > end + 1) t = start - 1;
-      c.prefetch(t, cursor);  // (reads nothing outside the curve, changes nothing)
       const double sequential = c.evaluate(t, cursor);
       ASSERT_TRUE(std::isfinite(sequential)) << "family " << family << " t " << t;
       ASSERT_EQ(sequential, c.evaluate(t)) << "family " << family << " t " << t;
     }
     for (double odd : {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                        std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::max()}) {
-      c.prefetch(odd, cursor);
       ASSERT_TRUE(std::isfinite(c.evaluate(odd, cursor)));
       ASSERT_EQ(c.evaluate(odd, cursor), c.evaluate(odd));
     }
@@ -77,12 +75,8 @@ TEST(CurveProperty, ACursorFromAnotherCurveOrAStaleOneIsHarmless) {
   const Curve small = build(random_keys(rng, 3));
   CurveCursor cursor;
   big.evaluate(big.end_time() - 0.001, cursor);  // cursor now far beyond small's segments
-  for (double t = small.start_time() - 1; t < small.end_time() + 1; t += 0.01) {
-    small.prefetch(t, cursor);
-    ASSERT_EQ(small.evaluate(t, cursor), small.evaluate(t));
-  }
+  for (double t = small.start_time() - 1; t < small.end_time() + 1; t += 0.01) ASSERT_EQ(small.evaluate(t, cursor), small.evaluate(t));
   cursor.segment = static_cast<std::size_t>(-1);
-  big.prefetch(big.start_time() + 0.5, cursor);
   ASSERT_EQ(big.evaluate(big.start_time() + 0.5, cursor), big.evaluate(big.start_time() + 0.5));
 }
 

@@ -87,7 +87,6 @@ TEST(Sampler, EqualsTheCurvesAtEverySampleOverRandomTimes) {
   double t = 0;
   for (int s = 0; s < 20000; ++s) {
     t = rng() % 50 == 0 ? -30 + 60 * u(rng) : t + 0.001;
-    sampler.prefetch(t);  // (changes nothing)
     sampler.sample(t, frame);
     double wrapped = std::fmod(t, 10);
     if (wrapped < 0) wrapped += 10;

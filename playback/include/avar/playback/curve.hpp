@@ -155,28 +155,6 @@ class Curve {
   /// Random access (binary search over the keys). Real-time safe, thread-safe.
   double evaluate(double t) const noexcept;
 
-  /// Asks the cache for what evaluate(t, cursor) will read when t has moved on into the segment
-  /// after the cursor's, or back to the first (a looping show's wrap): called a tick ahead, it
-  /// spares the tick that crosses a key the cache misses on data last read seconds before. Reads
-  /// only the segment it prefetches; changes nothing. Real-time safe, thread-safe.
-  void prefetch(double t, const CurveCursor& cursor) const noexcept {
-    std::size_t j = cursor.segment;
-    if (j >= segments_.size() || (t > segments_[j].t0 && t < segments_[j].t1)) return;
-    j = t >= segments_[j].t1 ? j + 1 : 0;
-    if (j >= segments_.size()) return;
-    if (j == 0) {
-      // Back to the start: the first key's sample reads the ends and extrapolation, and the
-      // next one searches the key times.
-      __builtin_prefetch(&start_);
-      __builtin_prefetch(&slope_before_);
-      __builtin_prefetch(times_.data());
-    }
-    const Segment& s = segments_[j];
-    __builtin_prefetch(&s);
-    if (s.shape == Shape::bezier_table && t >= s.t0 && t < s.t1)
-      __builtin_prefetch(&inverse_[s.extra + static_cast<std::uint32_t>((t - s.t0) * s.inv_duration)]);
-  }
-
   double start_time() const noexcept { return start_; }  ///< first key's time (s); 0 without keys
   double end_time() const noexcept { return end_; }      ///< last key's time (s); 0 without keys
   std::size_t key_count() const noexcept { return times_.size(); }

@@ -44,11 +44,6 @@ class Sampler {
   /// left untouched. Real-time safe.
   void sample(double show_time_s, std::span<double> frame) noexcept;
 
-  /// Prefetches what sample(show_time_s) will read from the show's tracks where it lies past
-  /// their cursors' segments (Curve::prefetch); call it with the next tick's time. The layers'
-  /// clips are left to the cache. Changes nothing. Real-time safe.
-  void prefetch(double show_time_s) const noexcept;
-
   std::size_t frame_size() const noexcept { return defaults_.size(); }
 
  private:
