@@ -20,6 +20,7 @@
 #include "avar/interrupts.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/svg_plot.hpp"
+#include "avar/core/format.hpp"
 
 namespace avar::app {
 namespace {
@@ -44,12 +45,6 @@ std::optional<Loaded> load_and_check(const std::string& show_path, const std::st
   }
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& figure, const control::Controller& controller,
                    const PlayRecorder& recorder, const control::RunResult& run, bool realtime, double rate_hz) {
   const control::Rig& rig = loaded.rig;
@@ -67,7 +62,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
     const PhaseMark& p = recorder.phases()[i];
     if (p.phase == control::Phase::disabled) continue;
-    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << fixed(p.time_s, 2) << " s\n";
+    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << format_fixed(p.time_s, 2) << " s\n";
   }
   out << '\n'
       << std::left << std::setw(12) << "channel" << std::setw(6) << "unit" << std::right << std::setw(11) << "max err"
@@ -76,9 +71,9 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
     const auto& c = rig.channels[i];
     const auto& s = recorder.stats();
     out << std::left << std::setw(12) << c.name << std::setw(6) << c.unit << std::right << std::setw(11)
-        << (s.has_samples(i) ? fixed(s.max_abs_error(i), 3) : "-") << std::setw(11)
-        << (s.has_samples(i) ? fixed(s.rms_error(i), 3) : "-") << std::setw(9) << controller.limiter().clamped(i)
-        << std::setw(10) << fixed(controller.limiter().max_lag(i), 3) << '\n';
+        << (s.has_samples(i) ? format_fixed(s.max_abs_error(i), 3) : "-") << std::setw(11)
+        << (s.has_samples(i) ? format_fixed(s.rms_error(i), 3) : "-") << std::setw(9) << controller.limiter().clamped(i)
+        << std::setw(10) << format_fixed(controller.limiter().max_lag(i), 3) << '\n';
   }
   if (!recorder.has_measurements())
     out << "(no position feedback on these links: tracking error needs the simulator or a device that reports positions)\n";
@@ -90,11 +85,11 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
     const control::IkStats& k = ik->stats();
     out << "inverse kinematics: " << k.converged << " solves converged, " << k.degraded
         << " degraded (target out of reach: closest pose used), " << k.failed << " failed; worst residual "
-        << fixed(k.worst_position_error * 1000.0, 3) << " mm, " << fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3)
+        << format_fixed(k.worst_position_error * 1000.0, 3) << " mm, " << format_fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3)
         << "°\n";
   }
   if (realtime) {
-    const auto us = [](std::int64_t ns) { return fixed(static_cast<double>(ns) / 1000.0, 1); };
+    const auto us = [](std::int64_t ns) { return format_fixed(static_cast<double>(ns) / 1000.0, 1); };
     out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 " << us(run.lateness.percentile_ns(0.99))
         << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max " << us(run.lateness.max_ns()) << "; scheduling: "
         << (run.realtime.fifo ? "SCHED_FIFO" : "normal") << (run.realtime.memory_locked ? ", memory locked" : "")
@@ -105,8 +100,8 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   for (std::size_t i = 0; i < control::kStageCount; ++i) {
     const auto stage = static_cast<control::Stage>(i);
     const control::StageTime& t = controller.stage_time(stage);
-    out << ' ' << control::to_string(stage) << ' ' << fixed(static_cast<double>(t.last_ns) / 1000.0, 1) << " / "
-        << fixed(static_cast<double>(t.worst_ns) / 1000.0, 1) << (i + 1 < control::kStageCount ? "," : "\n");
+    out << ' ' << control::to_string(stage) << ' ' << format_fixed(static_cast<double>(t.last_ns) / 1000.0, 1) << " / "
+        << format_fixed(static_cast<double>(t.worst_ns) / 1000.0, 1) << (i + 1 < control::kStageCount ? "," : "\n");
   }
 }
 
@@ -274,11 +269,11 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     const bool about_channel = fault.cause == control::FaultCause::tracking_error || fault.cause == control::FaultCause::non_finite ||
                                fault.cause == control::FaultCause::device_overheat ||
                                fault.cause == control::FaultCause::device_overload;
-    err << "fault at " << fixed(fault.time_s, 3) << " s while " << control::to_string(fault.from) << ": "
+    err << "fault at " << format_fixed(fault.time_s, 3) << " s while " << control::to_string(fault.from) << ": "
         << control::to_string(fault.cause);
     if (about_link) err << " on link " << rig.links[fault.index].name << " (" << to_string(fault.status) << ")";
     if (about_channel) err << " on channel " << rig.channels[fault.index].name;
-    if (fault.cause == control::FaultCause::tracking_error) err << " (error " << fixed(fault.value, 3) << ")";
+    if (fault.cause == control::FaultCause::tracking_error) err << " (error " << format_fixed(fault.value, 3) << ")";
     if (fault.cause == control::FaultCause::deadline_budget) err << " (" << fault.value << " misses)";
     err << "; actuators took their fail-safe actions (hold, rest or release, from the rig)\n";
     return kExitFault;

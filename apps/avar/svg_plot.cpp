@@ -1,4 +1,5 @@
 #include "avar/svg_plot.hpp"
+#include "avar/core/format.hpp"
 
 #include <algorithm>
 #include <array>
@@ -115,20 +116,11 @@ double text_width(std::string_view text, double font_size) {
   return static_cast<double>(code_points) * kGlyphWidth * font_size;
 }
 
-/// Fixed-point text independent of the locale; "-0" becomes "0".
-std::string fixed(double v, int decimals) {
-  std::array<char, 64> buf{};
-  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed, decimals);
-  std::string s(buf.data(), result.ptr);
-  if (s.find_first_not_of("-0.") == std::string::npos) s = decimals > 0 ? "0." + std::string(static_cast<std::size_t>(decimals), '0') : "0";
-  return s;
-}
-
 /// A coordinate to two decimals without trailing zeros. Coordinates are finite and on the page by
 /// construction; the clamp only keeps the text short and valid whatever happens.
 std::string coord(double v) {
   if (!std::isfinite(v)) v = 0;
-  std::string s = fixed(std::clamp(v, -1e6, 1e6), 2);
+  std::string s = format_fixed(std::clamp(v, -1e6, 1e6), 2);
   s.erase(s.find_last_not_of('0') + 1);
   if (s.back() == '.') s.pop_back();
   return s;
@@ -159,7 +151,7 @@ std::vector<double> ticks(double lo, double hi, double step) {
 /// A tick value with as many decimals as its step needs (0.5 -> "0.5", 2 -> "2").
 std::string tick_label(double v, double step) {
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-  if (decimals <= 9 && std::abs(v) < 1e9) return fixed(v, decimals);
+  if (decimals <= 9 && std::abs(v) < 1e9) return format_fixed(v, decimals);
   std::array<char, 64> buf{};
   const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 6);
   return std::string(buf.data(), result.ptr);

@@ -15,15 +15,10 @@
 #include "avar/kinematics/denavit_hartenberg.hpp"
 #include "avar/kinematics/model_builder.hpp"
 #include "avar/kinematics/urdf_import.hpp"
+#include "yaml_vectors.hpp"
 
 namespace avar::config {
 namespace {
-
-Eigen::Vector3d read_vector(const YamlRef& node, const std::string& what) {
-  node.expect_sequence(what + " ([x, y, z])");
-  if (node.size() != 3) node.fail("expected " + what + " to have 3 numbers [x, y, z], found " + std::to_string(node.size()));
-  return {node[0].as_double(what + " x"), node[1].as_double(what + " y"), node[2].as_double(what + " z")};
-}
 
 /// origin: {xyz: [m, m, m], rpy: [rad, rad, rad]} (roll about x, then pitch about y, then yaw
 /// about z, in the parent frame, as URDF), both optional.

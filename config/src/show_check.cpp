@@ -17,11 +17,11 @@ void check_segment_overshoot(const playback::Track& track, std::size_t k, const 
   const auto& keys = track.raw.keys;
   const double t0 = keys[k].time;
   const double t1 = keys[k + 1].time;
-  constexpr int kSamples = 256;
+  constexpr int kSamplesPerSegment = 256;
   double lo = std::min(keys[k].value, keys[k + 1].value);
   double hi = std::max(keys[k].value, keys[k + 1].value);
-  for (int i = 1; i < kSamples; ++i) {
-    const double v = track.curve.evaluate(t0 + (t1 - t0) * i / kSamples);
+  for (int i = 1; i < kSamplesPerSegment; ++i) {
+    const double v = track.curve.evaluate(t0 + (t1 - t0) * i / kSamplesPerSegment);
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }

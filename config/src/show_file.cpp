@@ -10,6 +10,7 @@
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
 #include "show_tracks.hpp"
+#include "yaml_vectors.hpp"
 
 namespace avar::config {
 namespace {
@@ -41,13 +42,6 @@ void read_triple(const YamlRef& name, const YamlRef& body, double duration, cons
     raw[i] = std::move(track.raw);
     curves[i] = std::move(track.curve);
   }
-}
-
-/// [a, b, c] of finite numbers, as `what` (with its unit).
-Eigen::Vector3d read_vector(const YamlRef& node, const std::string& what) {
-  node.expect_sequence(what + " ([x, y, z])");
-  if (node.size() != 3) node.fail("expected " + what + " to have 3 numbers [x, y, z], found " + std::to_string(node.size()));
-  return {node[0].as_double(what), node[1].as_double(what), node[2].as_double(what)};
 }
 
 /// speed: a shape name | {shape, k1, k2} | a user curve (keys, or {keys, ...} as a track).

@@ -16,8 +16,6 @@
 namespace avar::kinematics::detail {
 namespace {
 
-constexpr double kStalledDecrease = 1e-14;
-
 struct Pull {
   double sine = 0;
   double cosine = 0;

@@ -16,7 +16,6 @@ constexpr double kDampingFloor = 1e-9;
 constexpr double kBoostDown = 0.1;
 constexpr double kBoostUp = 10;
 constexpr double kMaxBoost = 1e10;           ///< beyond this no step lowers the error: stationary
-constexpr double kStalledDecrease = 1e-14;   ///< relative decrease that counts as no progress
 
 /// Joints sitting on a limit that the step would push past it are taken out of the system
 /// (their row and column of A become the identity, their gradient zero) so that the remaining

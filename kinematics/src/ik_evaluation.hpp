@@ -17,6 +17,9 @@ struct GoalErrors {
   double orientation = 0;  ///< rad (aim: the angle between the axis and the line of sight)
 };
 
+/// The relative decrease of the error that counts as no progress (a solver stops as stationary).
+inline constexpr double kStalledDecrease = 1e-14;
+
 /// One solver run from ik.q: where it ended (ik.q holds the best configuration seen).
 struct Attempt {
   double cost = 0;  ///< 0.5 |e|^2 of the weighted error at ik.q

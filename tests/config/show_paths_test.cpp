@@ -153,7 +153,7 @@ TEST(ShowPaths, BezierPathsLoadWithHandlesAndAutomaticHandles) {
 
 TEST(ShowPaths, BadBezierPointsAreRejectedWithWhereAndWhat) {
   EXPECT_EQ(paths_error(replace(kBezierShow, "left: [0.31, 0.05, 0.28]", "left: [0.31, .nan, 0.28]")),
-            ":5:66: expected the left handle of a point of the path of target 'hand' (m) to be a finite number, found '.nan'");
+            ":5:66: expected y of the left handle of a point of the path of target 'hand' (m) to be a finite number, found '.nan'");
   EXPECT_EQ(paths_error(replace(kBezierShow, "right: [0.17, 0.21, 0.29]", "right: [0.17, 0.21]")),
             ":6:45: expected the right handle of a point of the path of target 'hand' (m) to have 3 numbers [x, y, z], found 2");
   EXPECT_EQ(paths_error(replace(kBezierShow, "spline: bezier", "spline: catmull_rom")),
