@@ -296,6 +296,32 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     double slope_lo = 0, slope_hi = 0;
     // Between 0 and the natural velocity: where model_from puts the root, from the end nearer it.
     double model = std::numeric_limits<double>::quiet_NaN();
+    // Ends the solve on x when its residual r is close enough.
+    const auto accept = [&](double x, const Reach& r) {
+      if (!close_enough(r)) return false;
+      vp = x;
+      loose_ = std::abs(r.distance) > tolerance;
+      return true;
+    };
+    // A probe that falls short of the goal on the way to `end` (V or -V): one Newton step from it
+    // (it usually lands close) before `end` is evaluated. True when the step ends the solve or
+    // brackets the root with the probe; otherwise a step still short becomes short_x, at_short.
+    const auto step_from_probe = [&](double probe, const Reach& at_probe, double end, double& short_x, Reach& at_short) {
+      const double step = at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
+      if (!((step - probe) * (step - end) < 0)) return false;
+      const Reach at_step = residual(step);
+      if (accept(step, at_step)) return true;
+      if ((at_step.distance >= 0) != (end > 0)) {
+        short_x = step, at_short = at_step;
+        return false;
+      }
+      const bool up = step > probe;
+      const Reach& r_lo = up ? at_probe : at_step;
+      const Reach& r_hi = up ? at_step : at_probe;
+      lo = up ? probe : step, f_lo = r_lo.distance, slope_lo = r_lo.slope;
+      hi = up ? step : probe, f_hi = r_hi.distance, slope_hi = r_hi.slope;
+      return true;
+    };
     const bool warm_bracket = below == below && above == above;
     const Reach at_high = warm_bracket ? Reach{} : residual(high);
     if (warm_bracket) {
@@ -307,32 +333,15 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       const double probe = model_from(high, at_high, true);
       const bool probed = probe > high && probe < V;
       const Reach at_probe = probed ? residual(probe) : at_high;
-      if (probed && close_enough(at_probe)) {
-        vp = probe;
-        loose_ = std::abs(at_probe.distance) > tolerance;
+      if (probed && accept(probe, at_probe)) {
+        // (the probe is on the root)
       } else if (probed && at_probe.distance >= 0) {
         lo = high, f_lo = at_high.distance, slope_lo = at_high.slope;
         hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
       } else {
-        // Short of the goal: a Newton step from the probe (which usually lands close) before V.
         double short_x = probed ? probe : high;
         Reach at_short = at_probe;
-        bool bracketed = false;
-        const double step = probed && at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
-        if (step > probe && step < V) {
-          const Reach at_step = residual(step);
-          if (close_enough(at_step)) {
-            vp = step;
-            loose_ = std::abs(at_step.distance) > tolerance;
-          } else if (at_step.distance >= 0) {
-            lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
-            hi = step, f_hi = at_step.distance, slope_hi = at_step.slope;
-            bracketed = true;
-          } else {
-            short_x = step, at_short = at_step;
-          }
-        }
-        if (!(vp == vp) && !bracketed) {
+        if (!(probed && step_from_probe(probe, at_probe, V, short_x, at_short))) {
           const Reach at_v = residual(V);
           if (at_v.distance <= 0) {
             vp = V;
@@ -349,31 +358,15 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         const double probe = model_from(low, at_low, true);
         const bool probed = probe < low && probe > -V;
         const Reach at_probe = probed ? residual(probe) : at_low;
-        if (probed && close_enough(at_probe)) {
-          vp = probe;
-          loose_ = std::abs(at_probe.distance) > tolerance;
+        if (probed && accept(probe, at_probe)) {
+          // (the probe is on the root)
         } else if (probed && at_probe.distance <= 0) {
           lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
           hi = low, f_hi = at_low.distance, slope_hi = at_low.slope;
         } else {
           double short_x = probed ? probe : low;
           Reach at_short = at_probe;
-          bool bracketed = false;
-          const double step = probed && at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
-          if (step < probe && step > -V) {
-            const Reach at_step = residual(step);
-            if (close_enough(at_step)) {
-              vp = step;
-              loose_ = std::abs(at_step.distance) > tolerance;
-            } else if (at_step.distance <= 0) {
-              lo = step, f_lo = at_step.distance, slope_lo = at_step.slope;
-              hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
-              bracketed = true;
-            } else {
-              short_x = step, at_short = at_step;
-            }
-          }
-          if (!(vp == vp) && !bracketed) {
+          if (!(probed && step_from_probe(probe, at_probe, -V, short_x, at_short))) {
             const Reach at_minus_v = residual(-V);
             if (at_minus_v.distance >= 0) {
               vp = -V;
