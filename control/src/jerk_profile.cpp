@@ -185,21 +185,21 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   const double unsnapped = std::clamp(v0 + release, -V, V);
   const double natural = std::abs(unsnapped) <= 8 * DBL_EPSILON * std::abs(v0) ? 0.0 : unsnapped;
   const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
-  // Where the root lies by a model, from a branch end `end` (0 or the natural velocity) with
-  // residual r there. From the natural velocity (release the acceleration), or from 0 when the
-  // start is at rest, the rest of the distance is a move from rest: rest_to_rest_peak, exact
-  // from rest. From 0 otherwise (brake to rest first), the braking change's distance is smooth
-  // in vp there (slope r.slope, the change's peak acceleration staying well away from 0) and
-  // the stop from vp adds vp sqrt(|vp|/J): with vp = -sign(r) y², y solves
-  // sqrt(1/J) y³ + slope y² = |r|, by Newton from above (convex: monotone, 3 steps suffice for
-  // a start).
   // Beyond the natural velocity, away from 0, where reaching vp means reversing the
   // acceleration (the side where D has its square-root corner), D is smooth in
   // u = sqrt(|vp - natural|) with slope corner_slope at u = 0: there vp = natural ± (r/slope)².
   const double corner_slope = 2 * natural * std::sqrt(bounds.inv_J);
   const bool corner_beyond = natural != 0 && (natural > 0 ? a0 <= 0 : a0 >= 0);
+  // Where the root lies by a model, from a branch end `end` (0 or the natural velocity) with
+  // residual r there; `beyond`: the root lies on the far side of `end` from 0 (the corner model
+  // above, when it applies). From the natural velocity (release the acceleration), or from 0
+  // when the start is at rest, the rest of the distance is a move from rest: rest_to_rest_peak,
+  // exact from rest. From 0 otherwise (brake to rest first), the braking change's distance is smooth
+  // in vp there (slope r.slope, the change's peak acceleration staying well away from 0) and
+  // the stop from vp adds vp sqrt(|vp|/J): with vp = -sign(r) y², y solves
+  // sqrt(1/J) y³ + slope y² = |r|, by Newton from above (convex: monotone, 3 steps suffice for
+  // a start).
   const auto model_from = [&](double end, const Reach& r, bool beyond) {
-    const double peak_at_end = r.change.peak;
     if (end == natural && beyond && corner_beyond) {
       const double u = -r.distance / corner_slope;
       if (u > 0) return natural + (natural > 0 ? u * u : -u * u);
@@ -208,7 +208,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
     // The change is linear only while J |vp| stays small next to its peak acceleration squared:
     // y up to y_valid. A root beyond that is left to the move from rest.
-    const double y_valid = 0.5 * peak_at_end * k;
+    const double y_valid = 0.5 * r.change.peak * k;
     if (y_valid * y_valid * (k * y_valid + r.slope) < target) return end + rest_to_rest_peak(-r.distance, limits);
     // y_valid and the quadratic term alone both bound y from above.
     double y = std::min(y_valid, std::sqrt(target / r.slope));
@@ -218,6 +218,13 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
 
   double vp = std::numeric_limits<double>::quiet_NaN();
   double cruise = 0;
+  // Ends the solve on x when its residual r is close enough.
+  const auto accept = [&](double x, const Reach& r) {
+    if (!close_enough(r)) return false;
+    vp = x;
+    loose_ = std::abs(r.distance) > tolerance;
+    return true;
+  };
   // A re-plan toward the same goal from a state on the last plan has the same peak: try it
   // first, with a few Newton steps kept on its branch (so that a target that moves a little
   // each tick costs a few evaluations).
@@ -254,11 +261,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         cruise = -r.distance / x;
         break;
       }
-      if (close_enough(r)) {
-        vp = x;
-        loose_ = std::abs(r.distance) > tolerance;
-        break;
-      }
+      if (accept(x, r)) break;
       double next = 0;
       if (mapped) {
         const double slope_u = u > 0 ? r.slope * 2 * u * dir : corner_slope;
@@ -296,13 +299,6 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     double slope_lo = 0, slope_hi = 0;
     // Between 0 and the natural velocity: where model_from puts the root, from the end nearer it.
     double model = std::numeric_limits<double>::quiet_NaN();
-    // Ends the solve on x when its residual r is close enough.
-    const auto accept = [&](double x, const Reach& r) {
-      if (!close_enough(r)) return false;
-      vp = x;
-      loose_ = std::abs(r.distance) > tolerance;
-      return true;
-    };
     // A probe that falls short of the goal on the way to `end` (V or -V): one Newton step from it
     // (it usually lands close) before `end` is evaluated. True when the step ends the solve or
     // brackets the root with the probe; otherwise a step still short becomes short_x, at_short.
@@ -406,11 +402,12 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       double u_lo = to_u(lo), u_hi = to_u(hi);
       const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
       const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
-      double u = (resume - lo) * (resume - hi) < 0 ? to_u(resume) : secant();
-      // Else, between 0 and the natural velocity, the model.
+      // The warm start's last iterate; else, between 0 and the natural velocity, the model; else
+      // a Newton step from an end; else the secant.
+      const bool resume_inside = (resume - lo) * (resume - hi) < 0;
       const bool model_inside = (model - lo) * (model - hi) < 0;
-      if (!((resume - lo) * (resume - hi) < 0) && model_inside) u = to_u(model);
-      if (!((resume - lo) * (resume - hi) < 0) && !model_inside) {
+      double u = resume_inside ? to_u(resume) : model_inside ? to_u(model) : secant();
+      if (!resume_inside && !model_inside) {
         // A Newton step from the end with the smaller residual (in u where mapped).
         const auto newton_from = [&](double x, double f, double slope) {
           const double ux = to_u(x);
@@ -426,11 +423,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       for (int k = 0; k < kMaxRefinements; ++k) {
         const double x = to_vp(u);
         const Reach r = residual(x);
-        if (close_enough(r)) {
-          vp = x;
-          loose_ = std::abs(r.distance) > tolerance;
-          break;
-        }
+        if (accept(x, r)) break;
         // In u, steps can go on shrinking the bracket's far side while vp = natural ± u² no
         // longer changes at all (its last bit is reached): the residual is then as small as vp's
         // resolution allows. Accept it when the end shift below may absorb it; otherwise stop
