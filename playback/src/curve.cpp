@@ -182,6 +182,7 @@ Curve Curve::build(const RawCurve& raw) {
   curve.cycles_ = raw.cycles;
   const std::vector<ResolvedHandles> handles = compute_handles(raw);
   curve.build_segments(raw, handles);
+  curve.segment_count_ = curve.segments_.size();
   curve.build_extrapolation(raw, handles);
   return curve;
 }

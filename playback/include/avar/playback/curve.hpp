@@ -146,7 +146,7 @@ class Curve {
   /// at once, each with its own cursor. Inline: the tick's common case (t strictly inside the
   /// cursor's segment) is one bounds check, two compares and, for polynomial segments, a cubic.
   double evaluate(double t, CurveCursor& cursor) const noexcept {
-    if (cursor.segment < segments_.size()) [[likely]] {
+    if (cursor.segment < segment_count_) [[likely]] {
       const Segment& s = segments_[cursor.segment];
       if (t > s.t0 && t < s.t1) [[likely]] return evaluate_in(s, t);
     }
@@ -260,6 +260,9 @@ class Curve {
 
   std::vector<double> times_;         ///< key times
   std::vector<Segment> segments_;     ///< times_.size() - 1 of them
+  /// segments_.size(), kept beside it: the cursor's bounds check then reads one member instead
+  /// of computing the size from two pointers, on the path every sequential sample takes.
+  std::size_t segment_count_ = 0;
   std::vector<SegmentExtra> extras_;  ///< one per bezier_closed and easing segment
   std::vector<InversePiece> inverse_; ///< pieces + 2 per bezier_table segment
   double start_ = 0, end_ = 0;
