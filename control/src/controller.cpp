@@ -252,6 +252,7 @@ Status Controller::tick(double now_s) noexcept {
         show_start_ = now_s;
       } else {
         ramp_.sample(now_s - phase_start_, target_);
+        sampler_.warm();  // the show's first samples then find their curves in cache
         break;
       }
       [[fallthrough]];

@@ -500,7 +500,8 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
   if (!(t > start_) || t >= end_) return extrapolate(t);
   std::size_t i = cursor ? cursor->segment : segments_.size();
   if (i >= segments_.size() || t < times_[i]) {
-    i = find_segment(t);
+    // (A looping show comes back to the first segment: no search for it.)
+    i = t < times_[1] ? 0 : find_segment(t);
   } else if (t >= times_[i + 1]) {
     // A few segments ahead are walked; further jumps search. t < end_ stops the walk in range.
     int steps = 0;
@@ -510,6 +511,25 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
   }
   if (cursor) cursor->segment = i;
   return evaluate_in(segments_[i], t);
+}
+
+double Curve::warm(const CurveCursor& cursor) const noexcept {
+  if (segment_count_ == 0) return first_value_;
+  const std::size_t here = cursor.segment < segment_count_ ? cursor.segment : 0;
+  const std::size_t next = here + 1 < segment_count_ ? here + 1 : 0;
+  double sum = first_value_;
+  for (const std::size_t i : {here, next}) {
+    const Segment& s = segments_[i];
+    sum += s.v0 + times_[i + 1];
+    if (s.shape == Shape::bezier_table) {
+      // A piece is 48 bytes and may straddle two cache lines: its first and last coefficients.
+      const InversePiece& p = inverse_[s.extra];
+      sum += p.a0 + p.a5;
+    } else if (s.shape == Shape::bezier_closed || s.shape == Shape::easing) {
+      sum += extras_[s.extra].k1;
+    }
+  }
+  return sum;
 }
 
 // Key times themselves come here too: the general path decides which segment owns them.

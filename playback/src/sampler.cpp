@@ -117,6 +117,20 @@ void Sampler::sample(double show_time_s, std::span<double> frame) noexcept {
   for (std::size_t i = 0; i < channel_of_track_.size(); ++i)
     frame[channel_of_track_[i]] = show_.tracks[i].curve.evaluate(t, cursors_[i]);
   for (LayerRun& run : layers_) compose_layer(run, t, frame);
+  warm();
+}
+
+void Sampler::warm() noexcept {
+  const std::size_t tracks = cursors_.size(), total = tracks + clip_tracks_.size();
+  if (total == 0) return;
+  if (warm_next_ >= total) warm_next_ = 0;
+  if (warm_next_ < tracks) {
+    warm_sink_ += show_.tracks[warm_next_].curve.warm(cursors_[warm_next_]);
+  } else {
+    const ClipTrack& track = clip_tracks_[warm_next_ - tracks];
+    warm_sink_ += track.curve->warm(track.cursor);
+  }
+  ++warm_next_;
 }
 
 }  // namespace avar::playback

@@ -58,6 +58,8 @@ TEST(CurveProperty, CursorAndRandomAccessAgreeBitForBit) {
       const double sequential = c.evaluate(t, cursor);
       ASSERT_TRUE(std::isfinite(sequential)) << "family " << family << " t " << t;
       ASSERT_EQ(sequential, c.evaluate(t)) << "family " << family << " t " << t;
+      // Warming reads what comes next from wherever the cursor is, and changes nothing.
+      ASSERT_TRUE(std::isfinite(c.warm(cursor)));
     }
     for (double odd : {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                        std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::max()}) {
@@ -75,8 +77,11 @@ TEST(CurveProperty, ACursorFromAnotherCurveOrAStaleOneIsHarmless) {
   const Curve small = build(random_keys(rng, 3));
   CurveCursor cursor;
   big.evaluate(big.end_time() - 0.001, cursor);  // cursor now far beyond small's segments
+  EXPECT_TRUE(std::isfinite(small.warm(cursor)));
+  EXPECT_EQ(Curve{}.warm(cursor), 0.0);
   for (double t = small.start_time() - 1; t < small.end_time() + 1; t += 0.01) ASSERT_EQ(small.evaluate(t, cursor), small.evaluate(t));
   cursor.segment = static_cast<std::size_t>(-1);
+  EXPECT_TRUE(std::isfinite(big.warm(cursor)));
   ASSERT_EQ(big.evaluate(big.start_time() + 0.5, cursor), big.evaluate(big.start_time() + 0.5));
 }
 

@@ -44,6 +44,13 @@ class Sampler {
   /// left untouched. Real-time safe.
   void sample(double show_time_s, std::span<double> frame) noexcept;
 
+  /// Keeps the data of the next samples in cache, one curve per call, in turn over the show's
+  /// tracks and the clips' tracks (Curve::warm): the ticks that cross keys, or wrap a looping
+  /// show, then do not wait on memory. sample() calls it; a caller that does not sample for a
+  /// while (the controller while it homes) calls it each tick instead, so that the first samples
+  /// find their data too. Real-time safe, O(1).
+  void warm() noexcept;
+
   std::size_t frame_size() const noexcept { return defaults_.size(); }
 
  private:
@@ -81,6 +88,8 @@ class Sampler {
   std::vector<PlacementRun> placements_;
   std::vector<ClipTrack> clip_tracks_;
   std::vector<Slot> slots_;
+  std::size_t warm_next_ = 0;  ///< the curve warm() reads next: a track, then a clip track
+  double warm_sink_ = 0;       ///< what warm() read (kept, so that the reads happen)
 };
 
 }  // namespace avar::playback
