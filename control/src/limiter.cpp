@@ -45,6 +45,10 @@ double Limiter::first_guess(const Channel& c) noexcept {
   const JerkLimits& k = c.jerk_limits;
   // From rest: the rest-to-rest move's peak, exact.
   if (c.state.v == 0 && c.state.a == 0) return rest_to_rest_peak(c.goal - c.state.p, k);
+  // A goal that has been moving since the channel left rest: the peaks so far extrapolated by a
+  // line (the peak before the first plan was 0, at rest).
+  if (c.goal_moved && c.planned_ticks == 1) return 2 * c.peak_velocity;
+  if (c.goal_moved && c.planned_ticks == 2) return 2 * c.peak_velocity - c.previous_peak;
   // Extrapolate only a smooth run of peaks (the last two steps alike) that was extrapolated well
   // last time: near reversals and where plans change branch the peak jumps.
   const double step = c.peak_velocity - c.previous_peak, step_before = c.previous_peak - c.earlier_peak;
@@ -69,7 +73,9 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       const double lo = std::min(l.min + l.soft_margin, mid);
       const double hi = std::max(l.max - l.soft_margin, mid);
       if (target[i] < lo || target[i] > hi) ++c.clamped;
-      c.goal = std::clamp(target[i], lo, hi);
+      const double goal = std::clamp(target[i], lo, hi);
+      c.goal_moved = goal != c.goal;
+      c.goal = goal;
     } else {
       status = Status::not_finite;
     }

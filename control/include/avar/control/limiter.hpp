@@ -76,6 +76,7 @@ class Limiter {
     JerkLimits jerk_limits;
     double slack = 0;         ///< units: how far a long plan may end from its goal (PlanSlack)
     double goal = 0;          ///< clamped target
+    bool goal_moved = false;  ///< the goal differs from the last tick's
     MotionState state;        ///< of the last command
     double peak_velocity = 0;  ///< of the last plan: the next plan's first guess
     double previous_peak = 0;  ///< of the plan before it
