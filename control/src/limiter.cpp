@@ -77,6 +77,7 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       c.goal_moved = goal != c.goal;
       c.goal = goal;
     } else {
+      c.goal_moved = false;
       status = Status::not_finite;
     }
     c.evaluations = 0;
