@@ -199,21 +199,28 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // the stop from vp adds vp sqrt(|vp|/J): with vp = -sign(r) y², y solves
   // sqrt(1/J) y³ + slope y² = |r|, by Newton from above (convex: monotone, 3 steps suffice for
   // a start).
+  // The braking model alone: NaN where it does not apply (r not at 0, a start at rest, a root
+  // beyond its range).
+  const auto braking_model = [&](const Reach& r) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (natural == 0 || !(r.slope > 0) || !std::isfinite(r.slope)) return nan;
+    const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
+    // The change is linear only while J |vp| stays small next to its peak acceleration squared:
+    // y up to y_valid. A root beyond that is left to the move from rest.
+    const double y_valid = 0.5 * r.change.peak * k;
+    if (y_valid * y_valid * (k * y_valid + r.slope) < target) return nan;
+    // y_valid and the quadratic term alone both bound y from above.
+    double y = std::min(y_valid, std::sqrt(target / r.slope));
+    for (int i = 0; i < 3 && y > 0; ++i) y -= (y * y * (k * y + r.slope) - target) / (y * (3 * k * y + 2 * r.slope));
+    return r.distance > 0 ? -y * y : y * y;
+  };
   const auto model_from = [&](double end, const Reach& r, bool beyond) {
     if (end == natural && beyond && corner_beyond) {
       const double u = -r.distance / corner_slope;
       if (u > 0) return natural + (natural > 0 ? u * u : -u * u);
     }
-    if (end != 0 || natural == 0 || !(r.slope > 0) || !std::isfinite(r.slope)) return end + rest_to_rest_peak(-r.distance, limits);
-    const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
-    // The change is linear only while J |vp| stays small next to its peak acceleration squared:
-    // y up to y_valid. A root beyond that is left to the move from rest.
-    const double y_valid = 0.5 * r.change.peak * k;
-    if (y_valid * y_valid * (k * y_valid + r.slope) < target) return end + rest_to_rest_peak(-r.distance, limits);
-    // y_valid and the quadratic term alone both bound y from above.
-    double y = std::min(y_valid, std::sqrt(target / r.slope));
-    for (int i = 0; i < 3 && y > 0; ++i) y -= (y * y * (k * y + r.slope) - target) / (y * (3 * k * y + 2 * r.slope));
-    return r.distance > 0 ? -y * y : y * y;
+    const double braking = end == 0 ? braking_model(r) : std::numeric_limits<double>::quiet_NaN();
+    return braking == braking ? braking : end + rest_to_rest_peak(-r.distance, limits);
   };
 
   double vp = std::numeric_limits<double>::quiet_NaN();
@@ -375,7 +382,11 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       } else {
         lo = low, f_lo = at_low.distance, slope_lo = at_low.slope;
         hi = high, f_hi = at_high.distance, slope_hi = at_high.slope;
-        model = std::abs(at_low.distance) <= std::abs(at_high.distance) ? model_from(low, at_low, false) : model_from(high, at_high, false);
+        // D need not be monotone here, so the end with the smaller residual need not be the
+        // nearer one: the braking model, where it applies, first (it checks its own range).
+        model = braking_model(low == 0 ? at_low : at_high);
+        if (!(model == model))
+          model = std::abs(at_low.distance) <= std::abs(at_high.distance) ? model_from(low, at_low, false) : model_from(high, at_high, false);
       }
     }
     // Safeguarded Newton: a step that leaves the bracket becomes a regula falsi or bisection.
