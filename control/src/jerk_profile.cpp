@@ -86,6 +86,7 @@ struct Reach {
   double slope;
   double magnitude;       ///< the distance is exact to a few ulps of this
   double duration;        ///< of the change and the stop (s): the plan's, but for a cruise
+  double stop_peak;       ///< |peak acceleration| of the stop, <= A
   VelocityChange change;  ///< phase 1
 };
 
@@ -101,6 +102,7 @@ struct Reach {
   const double root = std::sqrt(k.J * speed);
   const bool reaches_a = root > k.A;
   const double m = reaches_a ? k.A : root;
+  r.stop_peak = m;
   const double coast = reaches_a ? speed * k.inv_A : m * k.inv_J;  // |vp| / m
   const double duration = m * k.inv_J + coast;
   r.distance += 0.5 * vp * duration;
@@ -108,6 +110,39 @@ struct Reach {
   r.duration = c.rise + c.hold + c.fall + duration;
   r.slope += coast + 0.5 * m * k.inv_J;
   return r;
+}
+
+/// The residual a Newton step of `step` from r (at vp) is left with, by Taylor: D'' step² / 2.
+/// NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
+/// percent at most: each phase's peak acceleration squared moves by under 1% (J |step| of it),
+/// without reaching A or the change's start acceleration, a hold stays, the stop's velocity keeps
+/// its sign. D'' per phase, from the slopes in reach(): a change with peak m < A (m² = J s (vp -
+/// v0) + b0²/2) has 5s/(4m) - J vp/(2m³), one that holds at A has s/A; a stop with peak m < A
+/// has 3 sign(vp)/(4m), one that reaches A has sign(vp)/A.
+double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double jump = k.J * std::abs(step);  // how far the peaks' squares move
+  const VelocityChange& c = r.change;
+  const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
+  double curvature = 0;
+  if (c.hold > 0) {
+    if (!(std::abs(step) < 0.5 * c.hold * k.A)) return nan;
+    curvature = c.s * k.inv_A;
+  } else {
+    const double m2 = c.peak * c.peak;
+    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && 2 * jump < m2 - b0 * b0)) return nan;
+    curvature = 1.25 * c.s / c.peak - 0.5 * k.J * vp / (m2 * c.peak);
+  }
+  const double sign = vp > 0 ? 1.0 : -1.0;
+  const double m = r.stop_peak, m2 = m * m;
+  if (m2 >= k.A * k.A) {
+    if (!(2 * jump < k.J * std::abs(vp) - k.A * k.A)) return nan;
+    curvature += sign * k.inv_A;
+  } else {
+    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2)) return nan;
+    curvature += 0.75 * sign / m;
+  }
+  return 0.5 * curvature * step * step;
 }
 
 MotionState advance(MotionState s, double t, double jerk) {
@@ -286,10 +321,16 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
       // step. When that predicts a residual well within tolerance, take the step without
       // evaluating it; the plan's end certifies it below (else the solve runs again in full).
-      if (predict && k > 0 && next > lo && next < hi) {
-        const double K = r.distance / (previous_residual * previous_residual);
-        const double allowed = r.duration > slack.after ? std::max(tolerance, slack.distance) : tolerance;
-        if (std::abs(K * r.distance * r.distance) <= 0.25 * allowed) {
+      // On the first step (no previous residual yet) of a plan that outlasts the slack's
+      // horizon, the Taylor estimate from D'' stands in for K where it applies
+      // (newton_residual). (Plans that end sooner must end on the goal to rounding, which no
+      // estimate predicts reliably: a miss would cost a second solve.)
+      const bool outlasts = r.duration > slack.after;
+      if (predict && next > lo && next < hi && (k > 0 || outlasts)) {
+        const double predicted_residual = k > 0 ? r.distance / (previous_residual * previous_residual) * r.distance * r.distance
+                                                : newton_residual(r, x, next - x, bounds);
+        const double allowed = outlasts ? std::max(tolerance, slack.distance) : tolerance;
+        if (std::abs(predicted_residual) <= 0.25 * allowed) {
           vp = next;
           predicted = true;
           break;
