@@ -279,6 +279,10 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   double below = std::numeric_limits<double>::quiet_NaN(), f_below = 0;
   double above = std::numeric_limits<double>::quiet_NaN(), f_above = 0;
   double resume = hint;
+  // Where the warm start's last Newton step pointed when it left the hint's branch across an
+  // end at 0 or the natural velocity (NaN otherwise): the bracketed solve then evaluates first
+  // the branch end on that side.
+  double pointed = std::numeric_limits<double>::quiet_NaN();
   if (std::isfinite(hint)) {
     double previous_residual = 0;
     const double lo = hint >= high ? high : hint <= low ? -V : low;
@@ -310,12 +314,29 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       if (mapped) {
         const double slope_u = u > 0 ? r.slope * 2 * u * dir : corner_slope;
         const double u_next = std::clamp(u - r.distance / slope_u, 0.0, u_end);
-        if (!(u_next > 0)) break;  // at the corner itself: the bracketed refinement takes over
+        if (!(u_next > 0)) {
+          // At the corner itself: the bracketed refinement takes over, told where a step in vp
+          // points (when it points across the corner).
+          if (u > 0 && r.slope > 0) {
+            const double newton = x - r.distance / r.slope;
+            if ((lo == high && newton < low) || (hi == low && newton > high)) pointed = newton;
+          }
+          break;
+        }
         // (At the branch's far end exactly that end, which the bracketed solve may evaluate.)
         next = u_next == u_end ? (dir > 0 ? hi : lo) : std::clamp(natural + dir * u_next * u_next, lo, hi);
         u = u_next;
       } else {
-        next = std::clamp(x - r.distance / r.slope, lo, hi);
+        // A step from a branch beyond 0 and the natural velocity that points past both (the
+        // goal turned back): the root is likely on the far side, whose end the bracketed solve
+        // then evaluates first. (A step that ends between them is clamped to the near end, as
+        // any other: evaluating that end brackets a root next to it.)
+        const double newton = x - r.distance / r.slope;
+        if ((lo == high && newton < low) || (hi == low && newton > high)) {
+          pointed = newton;
+          break;
+        }
+        next = std::clamp(newton, lo, hi);
       }
       if (!(next != x)) break;
       // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
@@ -369,10 +390,14 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       return true;
     };
     const bool warm_bracket = below == below && above == above;
-    const Reach at_high = warm_bracket ? Reach{} : residual(high);
+    // high is evaluated first, unless the warm start pointed below low: then low is, and high
+    // only if the root is not below low after all.
+    const bool low_first = !warm_bracket && low != high && pointed < low;
+    const bool root_below_low = low_first && residual(low).distance >= 0;
+    const Reach at_high = warm_bracket || root_below_low ? Reach{} : residual(high);
     if (warm_bracket) {
       lo = below, f_lo = f_below, hi = above, f_hi = f_above;
-    } else if (at_high.distance <= 0) {
+    } else if (!root_below_low && at_high.distance <= 0) {
       // The root is in [high, V]. First the model: brake (or release) to `high`, then the rest
       // of the distance as a move from rest; it usually brackets the root with `high` and spares
       // the evaluation at V.
