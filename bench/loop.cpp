@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -123,7 +124,8 @@ int main(int argc, char** argv) {
       std::printf("usage: avar-bench-loop [SECONDS] [--worst N]\n"
                   "  SECONDS    length of each latency loop (default 20)\n"
                   "  --worst N  also list the N costliest ticks of the 32-channel tick cost, with the\n"
-                  "             limiter's evaluations in each\n");
+                  "             limiter's evaluations and the sample, limit and send stages' least\n"
+                  "             times in each\n");
       return 0;
     } else {
       seconds = std::atof(arg.c_str());
@@ -178,6 +180,9 @@ int main(int argc, char** argv) {
     constexpr int kReplays = 5;
     const int n = 100000;
     std::vector<double> least(n, 1e300), raw;
+    // Each stage's least over the replays too, for the costliest ticks' lines: where their time goes.
+    constexpr control::Stage kShownStages[] = {control::Stage::sample, control::Stage::limit, control::Stage::send};
+    std::vector<std::array<double, 3>> least_stage(n, {1e300, 1e300, 1e300});
     std::vector<int> evaluations(n, 0);  // the limiter's work per tick (same in every replay)
     raw.reserve(static_cast<std::size_t>(n) * kReplays);
     const control::RealtimeGrant grant = control::apply_realtime(policy);
@@ -197,6 +202,10 @@ int main(int argc, char** argv) {
         const auto span = static_cast<double>(t1 - t0);
         raw.push_back(span);
         least[static_cast<std::size_t>(k)] = std::min(least[static_cast<std::size_t>(k)], span);
+        for (std::size_t st = 0; st < 3; ++st) {
+          double& stage_least = least_stage[static_cast<std::size_t>(k)][st];
+          stage_least = std::min(stage_least, static_cast<double>(controller.stage_time(kShownStages[st]).last_ns));
+        }
         if (replay == 0)
           for (std::size_t c = 0; c < controller.limiter().size(); ++c) evaluations[static_cast<std::size_t>(k)] += controller.limiter().evaluations(c);
         if (t1 - since_pause > 20'000'000) {
@@ -216,9 +225,10 @@ int main(int argc, char** argv) {
       std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
                         [&](std::size_t a, std::size_t b) { return least[a] > least[b]; });
       for (std::size_t i = 0; i < shown; ++i) {
-        char line[128];
-        std::snprintf(line, sizeof line, "tick-worst,tick=%zu,us=%.3f,evaluations=%d\n", order[i], least[order[i]] / 1e3,
-                      evaluations[order[i]]);
+        char line[192];
+        const auto& stages = least_stage[order[i]];
+        std::snprintf(line, sizeof line, "tick-worst,tick=%zu,us=%.3f,evaluations=%d,sample_us=%.3f,limit_us=%.3f,send_us=%.3f\n",
+                      order[i], least[order[i]] / 1e3, evaluations[order[i]], stages[0] / 1e3, stages[1] / 1e3, stages[2] / 1e3);
         worst_lines += line;
       }
     }
