@@ -279,9 +279,9 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   double below = std::numeric_limits<double>::quiet_NaN(), f_below = 0;
   double above = std::numeric_limits<double>::quiet_NaN(), f_above = 0;
   double resume = hint;
-  // Where the warm start's last Newton step pointed when it left the hint's branch across an
-  // end at 0 or the natural velocity (NaN otherwise): the bracketed solve then evaluates first
-  // the branch end on that side.
+  // Where the warm start's last Newton step (in vp) pointed when that was past both 0 and the
+  // natural velocity from a branch beyond them (the goal turned back; NaN otherwise): the
+  // bracketed solve then evaluates first the branch end on that side.
   double pointed = std::numeric_limits<double>::quiet_NaN();
   if (std::isfinite(hint)) {
     double previous_residual = 0;
@@ -300,6 +300,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
     double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
     const bool monotone = lo >= high || hi <= low;
+    const auto points_past_both = [&](double newton) { return (lo == high && newton < low) || (hi == low && newton > high); };
     for (int k = 0; k < kMaxWarmSteps; ++k) {
       const Reach r = residual(x);
       if (monotone && r.distance < 0 && !(x <= below)) below = x, f_below = r.distance;
@@ -317,22 +318,20 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         if (!(u_next > 0)) {
           // At the corner itself: the bracketed refinement takes over, told where a step in vp
           // points (when it points across the corner).
-          if (u > 0 && r.slope > 0) {
-            const double newton = x - r.distance / r.slope;
-            if ((lo == high && newton < low) || (hi == low && newton > high)) pointed = newton;
-          }
+          const double newton = x - r.distance / r.slope;
+          if (u > 0 && r.slope > 0 && points_past_both(newton)) pointed = newton;
           break;
         }
         // (At the branch's far end exactly that end, which the bracketed solve may evaluate.)
         next = u_next == u_end ? (dir > 0 ? hi : lo) : std::clamp(natural + dir * u_next * u_next, lo, hi);
         u = u_next;
       } else {
-        // A step from a branch beyond 0 and the natural velocity that points past both (the
-        // goal turned back): the root is likely on the far side, whose end the bracketed solve
-        // then evaluates first. (A step that ends between them is clamped to the near end, as
-        // any other: evaluating that end brackets a root next to it.)
+        // A step that points past both 0 and the natural velocity: the root is likely on the
+        // far side, whose end the bracketed solve then evaluates first. (A step that ends
+        // between them is clamped to the near end, as any other: evaluating that end brackets a
+        // root next to it.)
         const double newton = x - r.distance / r.slope;
-        if ((lo == high && newton < low) || (hi == low && newton > high)) {
+        if (points_past_both(newton)) {
           pointed = newton;
           break;
         }

@@ -125,10 +125,10 @@ void Sampler::warm() noexcept {
   if (total == 0) return;
   if (warm_next_ >= total) warm_next_ = 0;
   if (warm_next_ < tracks) {
-    warm_sink_ += show_.tracks[warm_next_].curve.warm(cursors_[warm_next_]);
+    warm_sink_ = show_.tracks[warm_next_].curve.warm(cursors_[warm_next_]);
   } else {
     const ClipTrack& track = clip_tracks_[warm_next_ - tracks];
-    warm_sink_ += track.curve->warm(track.cursor);
+    warm_sink_ = track.curve->warm(track.cursor);
   }
   ++warm_next_;
 }
