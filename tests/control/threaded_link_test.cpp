@@ -215,6 +215,11 @@ TEST(ThreadedLink, SilentLinkMidShowFaultsWithinTheWatchdogAndTheRestEasesToRest
     healthy_inner.wait_sent(static_cast<std::size_t>(k) + 1);  // keep the healthy link in step
     silent_inner.wait_sent(static_cast<std::size_t>(k) + 1);
   }
+  // The last good send counts as completed only once the I/O thread has also brought back its
+  // telemetry; a tick that runs before that (the I/O thread descheduled, as under TSan on a busy
+  // machine) would start the watchdog later than the stall. Wait for it, so the bound below is
+  // the watchdog's own.
+  while (silent.completed_sends() < static_cast<std::uint64_t>(k)) std::this_thread::yield();
   silent_inner.stall(true);  // the device stops answering: its writes never complete
   const int silent_from = k;
   for (; c.active() && k < 2000; ++k) {
