@@ -119,29 +119,34 @@ struct Reach {
 /// its sign. D'' per phase, from the slopes in reach(): a change with peak m < A (m² = J s (vp -
 /// v0) + b0²/2) has 5s/(4m) - J vp/(2m³), one that holds at A has s/A; a stop with peak m < A
 /// has 3 sign(vp)/(4m), one that reaches A has sign(vp)/A.
+/// D'' of the change to vp in direction s with peak acceleration m: holding at A, or not.
+double change_curvature(double s, double vp, double m, bool holds, const Bounds& k) {
+  return holds ? s * k.inv_A : 1.25 * s / m - 0.5 * k.J * vp / (m * m * m);
+}
+/// D'' of the stop from vp with peak acceleration m (reaching A, or not).
+double stop_curvature(double vp, double m, const Bounds& k) {
+  const double sign = vp > 0 ? 1.0 : -1.0;
+  return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
+}
+
 double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double jump = k.J * std::abs(step);  // how far the peaks' squares move
   const VelocityChange& c = r.change;
   const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
-  double curvature = 0;
   if (c.hold > 0) {
     if (!(std::abs(step) < 0.5 * c.hold * k.A)) return nan;
-    curvature = c.s * k.inv_A;
   } else {
     const double m2 = c.peak * c.peak;
     if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && 2 * jump < m2 - b0 * b0)) return nan;
-    curvature = 1.25 * c.s / c.peak - 0.5 * k.J * vp / (m2 * c.peak);
   }
-  const double sign = vp > 0 ? 1.0 : -1.0;
   const double m = r.stop_peak, m2 = m * m;
   if (m2 >= k.A * k.A) {
     if (!(2 * jump < k.J * std::abs(vp) - k.A * k.A)) return nan;
-    curvature += sign * k.inv_A;
   } else {
     if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2)) return nan;
-    curvature += 0.75 * sign / m;
   }
+  const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, m, k);
   return 0.5 * curvature * step * step;
 }
 
@@ -172,6 +177,12 @@ double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept {
   return std::copysign(std::min(vp, V), distance);
 }
 
+double moved_goal_peak(const PeakSensitivity& d, double peak, double goal_step) noexcept {
+  // peak + x with D' x + D'' x²/2 = goal_step, in the form that keeps its precision for small x.
+  const double discriminant = d.slope * d.slope + 2 * d.curvature * goal_step;
+  return peak + (discriminant > 0 ? 2 * goal_step / (d.slope + std::sqrt(discriminant)) : goal_step / d.slope);
+}
+
 void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& limits, double hint, PlanSlack slack) noexcept {
   evaluations_ = 0;
   // (A residual within the slack is accepted only from a plan that outlasts slack.after, so only
@@ -186,6 +197,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   const Bounds bounds(limits);
   start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
   goal_ = goal;
+  limits_ = limits;
   const double v0 = start_.v, a0 = start_.a;
   const double d = goal - from.p;
   // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
@@ -570,6 +582,26 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   // tick would add their size to the commands' third differences.)
   offset_ = !loose_ && std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
   return true;
+}
+
+PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Bounds k(limits_);
+  const double vp = peak_;
+  const double fall_start = pieces_[0].duration + pieces_[1].duration, fall_end = fall_start + pieces_[2].duration;
+  if (pieces_[3].duration > 0 || vp == 0 || !(t < fall_end)) return {nan, nan, false};
+  // The slopes are reach()'s, with the change's peak acceleration as seen from that state: the
+  // same until the fall, then what is left of it.
+  const double s = pieces_[0].jerk > 0 ? 1.0 : -1.0;
+  const bool holds = t <= fall_start && pieces_[1].duration > 0;
+  const double m = holds ? k.A : k.J * (fall_end - std::max(t, fall_start));
+  const double ms = stop_peak(vp, k);
+  const double coast = ms >= k.A ? std::abs(vp) * k.inv_A : ms * k.inv_J;
+  PeakSensitivity out;
+  out.slope = s * vp / m + 0.5 * m * k.inv_J + coast + 0.5 * ms * k.inv_J;
+  out.curvature = change_curvature(s, vp, m, holds, k) + stop_curvature(vp, ms, k);
+  out.before_fall = t <= fall_start;
+  return out;
 }
 
 MotionState JerkProfile::at(double t) const noexcept {

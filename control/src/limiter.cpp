@@ -49,12 +49,32 @@ double Limiter::first_guess(const Channel& c) noexcept {
   // line (the peak before the first plan was 0, at rest).
   if (c.goal_moved && c.planned_ticks == 1) return 2 * c.peak_velocity;
   if (c.goal_moved && c.planned_ticks == 2) return 2 * c.peak_velocity - c.previous_peak;
-  // Extrapolate only a smooth run of peaks (the last two steps alike) that was extrapolated well
-  // last time: near reversals and where plans change branch the peak jumps.
+  // A state on a plan re-plans to the same plan, so the last plan's residual at its peak, from
+  // where it led, is minus the goal's move this tick. While that state is before its change's
+  // fall, the plan from it is the rest of the last one, with the same D' and D'' at the peak: a
+  // second-order step by the goal's move then leaves an error of third order in it, also where
+  // the goal's motion changes abruptly (at a key, or where a loop wraps).
+  const PeakSensitivity& d = c.sensitivity;
+  const bool known = d.slope > 0 && std::isfinite(d.slope);
+  // Otherwise, extrapolate a smooth run of peaks (the last two steps alike) that was
+  // extrapolated well last time. Near reversals and where plans change branch the peak jumps:
+  // there a Newton step by the goal's move guesses better. (In the fall D' grows without bound
+  // toward the corner, which makes that step the poorer guess on a smooth run.)
   const double step = c.peak_velocity - c.previous_peak, step_before = c.previous_peak - c.earlier_peak;
   const bool smooth = c.planned_ticks >= 3 && std::abs(step - step_before) <= 0.5 * std::max(std::abs(step), std::abs(step_before));
-  if (!c.extrapolate || !smooth) return c.peak_velocity;
-  return extrapolated_peak(c);
+  double guess = c.peak_velocity;
+  if (known && d.before_fall) {
+    guess = moved_goal_peak(d, c.peak_velocity, c.goal_step);
+  } else if (c.extrapolate && smooth) {
+    guess = extrapolated_peak(c);
+  } else if (known) {
+    guess += c.goal_step / d.slope;
+  }
+  // A guess that reverses or more than doubles the peak: the plan turns near rest (a goal that
+  // stops and turns back, as where homing hands over to the show), where D is far from linear.
+  // Braking to rest and then moving from rest models it better.
+  if (std::abs(guess - c.peak_velocity) > std::abs(c.peak_velocity)) return rest_to_rest_peak(c.goal - stopping_point(c.state, k), k);
+  return guess;
 }
 
 double Limiter::extrapolated_peak(const Channel& c) noexcept {
@@ -75,9 +95,11 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       if (target[i] < lo || target[i] > hi) ++c.clamped;
       const double goal = std::clamp(target[i], lo, hi);
       c.goal_moved = goal != c.goal;
+      c.goal_step = goal - c.goal;
       c.goal = goal;
     } else {
       c.goal_moved = false;
+      c.goal_step = 0;
       status = Status::not_finite;
     }
     c.evaluations = 0;
@@ -97,6 +119,7 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       ++c.planned_ticks;
       const MotionState next = profile.at(dt_s_);
       c.peak_velocity = profile.peak_velocity();
+      c.sensitivity = profile.peak_sensitivity(dt_s_);
       c.evaluations = profile.evaluations();
       // Rounding only: a plan stays within the range, and is finite from a finite state.
       if (std::isfinite(next.p) && std::isfinite(next.v) && std::isfinite(next.a))

@@ -53,6 +53,19 @@ struct PlanSlack {
   double after = 0;     ///< s: plans that end sooner than this are solved to rounding
 };
 
+/// How the distance D of a plan's velocity change and stop grows with its peak velocity vp, at
+/// vp: D' (s) and D'' (s²/units); NaN where not known.
+struct PeakSensitivity {
+  double slope = 0;
+  double curvature = 0;
+  bool before_fall = false;  ///< the state is still before its velocity change's fall
+};
+
+/// The peak of the plan toward a goal moved by `goal_step` (units) from the state `d` was taken
+/// at, from the peak `d` was taken at: the root of D's second-order expansion there (where it
+/// has one; else a Newton step). Exact to third order in goal_step where d is exact.
+double moved_goal_peak(const PeakSensitivity& d, double peak, double goal_step) noexcept;
+
 class JerkProfile {
  public:
   /// Plans from `from` to rest at `goal`. `from.a` is taken within [-A, A]. `hint`: a peak
@@ -69,6 +82,12 @@ class JerkProfile {
   double duration() const noexcept { return duration_; }
   /// The velocity between the two changes (the cruise velocity when |vp| = V), units/s.
   double peak_velocity() const noexcept { return peak_; }
+  /// D' and D'' at this plan's peak for the plan from its state `t` seconds on to the same peak.
+  /// While that state is in the first velocity change, that plan is the rest of this one, so its
+  /// residual at this peak is exactly how far the goal has moved since: with these, a Newton (or
+  /// second-order) step from this peak is the next plan's first guess. NaN past the change and
+  /// for plans that cruise (their cruise, not their peak, takes up a goal's move).
+  PeakSensitivity peak_sensitivity(double t) const noexcept;
   /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a
   /// state on the previous plan toward the same goal, never more than kMaxEvaluations.
   int evaluations() const noexcept { return evaluations_; }
@@ -98,6 +117,7 @@ class JerkProfile {
   MotionState start_;
   double goal_ = 0;
   double peak_ = 0;
+  JerkLimits limits_;
   double duration_ = 0;
   int evaluations_ = 0;
   bool loose_ = false;  ///< the plan ends within its slack of the goal, not to rounding
