@@ -70,12 +70,12 @@ double Limiter::first_guess(const Channel& c) noexcept {
   } else if (known) {
     guess += c.goal_step / d.slope;
   }
-  // A guess that reverses or more than doubles the peak, or a goal that moved back against a
-  // plan already past its change (its run of peaks broken): the plan turns near rest (a goal
-  // that stops and turns back, as where homing hands over to the show), where D is far from
+  // A guess that reverses or more than doubles the peak, or a plan already past its change whose
+  // run of peaks broke while its goal moved back or it brakes: the plan turns near rest (a goal
+  // that stops, and may turn back, as where homing hands over to the show), where D is far from
   // linear. Braking to rest and then moving from rest models it better.
-  const bool arriving = !known && !(c.extrapolate && smooth) && c.goal_step * c.peak_velocity < 0;
-  if (arriving || std::abs(guess - c.peak_velocity) > std::abs(c.peak_velocity)) return rest_to_rest_peak(c.goal - stopping_point(c.state, k), k);
+  const bool turning = !known && !(c.extrapolate && smooth) && (c.goal_step * c.peak_velocity < 0 || c.state.a * c.peak_velocity < 0);
+  if (turning || std::abs(guess - c.peak_velocity) > std::abs(c.peak_velocity)) return rest_to_rest_peak(c.goal - stopping_point(c.state, k), k);
   return guess;
 }
 
