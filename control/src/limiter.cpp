@@ -32,6 +32,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.state = {p, 0, 0};
     c.peak_velocity = 0;
     c.planned_ticks = 0;
+    c.goal_step = c.previous_goal_step = 0;
   }
 }
 
@@ -71,10 +72,12 @@ double Limiter::first_guess(const Channel& c) noexcept {
     guess += c.goal_step / d.slope;
   }
   // A guess that reverses or more than doubles the peak, or a plan already past its change whose
-  // run of peaks broke while its goal moved back or it brakes: the plan turns near rest (a goal
-  // that stops, and may turn back, as where homing hands over to the show), where D is far from
-  // linear. Braking to rest and then moving from rest models it better.
-  const bool turning = !known && !(c.extrapolate && smooth) && (c.goal_step * c.peak_velocity < 0 || c.state.a * c.peak_velocity < 0);
+  // run of peaks broke while its goal moved back, or slowed down as it brakes: the plan turns
+  // near rest (a goal that stops, and may turn back, as where homing hands over to the show),
+  // where D is far from linear. Braking to rest and then moving from rest models it better. (A
+  // goal still speeding up, as where homing starts, is not stopping.)
+  const bool slowing = std::abs(c.goal_step) <= std::abs(c.previous_goal_step);
+  const bool turning = !known && !(c.extrapolate && smooth) && (c.goal_step * c.peak_velocity < 0 || (slowing && c.state.a * c.peak_velocity < 0));
   if (turning || std::abs(guess - c.peak_velocity) > std::abs(c.peak_velocity)) return rest_to_rest_peak(c.goal - stopping_point(c.state, k), k);
   return guess;
 }
@@ -97,10 +100,12 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       if (target[i] < lo || target[i] > hi) ++c.clamped;
       const double goal = std::clamp(target[i], lo, hi);
       c.goal_moved = goal != c.goal;
+      c.previous_goal_step = c.goal_step;
       c.goal_step = goal - c.goal;
       c.goal = goal;
     } else {
       c.goal_moved = false;
+      c.previous_goal_step = c.goal_step;
       c.goal_step = 0;
       status = Status::not_finite;
     }

@@ -81,6 +81,7 @@ class Limiter {
     double peak_velocity = 0;  ///< of the last plan: the next plan's first guess
     PeakSensitivity sensitivity;  ///< of the last plan, from the state it led to
     double goal_step = 0;         ///< how far the goal moved this tick
+    double previous_goal_step = 0;  ///< and the tick before
     double previous_peak = 0;  ///< of the plan before it
     double earlier_peak = 0;   ///< and of the plan before that
     int planned_ticks = 0;     ///< consecutive ticks that planned (k: the last k peaks are recent)
