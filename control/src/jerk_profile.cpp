@@ -13,6 +13,8 @@ namespace {
 struct Bounds {
   double A, J, inv_A, inv_J;
   explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
+  /// With the reciprocals already known.
+  Bounds(const JerkLimits& l, double inverse_a, double inverse_j) : A(l.acceleration), J(l.jerk), inv_A(inverse_a), inv_J(inverse_j) {}
 };
 constexpr double kSixth = 1.0 / 6;
 /// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
@@ -121,7 +123,8 @@ struct Reach {
 /// has 3 sign(vp)/(4m), one that reaches A has sign(vp)/A.
 /// D'' of the change to vp in direction s with peak acceleration m: holding at A, or not.
 double change_curvature(double s, double vp, double m, bool holds, const Bounds& k) {
-  return holds ? s * k.inv_A : 1.25 * s / m - 0.5 * k.J * vp / (m * m * m);
+  const double inv_m = 1 / m;
+  return holds ? s * k.inv_A : (1.25 * s - 0.5 * k.J * vp * inv_m * inv_m) * inv_m;
 }
 /// D'' of the stop from vp with peak acceleration m (reaching A, or not).
 double stop_curvature(double vp, double m, const Bounds& k) {
@@ -556,6 +559,9 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   const Reach& ended_on = vp == last_vp ? last : earlier;
   const VelocityChange change = evaluated ? ended_on.change : velocity_change(v0, a0, vp, bounds);
   const double m = stop_peak(vp, bounds);
+  stop_peak_ = m;
+  inverse_acceleration_ = bounds.inv_A;
+  inverse_jerk_ = bounds.inv_J;
   const double stop_jerk = vp > 0 ? -J : J;
   const double stop_ramp = m / J;
   const double stop_hold = m > 0 ? std::max(0.0, std::abs(vp) / m - m / J) : 0.0;
@@ -586,7 +592,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
 
 PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const Bounds k(limits_);
+  const Bounds k(limits_, inverse_acceleration_, inverse_jerk_);
   const double vp = peak_;
   const double fall_start = pieces_[0].duration + pieces_[1].duration, fall_end = fall_start + pieces_[2].duration;
   if (pieces_[3].duration > 0 || vp == 0 || !(t < fall_end)) return {nan, nan, false};
@@ -595,7 +601,7 @@ PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
   const double s = pieces_[0].jerk > 0 ? 1.0 : -1.0;
   const bool holds = t <= fall_start && pieces_[1].duration > 0;
   const double m = holds ? k.A : k.J * (fall_end - std::max(t, fall_start));
-  const double ms = stop_peak(vp, k);
+  const double ms = stop_peak_;
   const double coast = ms >= k.A ? std::abs(vp) * k.inv_A : ms * k.inv_J;
   PeakSensitivity out;
   out.slope = s * vp / m + 0.5 * m * k.inv_J + coast + 0.5 * ms * k.inv_J;

@@ -118,6 +118,8 @@ class JerkProfile {
   double goal_ = 0;
   double peak_ = 0;
   JerkLimits limits_;
+  double inverse_acceleration_ = 0, inverse_jerk_ = 0;  ///< 1/A, 1/J of the last plan
+  double stop_peak_ = 0;  ///< |peak acceleration| of the last plan's stop
   double duration_ = 0;
   int evaluations_ = 0;
   bool loose_ = false;  ///< the plan ends within its slack of the goal, not to rounding
