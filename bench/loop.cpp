@@ -191,6 +191,11 @@ int main(int argc, char** argv) {
     raw.reserve(static_cast<std::size_t>(n) * kReplays);
     const control::RealtimeGrant grant = control::apply_realtime(policy);
     for (int replay = 0; replay < kReplays; ++replay) {
+      // A pause of a different length before each replay: something on the host that recurs
+      // with the replays' period would otherwise strike the same ticks in every replay (seen as
+      // runs of ordinary ticks among the worst).
+      const timespec offset{0, (1 + (replay * 7) % 13) * 1'000'000L};
+      nanosleep(&offset, nullptr);
       Figure32 figure;
       control::Controller controller(figure.rig, figure.show, figure.link_ptrs(), {.tick_period_s = 1.0 / rate});
       controller.begin(0.0, figure.rig.rest_frame());
