@@ -65,7 +65,11 @@ double Limiter::first_guess(const Channel& c) noexcept {
   const bool smooth = c.planned_ticks >= 3 && std::abs(step - step_before) <= 0.5 * std::max(std::abs(step), std::abs(step_before));
   double guess = c.peak_velocity;
   if (known && d.before_fall) {
-    guess = moved_goal_peak(d, c.peak_velocity, c.goal_step);
+    // (Where the first-order step alone would reverse or more than double the peak, it is kept:
+    // the goal turns the plan, which the check below catches; the second-order step there can
+    // land next to the last peak, on the wrong branch.)
+    const double newton = c.peak_velocity + c.goal_step / d.slope;
+    guess = std::abs(newton - c.peak_velocity) > std::abs(c.peak_velocity) ? newton : moved_goal_peak(d, c.peak_velocity, c.goal_step);
   } else if (c.extrapolate && smooth) {
     guess = extrapolated_peak(c);
   } else if (known) {
