@@ -114,24 +114,24 @@ struct Reach {
   return r;
 }
 
-/// The residual a Newton step of `step` from r (at vp) is left with, by Taylor: D'' step² / 2.
-/// NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
-/// percent at most: each phase's peak acceleration squared moves by under 1% (J |step| of it),
-/// without reaching A or the change's start acceleration, a hold stays, the stop's velocity keeps
-/// its sign. D'' per phase, from the slopes in reach(): a change with peak m < A (m² = J s (vp -
-/// v0) + b0²/2) has 5s/(4m) - J vp/(2m³), one that holds at A has s/A; a stop with peak m < A
-/// has 3 sign(vp)/(4m), one that reaches A has sign(vp)/A.
-/// D'' of the change to vp in direction s with peak acceleration m: holding at A, or not.
+/// D'' per phase, from the slopes in reach(). A change to vp in direction s with peak
+/// acceleration m < A (m² = J s (vp - v0) + b0²/2) has 5s/(4m) - J vp/(2m³); one that holds at A
+/// has s/A.
 double change_curvature(double s, double vp, double m, bool holds, const Bounds& k) {
   const double inv_m = 1 / m;
   return holds ? s * k.inv_A : (1.25 * s - 0.5 * k.J * vp * inv_m * inv_m) * inv_m;
 }
-/// D'' of the stop from vp with peak acceleration m (reaching A, or not).
+/// A stop from vp with peak m < A has 3 sign(vp)/(4m); one that reaches A has sign(vp)/A.
 double stop_curvature(double vp, double m, const Bounds& k) {
   const double sign = vp > 0 ? 1.0 : -1.0;
   return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
 }
 
+/// The residual a Newton step of `step` from r (at vp) is left with, by Taylor: D'' step² / 2.
+/// NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
+/// percent at most: each phase's peak acceleration squared moves by under 1% (J |step| of it),
+/// without reaching A or the change's start acceleration, a hold stays, the stop's velocity keeps
+/// its sign.
 double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double jump = k.J * std::abs(step);  // how far the peaks' squares move
