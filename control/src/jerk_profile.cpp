@@ -80,9 +80,8 @@ struct VelocityChange {
 /// The peak acceleration of the time-optimal stop from (v, 0): sqrt(J|v|), at most A.
 double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * std::abs(v)), k.A); }
 
-/// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp: for a change to
-/// v1 with peak m, d distance/d v1 = s v1/m + m/(2J); the stop from vp covers vp T/2 with
-/// T = m/J + |vp|/m, of slope |vp|/m + m/(2J).
+/// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp (change_slope()
+/// plus stop_slope(), below).
 struct Reach {
   double distance;
   double slope;
@@ -92,25 +91,38 @@ struct Reach {
   VelocityChange change;  ///< phase 1
 };
 
+/// D' of a change to vp in direction s whose peak acceleration is m > 0: for a change to v1,
+/// d distance/d v1 = s v1/m + m/(2J).
+[[gnu::always_inline]] inline double change_slope(double s, double vp, double m, const Bounds& k) {
+  return s * vp / m + 0.5 * m * k.inv_J;
+}
+/// |vp| / m for the stop from vp with peak acceleration m: |vp| / A where it reaches A, else
+/// m / J (where m = sqrt(J |vp|), no division).
+[[gnu::always_inline]] inline double stop_coast(double speed, double m, bool reaches_a, const Bounds& k) {
+  return reaches_a ? speed * k.inv_A : m * k.inv_J;
+}
+/// D' of the stop from vp: it covers vp T/2 with T = m/J + |vp|/m.
+[[gnu::always_inline]] inline double stop_slope(double coast, double m, const Bounds& k) { return coast + 0.5 * m * k.inv_J; }
+
 [[gnu::always_inline]] inline Reach reach(double v0, double a0, double vp, const Bounds& k) {
   Reach r;  // (every member is set below)
   r.change = velocity_change(v0, a0, vp, k);
   const VelocityChange& c = r.change;
   r.distance = c.distance;
   r.magnitude = c.magnitude;
-  r.slope = c.peak > 0 ? c.s * vp / c.peak + 0.5 * c.peak * k.inv_J : std::numeric_limits<double>::infinity();
+  r.slope = c.peak > 0 ? change_slope(c.s, vp, c.peak, k) : std::numeric_limits<double>::infinity();
   // The stop from (vp, 0): peak m = sqrt(J|vp|) <= A, where |vp|/m = m/J (no division).
   const double speed = std::abs(vp);
   const double root = std::sqrt(k.J * speed);
   const bool reaches_a = root > k.A;
   const double m = reaches_a ? k.A : root;
   r.stop_peak = m;
-  const double coast = reaches_a ? speed * k.inv_A : m * k.inv_J;  // |vp| / m
+  const double coast = stop_coast(speed, m, reaches_a, k);
   const double duration = m * k.inv_J + coast;
   r.distance += 0.5 * vp * duration;
   r.magnitude += speed * duration;
   r.duration = c.rise + c.hold + c.fall + duration;
-  r.slope += coast + 0.5 * m * k.inv_J;
+  r.slope += stop_slope(coast, m, k);
   return r;
 }
 
@@ -596,15 +608,14 @@ PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
   const double vp = peak_;
   const double fall_start = pieces_[0].duration + pieces_[1].duration, fall_end = fall_start + pieces_[2].duration;
   if (pieces_[3].duration > 0 || vp == 0 || !(t < fall_end)) return {nan, nan, false};
-  // The slopes are reach()'s, with the change's peak acceleration as seen from that state: the
-  // same until the fall, then what is left of it.
+  // reach()'s slopes, with the change's peak acceleration as seen from that state: the same until
+  // the fall, then what is left of it.
   const double s = pieces_[0].jerk > 0 ? 1.0 : -1.0;
   const bool holds = t <= fall_start && pieces_[1].duration > 0;
   const double m = holds ? k.A : k.J * (fall_end - std::max(t, fall_start));
   const double ms = stop_peak_;
-  const double coast = ms >= k.A ? std::abs(vp) * k.inv_A : ms * k.inv_J;
   PeakSensitivity out;
-  out.slope = s * vp / m + 0.5 * m * k.inv_J + coast + 0.5 * ms * k.inv_J;
+  out.slope = change_slope(s, vp, m, k) + stop_slope(stop_coast(std::abs(vp), ms, ms >= k.A, k), ms, k);
   out.curvature = change_curvature(s, vp, m, holds, k) + stop_curvature(vp, ms, k);
   out.before_fall = t <= fall_start;
   return out;
