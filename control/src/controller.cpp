@@ -131,7 +131,10 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
   }
   const auto from = limiter_.last();
   std::copy(from.begin(), from.end(), commanded_.begin());
-  ramp_.plan(commanded_, first_frame_, ramp_velocity_, options_.min_ramp_s);
+  // The soft start is the limiter's own glide to the first frame: every channel re-plans it
+  // each tick toward a held goal (one evaluation), and the show starts from rest on that frame.
+  homing_duration_ = limiter_.glide_duration(first_frame_, ramp_velocity_, options_.min_ramp_s);
+  limiter_.glide_to(first_frame_, homing_duration_);
   phase_ = Phase::homing;
   phase_start_ = now_s;
   last_now_ = now_s;
@@ -247,11 +250,11 @@ Status Controller::tick(double now_s) noexcept {
   bool sampled_show = false;
   switch (phase_) {
     case Phase::homing:
-      if (now_s - phase_start_ >= ramp_.duration()) {
+      if (now_s - phase_start_ >= homing_duration_ && limiter_.settled()) {
         phase_ = Phase::running;
         show_start_ = now_s;
       } else {
-        ramp_.sample(now_s - phase_start_, target_);
+        std::copy(first_frame_.begin(), first_frame_.end(), target_.begin());
         sampler_.warm();  // the show's first samples then find their curves in cache
         break;
       }

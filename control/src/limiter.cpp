@@ -13,7 +13,7 @@ Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), 
       throw std::invalid_argument("channel limits must be positive, with max > min");
     Channel c;
     c.limits = l;
-    c.jerk_limits = {l.max_velocity, l.max_acceleration, l.max_jerk};
+    c.jerk_limits = own_limits(l);
     // The distance a rest-to-rest move needs to reach full speed, or the range if shorter.
     const double scale = l.max_velocity * (l.max_velocity / l.max_acceleration + l.max_acceleration / l.max_jerk);
     c.slack = 1e-9 * std::min(scale, l.max - l.min);
@@ -33,7 +33,51 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.peak_velocity = 0;
     c.planned_ticks = 0;
     c.goal_step = c.previous_goal_step = 0;
+    c.gliding = false;
+    c.jerk_limits = own_limits(c.limits);
   }
+}
+
+std::pair<double, double> Limiter::target_range(const ChannelLimits& l) noexcept {
+  const double mid = 0.5 * (l.min + l.max);
+  return {std::min(l.min + l.soft_margin, mid), std::max(l.max - l.soft_margin, mid)};
+}
+
+double Limiter::glide_duration(std::span<const double> goal, std::span<const double> peak_speed, double min_duration_s) const noexcept {
+  double duration = min_duration_s;
+  for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
+    const Channel& c = channels_[i];
+    if (!std::isfinite(goal[i])) continue;
+    const auto [lo, hi] = target_range(c.limits);
+    const double d = std::abs(std::clamp(goal[i], lo, hi) - c.state.p);
+    const double speed = i < peak_speed.size() && peak_speed[i] > 0 ? std::min(peak_speed[i], c.limits.max_velocity) : c.limits.max_velocity;
+    // Peak speed 2d/T, peak acceleration 8d/T², jerk 32d/T³, each within its limit.
+    duration = std::max({duration, 2 * d / speed, std::sqrt(8 * d / c.limits.max_acceleration), std::cbrt(32 * d / c.limits.max_jerk)});
+  }
+  return duration;
+}
+
+void Limiter::glide_to(std::span<const double> goal, double duration_s) noexcept {
+  if (!(duration_s > 0)) return;
+  const double cube = duration_s * duration_s * duration_s;
+  for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
+    Channel& c = channels_[i];
+    if (!std::isfinite(goal[i]) || c.state.v != 0 || c.state.a != 0) continue;
+    const auto [lo, hi] = target_range(c.limits);
+    const double to = std::clamp(goal[i], lo, hi);
+    const double jerk = std::min(32 * std::abs(to - c.state.p) / cube, c.limits.max_jerk);
+    if (!(jerk > 0)) continue;
+    // With only the jerk limit binding (2d/T <= V and 8d/T² <= A: the duration allows them), the
+    // time-optimal rest-to-rest move is jerk +J, -J, -J, +J for T/4 each.
+    c.jerk_limits.jerk = jerk;
+    c.gliding = true;
+    c.glide_goal = to;
+  }
+}
+
+double Limiter::heading(std::size_t channel) const noexcept {
+  const Channel& c = channels_[channel];
+  return c.gliding ? std::clamp(stopping_point(c.state, own_limits(c.limits)), c.limits.min, c.limits.max) : c.goal;
 }
 
 bool Limiter::settled() const noexcept {
@@ -98,15 +142,17 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     Channel& c = channels_[i];
     const ChannelLimits& l = c.limits;
     if (std::isfinite(target[i])) {
-      const double mid = 0.5 * (l.min + l.max);
-      const double lo = std::min(l.min + l.soft_margin, mid);
-      const double hi = std::max(l.max - l.soft_margin, mid);
+      const auto [lo, hi] = target_range(l);
       if (target[i] < lo || target[i] > hi) ++c.clamped;
       const double goal = std::clamp(target[i], lo, hi);
       c.goal_moved = goal != c.goal;
       c.previous_goal_step = c.goal_step;
       c.goal_step = goal - c.goal;
       c.goal = goal;
+      if (c.gliding && goal != c.glide_goal) {
+        c.gliding = false;
+        c.jerk_limits = own_limits(l);
+      }
     } else {
       c.goal_moved = false;
       c.previous_goal_step = c.goal_step;
@@ -120,7 +166,10 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       // from the goal (never nearer a position limit than half the goal is), which saves a Newton
       // step or two; the next tick plans again from where this one got to.
       const double edge = std::min(c.goal - l.min, l.max - c.goal);
-      profile.plan(c.state, c.goal, c.jerk_limits, first_guess(c), {std::min(c.slack, 0.5 * edge), 2 * dt_s_});
+      // (Not while gliding: a glide's jerk is low, and an end off the goal by the slack would
+      // take a tail of ticks to make up, as the time to move a distance x grows like cbrt(x/J).)
+      const double slack = c.gliding ? 0.0 : std::min(c.slack, 0.5 * edge);
+      profile.plan(c.state, c.goal, c.jerk_limits, first_guess(c), {slack, 2 * dt_s_});
       // Near reversals and where the plan changes branch the peak jumps: extrapolate next time
       // only if that would have guessed this plan's peak better than the last peak did.
       c.extrapolate = c.planned_ticks < 3 ||

@@ -78,6 +78,30 @@ TEST(Controller, EasesInFromThePresentPosePlaysAndEasesOutToRest) {
   EXPECT_GE(c.show_start_time(), 0.25);
 }
 
+TEST(Controller, HomingGlidesToTheFirstFrameAndTheShowStartsThereAtRest) {
+  const Rig rig = two_channel_rig();
+  const playback::Show show = jaw_show();
+  RecordingLink link;
+  Controller c(rig, show, {&link}, {.tick_period_s = 0.01});
+  // jaw 12 -> 5 at up to 20/s, pan -30 -> 10 (its rest: no track) at up to 40/s: the pan sets
+  // the duration, 2 * 40 / 40 = 2 s, and the jaw glides slower to arrive with it.
+  c.begin(0.0, std::vector<double>{12.0, -30.0});
+  int k = 0;
+  for (; c.phase() == Phase::homing && k < 1000; ++k) c.tick(k * 0.01);
+  ASSERT_EQ(c.phase(), Phase::running);
+  EXPECT_NEAR(c.show_start_time(), 2.0, 0.01 + 1e-9);
+  // The show's first sample was taken with the figure already at rest on its first frame.
+  const std::vector<double>& before_show = link.frames[link.frames.size() - 2];
+  EXPECT_EQ(before_show, (std::vector<double>{5.0, 10.0}));
+  double jaw_speed = 0, pan_speed = 0;
+  for (std::size_t i = 1; i + 1 < link.frames.size(); ++i) {
+    jaw_speed = std::max(jaw_speed, std::abs(link.frames[i][0] - link.frames[i - 1][0]) / 0.01);
+    pan_speed = std::max(pan_speed, std::abs(link.frames[i][1] - link.frames[i - 1][1]) / 0.01);
+  }
+  EXPECT_NEAR(pan_speed, 40.0, 0.5);  // 2d/T: the ramp_velocity
+  EXPECT_NEAR(jaw_speed, 7.0, 0.1);   // 2 * 7 / 2
+}
+
 TEST(Controller, StopRequestEasesToRestFromWhereverTheFigureIs) {
   const Rig rig = two_channel_rig();
   const playback::Show show = jaw_show();

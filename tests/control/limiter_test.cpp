@@ -420,8 +420,8 @@ TEST(Limiter, EveryPlanOfAMovingTargetStaysWithinTheEvaluationBound) {
 }
 
 TEST(Limiter, AGoalThatEasesOutOfRestAndBackToRestIsFollowedCheaplyAtBothEnds) {
-  // Homing: every channel's goal leaves rest along a half-cosine at once, and comes to rest at
-  // once. The peaks of the first plans grow about 2.3x a tick; guessing each from the last one cost
+  // Every channel's goal leaves rest along a half-cosine at once, and comes to rest at once (as
+  // homing did before it glided). The peaks of the first plans grow about 2.3x a tick; guessing each from the last one cost
   // 4-6 evaluations a plan. At the end every plan's peak collapses toward zero as its goal stops:
   // up to 52 (62 on the slower ramp) evaluations a tick for 16 channels, before a plan that brakes
   // with its run of peaks broken was guessed as a turn near rest; and up to 43 in the first ticks
@@ -481,6 +481,62 @@ TEST(Limiter, AKeyWhereEveryGoalChangesItsAccelerationAtOnceCostsLittleMore) {
     for (std::size_t i = 0; i < n; ++i) total += limiter.evaluations(i);
     EXPECT_LE(total, 30) << "tick " << k;
   }
+}
+
+TEST(Limiter, AGlideBringsEveryChannelToItsGoalTogetherOnTheSmoothestMoveAtOneEvaluationATick) {
+  // Three channels, distances 60, 6 and 0.3 at peak speeds 40, 100 and 100: the first sets the
+  // duration (2 * 60 / 40 = 3 s), the others glide slower to arrive with it.
+  const double dt = 0.001;
+  const std::vector<ChannelLimits> limits(3, ChannelLimits{-90, 90, 400, 4000, 80000, 0});
+  Limiter limiter(limits, dt);
+  limiter.reset(std::vector<double>{0, 10, -5});
+  const std::vector<double> goal{60, 4, -5.3}, peak_speed{40, 100, 100};
+  const double duration = limiter.glide_duration(goal, peak_speed, 0.25);
+  EXPECT_DOUBLE_EQ(duration, 3.0);
+  EXPECT_DOUBLE_EQ(limiter.glide_duration(goal, peak_speed, 5.0), 5.0);  // never below the minimum
+  limiter.glide_to(goal, duration);
+  std::vector<double> out(3);
+  std::vector<std::vector<double>> samples{{0}, {10}, {-5}};
+  int ticks = 0, evaluations = 0, worst = 0;
+  for (; (ticks == 0 || !limiter.settled()) && ticks < 5000; ++ticks) {
+    limiter.apply(goal, out);
+    for (std::size_t i = 0; i < 3; ++i) {
+      evaluations += limiter.evaluations(i);
+      worst = std::max(worst, limiter.evaluations(i));
+      EXPECT_TRUE(limiter.gliding(i));
+      samples[i].push_back(out[i]);
+    }
+  }
+  // Arrived together, at the glide's end (to the tick), exactly on the goals.
+  EXPECT_GE(ticks, 3000);
+  EXPECT_LE(ticks, 3001);
+  EXPECT_EQ(out, goal);
+  // Each tick re-plans the same glide: one evaluation, but for a few plans where the jerk turns.
+  EXPECT_LE(evaluations, 3 * ticks + 30);
+  EXPECT_LE(worst, 6);
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE("channel " + std::to_string(i));
+    const double d = std::abs(goal[i] - samples[i].front());
+    double speed = 0, acceleration = 0, jerk = 0;
+    for (std::size_t k = 3; k < samples[i].size(); ++k) {
+      const double* x = &samples[i][k - 3];
+      speed = std::max(speed, std::abs(x[3] - x[2]) / dt);
+      acceleration = std::max(acceleration, std::abs(x[3] - 2 * x[2] + x[1]) / (dt * dt));
+      jerk = std::max(jerk, std::abs(x[3] - 3 * x[2] + 3 * x[1] - x[0]) / (dt * dt * dt));
+    }
+    // Speed 2d/T and acceleration 8d/T² at their peaks, jerk 32d/T³ throughout: the smoothest
+    // rest-to-rest move of that duration (a sample's differences straddle the peaks: within a tick).
+    EXPECT_NEAR(speed, 2 * d / duration, 1e-3 * d + 1e-9);
+    EXPECT_NEAR(acceleration, 8 * d / (duration * duration), 1e-2 * d + 1e-6);
+    EXPECT_LE(jerk, 32 * d / (duration * duration * duration) * (1 + 1e-6) + 1e-3);
+  }
+  // A new target ends the glide: the channel's own limits apply again at once.
+  std::vector<double> away{60, 4, 5};
+  limiter.apply(away, out);
+  EXPECT_FALSE(limiter.gliding(2));
+  EXPECT_TRUE(limiter.gliding(0));  // (still on its glide's goal)
+  for (int k = 0; k < 200; ++k) limiter.apply(away, out);
+  EXPECT_DOUBLE_EQ(out[2], 5.0);  // 10.3 units in 0.2 s: at the glide's jerk it would take 2.4 s
 }
 
 TEST(Limiter, NonFiniteTargetKeepsThePreviousGoalAndReportsIt) {

@@ -120,6 +120,30 @@ TEST(Supervisor, EveryFaultFromEveryStateTakesTheFailsafePathAndLatches) {
   }
 }
 
+TEST(Supervisor, AFaultDuringTheSoftStartHoldsWhereBrakingStopsTheChannel) {
+  // Homing from -30 to the show's first frame, 0: the glide's goal is not a pose to hold.
+  const Rig r = rig();
+  const playback::Show s = show();
+  RecordingLink link;
+  Controller c(r, s, {&link}, {.tick_period_s = kDt});
+  c.begin(0, std::vector<double>{-30, -30, -30});
+  int k = 0;
+  for (; k < 50; ++k) c.tick(k * kDt);
+  ASSERT_EQ(c.phase(), Phase::homing);
+  const double at_fault = link.frames.back()[0];
+  const double braked = c.limiter().heading(0);
+  ASSERT_GT(at_fault, -29.0);
+  c.fault(FaultCause::estop, 0, 0, k * kDt);
+  for (; c.active() && k < 5000; ++k) c.tick(k * kDt);
+  const std::vector<double>& last = link.frames.back();
+  // Held where braking at its limits stops it: a little on (from up to 50/s at 4000/s²), far
+  // from the first frame.
+  EXPECT_NEAR(last[0], braked, 1e-9);
+  EXPECT_GT(last[0], at_fault);
+  EXPECT_LT(last[0], at_fault + 1.5);
+  EXPECT_DOUBLE_EQ(last[1], 0.0);  // rest: eased to rest
+}
+
 TEST(Supervisor, TrackingErrorBeyondToleranceFaultsWithTheChannelAndError) {
   const Rig r = rig();
   const playback::Show s = show();

@@ -5,7 +5,8 @@
 //   disabled --begin--> homing --soft start done--> running --show over / stop--> stopping
 //   stopping --at rest--> disabled;  any state --fault--> faulted --reset--> disabled
 //
-// Homing eases from the present pose to the show's first frame, stopping eases to rest. A fault
+// Homing glides from the present pose to the show's first frame (Limiter::glide_to: jerk-limited,
+// all channels arriving together at rest), and the show starts there; stopping eases to rest. A fault
 // (e-stop, link watchdog or failure, tracking error, non-finite command, device over-temperature
 // or overload, deadline misses beyond the budget) is latched with its cause, where and when,
 // and takes the single path to the safe state: every actuator does its fail-safe action from
@@ -186,6 +187,7 @@ class Controller {
   double last_now_ = 0;
   bool stop_requested_ = false;
   double phase_start_ = 0;
+  double homing_duration_ = 0;  ///< of the soft start's glide, s
   double show_start_ = -1;
   double show_time_ = 0;
 };

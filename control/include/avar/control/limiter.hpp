@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "avar/control/jerk_profile.hpp"
@@ -50,6 +51,24 @@ class Limiter {
   /// alias.
   Status apply(std::span<const double> target, std::span<double> out) noexcept;
 
+  /// The shortest soft start from the present pose to `goal` (clamped like a target) that
+  /// glide_to() can take, in seconds: at least min_duration_s, and long enough that every
+  /// channel's glide keeps within its limits and its peak speed within peak_speed[channel]
+  /// (units/s). A glide of d over T peaks at 2d/T in speed, 8d/T² in acceleration and has jerk
+  /// ±32d/T³.
+  double glide_duration(std::span<const double> goal, std::span<const double> peak_speed, double min_duration_s) const noexcept;
+
+  /// Soft start: every channel at rest glides to goal[channel] (clamped like a target) in
+  /// duration_s, all arriving together, on the smoothest rest-to-rest motion: jerk +J for a
+  /// quarter of the time, -J for half, +J for the last quarter, with J = 32d/T³ for a distance d
+  /// (never above the channel's jerk limit: a duration shorter than glide_duration() makes the
+  /// channels it does not suit arrive late). It is the time-optimal profile under that lower
+  /// jerk limit, so apply() with `goal` as the target re-plans it every tick at the cost of a
+  /// held goal. The lower limit lasts while the target stays on the goal; any other target ends
+  /// the glide at once and the channel's own limits apply again (raising limits is safe from
+  /// any state within them). Channels in motion, and those already on their goal, do not glide.
+  void glide_to(std::span<const double> goal, double duration_s) noexcept;
+
   /// True when every channel's command has come to rest on its goal.
   bool settled() const noexcept;
 
@@ -58,7 +77,11 @@ class Limiter {
   /// The commands of the last tick.
   std::span<const double> last() const noexcept { return last_; }
   /// Where the channel is going: the last finite target clamped into range less its margins.
-  double heading(std::size_t channel) const noexcept { return channels_[channel].goal; }
+  /// During a glide, where braking at the channel's own limits brings it to rest: a glide is
+  /// the soft start's approach, not a pose to hold or to start another move from.
+  double heading(std::size_t channel) const noexcept;
+  /// True while the channel glides (see glide_to()).
+  bool gliding(std::size_t channel) const noexcept { return channels_[channel].gliding; }
   /// The channel's exact motion at the last command (position = last()[channel]).
   const MotionState& state(std::size_t channel) const noexcept { return channels_[channel].state; }
   /// Samples whose target lay outside the range less its margins.
@@ -73,7 +96,9 @@ class Limiter {
  private:
   struct Channel {
     ChannelLimits limits;
-    JerkLimits jerk_limits;
+    JerkLimits jerk_limits;   ///< the channel's, or lower during a glide
+    bool gliding = false;     ///< jerk_limits are a glide's, toward glide_goal
+    double glide_goal = 0;
     double slack = 0;         ///< units: how far a long plan may end from its goal (PlanSlack)
     double goal = 0;          ///< clamped target
     bool goal_moved = false;  ///< the goal differs from the last tick's
@@ -91,6 +116,9 @@ class Limiter {
     int evaluations = 0;
   };
 
+  /// The range less the soft margins, where targets are clamped: {low, high}.
+  static std::pair<double, double> target_range(const ChannelLimits& l) noexcept;
+  static JerkLimits own_limits(const ChannelLimits& l) noexcept { return {l.max_velocity, l.max_acceleration, l.max_jerk}; }
   /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
   static double first_guess(const Channel& c) noexcept;
   static double extrapolated_peak(const Channel& c) noexcept;

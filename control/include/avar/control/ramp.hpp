@@ -1,5 +1,5 @@
 #pragma once
-// Soft start and soft stop: every channel eases from one pose to another along a half-cosine
+// Soft stop and fail-safe moves: every channel eases from one pose to another along a half-cosine
 // (zero speed at both ends), all channels arriving together. Planning may allocate (it runs
 // at set-up or reuses the buffers sized by the constructor); sampling is real-time safe.
 
