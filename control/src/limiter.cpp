@@ -32,6 +32,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.state = {p, 0, 0};
     c.peak_velocity = 0;
     c.planned_ticks = 0;
+    c.on_rest_curve = false;
     c.goal_step = c.previous_goal_step = 0;
     c.gliding = false;
     c.jerk_limits = own_limits(c.limits);
@@ -90,8 +91,14 @@ double Limiter::first_guess(const Channel& c) noexcept {
   const JerkLimits& k = c.jerk_limits;
   // From rest: the rest-to-rest move's peak, exact.
   if (c.state.v == 0 && c.state.a == 0) return rest_to_rest_peak(c.goal - c.state.p, k);
-  // A goal that has been moving since the channel left rest: the peaks so far extrapolated by a
-  // line (the peak before the first plan was 0, at rest).
+  // Leaving rest, every time-optimal plan from rest in one direction starts the same way (jerk
+  // toward the goal, then a hold at the acceleration limit), until its velocity change's fall.
+  // While the state has stayed on that common start, the plan from it is the rest of the plan
+  // from where the channel left rest: its peak is that rest-to-rest move's, exact.
+  if (c.on_rest_curve && (c.goal - c.rest_origin) * c.rest_direction > 0) return rest_to_rest_peak(c.goal - c.rest_origin, k);
+  // Otherwise a goal that has been moving since the channel left rest (the first plans ended
+  // within a tick or two): the peaks so far extrapolated by a line (the peak before the first
+  // plan was 0, at rest).
   if (c.goal_moved && c.planned_ticks == 1) return 2 * c.peak_velocity;
   if (c.goal_moved && c.planned_ticks == 2) return 2 * c.peak_velocity - c.previous_peak;
   // A state on a plan re-plans to the same plan, so the last plan's residual at its peak, from
@@ -152,6 +159,7 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       if (c.gliding && goal != c.glide_goal) {
         c.gliding = false;
         c.jerk_limits = own_limits(l);
+        c.on_rest_curve = false;  // (that start was the glide's, under its lower jerk)
       }
     } else {
       c.goal_moved = false;
@@ -166,6 +174,8 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       // from the goal (never nearer a position limit than half the goal is), which saves a Newton
       // step or two; the next tick plans again from where this one got to.
       const double edge = std::min(c.goal - l.min, l.max - c.goal);
+      const bool from_rest = c.state.v == 0 && c.state.a == 0;
+      if (from_rest) c.rest_origin = c.state.p, c.rest_direction = c.goal > c.state.p ? 1 : -1;
       // (Not while gliding: a glide's jerk is low, and an end off the goal by the slack would
       // take a tail of ticks to make up, as the time to move a distance x grows like cbrt(x/J).)
       const double slack = c.gliding ? 0.0 : std::min(c.slack, 0.5 * edge);
@@ -180,6 +190,9 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       const MotionState next = profile.at(dt_s_);
       c.peak_velocity = profile.peak_velocity();
       c.sensitivity = profile.peak_sensitivity(dt_s_);
+      // (It stays there while each plan speeds up the same way and is still before its fall.)
+      c.on_rest_curve = (from_rest || c.on_rest_curve) && profile.peak_velocity() * c.rest_direction > 0 && profile.speeds_up() &&
+                        c.sensitivity.before_fall;
       c.evaluations = profile.evaluations();
       // Rounding only: a plan stays within the range, and is finite from a finite state.
       if (std::isfinite(next.p) && std::isfinite(next.v) && std::isfinite(next.a))

@@ -421,7 +421,8 @@ TEST(Limiter, EveryPlanOfAMovingTargetStaysWithinTheEvaluationBound) {
 
 TEST(Limiter, AGoalThatEasesOutOfRestAndBackToRestIsFollowedCheaplyAtBothEnds) {
   // Every channel's goal leaves rest along a half-cosine at once, and comes to rest at once (as
-  // homing did before it glided). The peaks of the first plans grow about 2.3x a tick; guessing each from the last one cost
+  // homing did before it glided). Here the first plans end within a tick or two, before the
+  // plans from rest stop sharing their start. The peaks of the first plans grow about 2.3x a tick; guessing each from the last one cost
   // 4-6 evaluations a plan. At the end every plan's peak collapses toward zero as its goal stops:
   // up to 52 (62 on the slower ramp) evaluations a tick for 16 channels, before a plan that brakes
   // with its run of peaks broken was guessed as a turn near rest; and up to 43 in the first ticks
@@ -537,6 +538,24 @@ TEST(Limiter, AGlideBringsEveryChannelToItsGoalTogetherOnTheSmoothestMoveAtOneEv
   EXPECT_TRUE(limiter.gliding(0));  // (still on its glide's goal)
   for (int k = 0; k < 200; ++k) limiter.apply(away, out);
   EXPECT_DOUBLE_EQ(out[2], 5.0);  // 10.3 units in 0.2 s: at the glide's jerk it would take 2.4 s
+}
+
+TEST(Limiter, ATargetLeavingRestIsFollowedAtOneEvaluationAPlanWhileItsPlansShareTheirStart) {
+  // Every time-optimal plan from rest in one direction starts alike, so while the state is still
+  // on that start the next plan's peak is the rest-to-rest move's from where the channel left
+  // rest. Guessed from the peaks' history, the plans that follow a target easing out of rest
+  // (as a show starts from a held pose) cost two or three evaluations each.
+  const double dt = 0.001;
+  for (const double acceleration : {1000.0, 4000.0, 20000.0}) {
+    SCOPED_TRACE("target acceleration " + std::to_string(acceleration));
+    Limiter limiter({ChannelLimits{-90, 90, 400, 4000, 80000, 0}}, dt);
+    std::vector<double> target(1), out(1);
+    for (int k = 1; k <= 4; ++k) {
+      target[0] = 0.5 * acceleration * (k * dt) * (k * dt);
+      limiter.apply(target, out);
+      EXPECT_EQ(limiter.evaluations(0), 1) << "tick " << k;
+    }
+  }
 }
 
 TEST(Limiter, NonFiniteTargetKeepsThePreviousGoalAndReportsIt) {

@@ -88,6 +88,8 @@ class JerkProfile {
   /// second-order) step from this peak is the next plan's first guess. NaN past the change and
   /// for plans that cruise (their cruise, not their peak, takes up a goal's move).
   PeakSensitivity peak_sensitivity(double t) const noexcept;
+  /// True when the velocity change speeds up toward the peak: its first jerk has the peak's sign.
+  bool speeds_up() const noexcept { return pieces_[0].jerk * peak_ > 0; }
   /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a
   /// state on the previous plan toward the same goal, never more than kMaxEvaluations.
   int evaluations() const noexcept { return evaluations_; }

@@ -109,6 +109,9 @@ class Limiter {
     double previous_goal_step = 0;  ///< and the tick before
     double previous_peak = 0;  ///< of the plan before it
     double earlier_peak = 0;   ///< and of the plan before that
+    double rest_origin = 0;     ///< where the channel last left rest
+    double rest_direction = 0;  ///< and which way (+1 or -1)
+    bool on_rest_curve = false;  ///< and its state is still on the start common to plans from there
     int planned_ticks = 0;     ///< consecutive ticks that planned (k: the last k peaks are recent)
     bool extrapolate = true;   ///< the peaks' extrapolation guessed the last plan's better than its predecessor
     std::uint64_t clamped = 0;
