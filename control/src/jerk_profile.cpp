@@ -139,8 +139,9 @@ double stop_curvature(double vp, double m, const Bounds& k) {
   return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
 }
 
-/// The residual a Newton step of `step` from r (at vp) is left with, by Taylor: D'' step² / 2.
-/// NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
+/// The residual a step of `step` from r (at vp) is left with, by Taylor: r + D' step + D'' step²/2.
+/// (After a Newton step in vp, D'' step²/2; a step taken in sqrt(|vp - natural|) also leaves
+/// part of the linear term.) NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
 /// percent at most: each phase's peak acceleration squared moves by under 1% (J |step| of it),
 /// without reaching A or the change's start acceleration, a hold stays, the stop's velocity keeps
 /// its sign.
@@ -153,7 +154,8 @@ double newton_residual(const Reach& r, double vp, double step, const Bounds& k) 
     if (!(std::abs(step) < 0.5 * c.hold * k.A)) return nan;
   } else {
     const double m2 = c.peak * c.peak;
-    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && 2 * jump < m2 - b0 * b0)) return nan;
+    // (A change that starts against its direction, b0 <= 0, rises through zero to any m > 0.)
+    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && (b0 <= 0 || 2 * jump < m2 - b0 * b0))) return nan;
   }
   const double m = r.stop_peak, m2 = m * m;
   if (m2 >= k.A * k.A) {
@@ -162,7 +164,7 @@ double newton_residual(const Reach& r, double vp, double step, const Bounds& k) 
     if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2)) return nan;
   }
   const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, m, k);
-  return 0.5 * curvature * step * step;
+  return r.distance + r.slope * step + 0.5 * curvature * step * step;
 }
 
 MotionState advance(MotionState s, double t, double jerk) {

@@ -339,7 +339,7 @@ TEST(JerkProfile, ANearHintOnALongPlanCostsOneEvaluationAndStillEndsWithinTheSla
   // A hint a little off the root (a target that moved a little) on a plan that outlasts the
   // slack's horizon: one Newton step, its residual predicted from D'' and not evaluated. Over a
   // seeded family of states and goals: the plan's end stays within the slack of the goal, its
-  // first tick next to the exact plan's, and most such plans take that one evaluation.
+  // first tick next to the exact plan's, and nearly all such plans take that one evaluation.
   PlanFamily family(77);
   const JerkLimits limits{400, 4000, 80000};
   const double slack = 1e-7;
@@ -359,7 +359,9 @@ TEST(JerkProfile, ANearHintOnALongPlanCostsOneEvaluationAndStillEndsWithinTheSla
     one_evaluation += loose.evaluations() == 1;
   }
   EXPECT_GT(long_plans, 10000);
-  EXPECT_GT(one_evaluation, long_plans / 2) << one_evaluation << " of " << long_plans;
+  // 93% of them (88% while a change starting against its direction, b0 <= 0, was never
+  // predicted: its start acceleration was taken for a bound on its peak).
+  EXPECT_GT(one_evaluation, long_plans * 92 / 100) << one_evaluation << " of " << long_plans;
 }
 
 TEST(JerkProfile, PeakSensitivityGivesTheNextPlansPeakWhenTheGoalMoves) {
