@@ -139,32 +139,63 @@ double stop_curvature(double vp, double m, const Bounds& k) {
   return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
 }
 
-/// The residual a step of `step` from r (at vp) is left with, by Taylor: r + D' step + D'' step²/2.
-/// (After a Newton step in vp, D'' step²/2; a step taken in sqrt(|vp - natural|) also leaves
-/// part of the linear term.) NaN unless the step stays well inside r's regimes, where D is smooth and D'' changes by a few
-/// percent at most: each phase's peak acceleration squared moves by under 1% (J |step| of it),
-/// without reaching A or the change's start acceleration, a hold stays, the stop's velocity keeps
-/// its sign.
-double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
+/// D''' per phase, from the D'' above (dm/dvp = J s/(2m) for both peaks below A; D'' is constant
+/// where a peak is at A): a change without hold has -9J/(8m³) + 3J² s vp/(4m⁵), a stop below A
+/// has -3J/(8m³).
+double change_third(double s, double vp, double m, bool holds, const Bounds& k) {
+  if (holds) return 0;
+  const double inv_m = 1 / m, inv_m3 = inv_m * inv_m * inv_m;
+  return (-1.125 + 0.75 * k.J * s * vp * inv_m * inv_m) * k.J * inv_m3;
+}
+double stop_third(double m, const Bounds& k) { return m >= k.A ? 0.0 : -0.375 * k.J / (m * m * m); }
+
+/// Whether a step of `step` from r (at vp) stays well inside r's regimes, where D is smooth and
+/// its derivatives change by a few percent at most: each phase's peak acceleration squared moves
+/// by under 1% (J |step| of it), without reaching A or the change's start acceleration, a hold
+/// stays, the stop's velocity keeps its sign.
+bool stays_inside(const Reach& r, double vp, double step, const Bounds& k) {
   const double jump = k.J * std::abs(step);  // how far the peaks' squares move
   const VelocityChange& c = r.change;
   const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
   if (c.hold > 0) {
-    if (!(std::abs(step) < 0.5 * c.hold * k.A)) return nan;
+    if (!(std::abs(step) < 0.5 * c.hold * k.A)) return false;
   } else {
     const double m2 = c.peak * c.peak;
     // (A change that starts against its direction, b0 <= 0, rises through zero to any m > 0.)
-    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && (b0 <= 0 || 2 * jump < m2 - b0 * b0))) return nan;
+    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && (b0 <= 0 || 2 * jump < m2 - b0 * b0))) return false;
   }
   const double m = r.stop_peak, m2 = m * m;
-  if (m2 >= k.A * k.A) {
-    if (!(2 * jump < k.J * std::abs(vp) - k.A * k.A)) return nan;
-  } else {
-    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2)) return nan;
-  }
-  const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, m, k);
+  if (m2 >= k.A * k.A) return 2 * jump < k.J * std::abs(vp) - k.A * k.A;
+  return jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2;
+}
+
+/// The residual a step of `step` from r (at vp) is left with, by Taylor: r + D' step + D'' step²/2.
+/// (After a Newton step in vp, D'' step²/2; a step taken in sqrt(|vp - natural|) also leaves
+/// part of the linear term.) NaN unless the step stays inside r's regimes (stays_inside).
+double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
+  if (!stays_inside(r, vp, step, k)) return std::numeric_limits<double>::quiet_NaN();
+  const VelocityChange& c = r.change;
+  const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, r.stop_peak, k);
   return r.distance + r.slope * step + 0.5 * curvature * step * step;
+}
+
+/// A second-order step from r (at vp): the root of r + D' x + D'' x²/2 next to 0, with the
+/// residual it is left with by Taylor, D''' x³/6; NaN where the step leaves r's regimes
+/// (stays_inside) or the quadratic has no real root.
+struct SecondOrderStep {
+  double step, residual;
+};
+SecondOrderStep second_order_step(const Reach& r, double vp, const Bounds& k) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const VelocityChange& c = r.change;
+  const bool holds = c.hold > 0;
+  const double curvature = change_curvature(c.s, vp, c.peak, holds, k) + stop_curvature(vp, r.stop_peak, k);
+  const double discriminant = r.slope * r.slope - 2 * curvature * r.distance;
+  if (!(discriminant > 0)) return {nan, nan};
+  const double step = -2 * r.distance / (r.slope + std::sqrt(discriminant));
+  if (!stays_inside(r, vp, step, k)) return {nan, nan};
+  const double third = change_third(c.s, vp, c.peak, holds, k) + stop_third(r.stop_peak, k);
+  return {step, third * step * step * step / 6};
 }
 
 MotionState advance(MotionState s, double t, double jerk) {
@@ -381,6 +412,18 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         const double allowed = outlasts ? std::max(tolerance, slack.distance) : tolerance;
         if (std::abs(predicted_residual) <= 0.25 * allowed) {
           vp = next;
+          predicted = true;
+          break;
+        }
+      }
+      if (predict && k == 0 && outlasts) {
+        // Where the Newton step's D'' step²/2 is not small enough on the first step, a
+        // second-order step leaves D''' step³/6 (where both are known: the step stays inside r's
+        // regimes).
+        const SecondOrderStep second = second_order_step(r, x, bounds);
+        const double to = x + second.step;
+        if (to > lo && to < hi && std::abs(second.residual) <= 0.25 * std::max(tolerance, slack.distance)) {
+          vp = to;
           predicted = true;
           break;
         }

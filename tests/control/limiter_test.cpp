@@ -337,31 +337,38 @@ class PlanFamily {
 
 TEST(JerkProfile, ANearHintOnALongPlanCostsOneEvaluationAndStillEndsWithinTheSlack) {
   // A hint a little off the root (a target that moved a little) on a plan that outlasts the
-  // slack's horizon: one Newton step, its residual predicted from D'' and not evaluated. Over a
-  // seeded family of states and goals: the plan's end stays within the slack of the goal, its
-  // first tick next to the exact plan's, and nearly all such plans take that one evaluation.
-  PlanFamily family(77);
+  // slack's horizon: one step, its residual predicted by Taylor and not evaluated. Over a seeded
+  // family of states and goals, for hints off by up to 1e-6, 1e-4 and 1e-3 of the peak: the
+  // plan's end stays within the slack of the goal, its first tick next to the exact plan's, and
+  // nearly all such plans take that one evaluation.
   const JerkLimits limits{400, 4000, 80000};
   const double slack = 1e-7;
-  int long_plans = 0, one_evaluation = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const auto [from, goal] = family.next();
-    JerkProfile exact;
-    exact.plan(from, goal, limits, 0);
-    if (!(exact.duration() > 0.01)) continue;
-    ++long_plans;
-    const double hint = exact.peak_velocity() * (1 + 1e-6 * family.uniform());
-    JerkProfile loose;
-    loose.plan(from, goal, limits, hint, {slack, 0.002});
-    ASSERT_NEAR(loose.at(loose.duration() - 1e-12).p, goal, 2 * slack) << "case " << i;
-    ASSERT_NEAR(loose.at(0.001).p, exact.at(0.001).p, 1e-9) << "case " << i;
-    ASSERT_LE(std::abs(loose.peak_velocity()), limits.velocity);
-    one_evaluation += loose.evaluations() == 1;
+  for (const double off : {1e-6, 1e-4, 1e-3}) {
+    PlanFamily family(77);
+    int long_plans = 0, one_evaluation = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const auto [from, goal] = family.next();
+      JerkProfile exact;
+      exact.plan(from, goal, limits, 0);
+      if (!(exact.duration() > 0.01)) continue;
+      const double hint = exact.peak_velocity() * (1 + off * family.uniform());
+      // (A hint across the natural velocity or 0 from the peak starts on another branch, where D
+      // need not be monotone: the solve may find another root there, a valid plan but another.)
+      const double natural = from.v + 0.5 * from.a * std::abs(from.a) / limits.jerk, peak = exact.peak_velocity();
+      if ((hint - natural) * (peak - natural) <= 0 || hint * peak <= 0) continue;
+      ++long_plans;
+      JerkProfile loose;
+      loose.plan(from, goal, limits, hint, {slack, 0.002});
+      ASSERT_NEAR(loose.at(loose.duration() - 1e-12).p, goal, 2 * slack) << "case " << i << ", off by " << off;
+      ASSERT_NEAR(loose.at(0.001).p, exact.at(0.001).p, 1e-9) << "case " << i << ", off by " << off;
+      ASSERT_LE(std::abs(loose.peak_velocity()), limits.velocity);
+      one_evaluation += loose.evaluations() == 1;
+    }
+    EXPECT_GT(long_plans, 10000);
+    // 93%, 93% and 89% (93%, 45% and 12% with a Newton step: its D'' step²/2 is within the slack
+    // only for the nearest hints, where the second-order step's D''' step³/6 is for most).
+    EXPECT_GT(one_evaluation, long_plans * (off > 1e-4 ? 85 : 90) / 100) << one_evaluation << " of " << long_plans << ", off by " << off;
   }
-  EXPECT_GT(long_plans, 10000);
-  // 93% of them (88% while a change starting against its direction, b0 <= 0, was never
-  // predicted: its start acceleration was taken for a bound on its peak).
-  EXPECT_GT(one_evaluation, long_plans * 92 / 100) << one_evaluation << " of " << long_plans;
 }
 
 TEST(JerkProfile, PeakSensitivityGivesTheNextPlansPeakWhenTheGoalMoves) {

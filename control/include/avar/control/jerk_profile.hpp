@@ -10,7 +10,10 @@
 // and the cruise fills the rest. D is increasing beyond both 0 and the natural velocity
 // v + a|a|/(2J); the root is bracketed on that branch (or between them) and found by Newton
 // steps from the previous plan's peak, safeguarded by regula falsi and bisection, in the variable
-// sqrt(|vp - natural|) where D has a square-root corner. When the peak jumps (a goal that stops
+// sqrt(|vp - natural|) where D has a square-root corner. A step is taken unevaluated where its
+// residual is predicted within what the plan may miss by: from the Newton steps' convergence,
+// or on the first step of a long plan by Taylor (D'' and D''' are closed-form too), where that
+// step is of second order. When the peak jumps (a goal that stops
 // or turns back), models from the branch ends start the solve next to the root: a move from
 // rest after releasing the acceleration, the corner's slope in sqrt(|vp - natural|), or
 // braking to rest plus the stop's vp sqrt(|vp|/J). The plan is then shifted by the solve's
