@@ -6,7 +6,7 @@
 
 namespace avar::control {
 
-Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), last_(limits.size(), 0.0) {
+Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), plans_(limits.size()), last_(limits.size(), 0.0) {
   if (!(dt_s > 0)) throw std::invalid_argument("the limiter needs a positive tick period");
   for (const ChannelLimits& l : limits) {
     if (!(l.max > l.min) || !(l.max_velocity > 0) || !(l.max_acceleration > 0) || !(l.max_jerk > 0) || !(l.soft_margin >= 0))
@@ -32,6 +32,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
     c.state = {p, 0, 0};
     c.peak_velocity = 0;
     c.planned_ticks = 0;
+    c.follows = false;
     c.on_rest_curve = false;
     c.goal_step = c.previous_goal_step = 0;
     c.gliding = false;
@@ -137,6 +138,14 @@ double Limiter::first_guess(const Channel& c) noexcept {
   return guess;
 }
 
+void Limiter::settle(Channel& c, const MotionState& next) noexcept {
+  // Rounding only: a plan stays within the range, and is finite from a finite state.
+  if (std::isfinite(next.p) && std::isfinite(next.v) && std::isfinite(next.a))
+    c.state = {std::clamp(next.p, c.limits.min, c.limits.max), next.v, next.a};
+  else
+    c.state = {c.state.p, 0, 0}, c.follows = false;
+}
+
 double Limiter::extrapolated_peak(const Channel& c) noexcept {
   // While the target moves smoothly the peak does too: the last three plans' peaks extrapolated
   // by a parabola (meaningful once planned_ticks >= 3).
@@ -169,7 +178,25 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     }
     c.evaluations = 0;
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) {
-      JerkProfile& profile = profile_;
+      JerkProfile& profile = plans_[i];
+      if (!c.goal_moved && c.follows) {
+        // A held goal: the plan from a state on the last plan is the rest of it, so follow that
+        // plan instead of solving it again (a plan that ends on its goal only within the slack
+        // is solved again: its end is never reached).
+        c.elapsed += dt_s_;
+        c.earlier_peak = c.previous_peak;
+        c.previous_peak = c.peak_velocity;
+        ++c.planned_ticks;
+        settle(c, profile.at(c.elapsed));
+        c.max_lag = std::max(c.max_lag, std::abs(c.goal - c.state.p));
+        last_[i] = out[i] = c.state.p;
+        continue;
+      }
+      if (c.elapsed > dt_s_) {
+        // (Followed since the last solve: where the state now is along that plan.)
+        c.sensitivity = profile.peak_sensitivity(c.elapsed);
+        c.on_rest_curve = c.on_rest_curve && c.sensitivity.before_fall;
+      }
       // Plans that last beyond two ticks may end a billionth of the channel's scale of motion
       // from the goal (never nearer a position limit than half the goal is), which saves a Newton
       // step or two; the next tick plans again from where this one got to.
@@ -194,11 +221,9 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
       c.on_rest_curve = (from_rest || c.on_rest_curve) && profile.peak_velocity() * c.rest_direction > 0 && profile.speeds_up() &&
                         c.sensitivity.before_fall;
       c.evaluations = profile.evaluations();
-      // Rounding only: a plan stays within the range, and is finite from a finite state.
-      if (std::isfinite(next.p) && std::isfinite(next.v) && std::isfinite(next.a))
-        c.state = {std::clamp(next.p, l.min, l.max), next.v, next.a};
-      else
-        c.state = {c.state.p, 0, 0};
+      c.elapsed = dt_s_;
+      c.follows = profile.ends_on_goal();
+      settle(c, next);
     } else {
       c.planned_ticks = 0;
     }

@@ -91,6 +91,9 @@ class JerkProfile {
   /// second-order) step from this peak is the next plan's first guess. NaN past the change and
   /// for plans that cruise (their cruise, not their peak, takes up a goal's move).
   PeakSensitivity peak_sensitivity(double t) const noexcept;
+  /// True when the plan ends on its goal to rounding, not only within its slack: following it
+  /// to the end is then the motion that re-planning it every tick toward the same goal makes.
+  bool ends_on_goal() const noexcept { return !loose_; }
   /// True when the velocity change speeds up toward the peak: its first jerk has the peak's sign.
   bool speeds_up() const noexcept { return pieces_[0].jerk * peak_ > 0; }
   /// How many times the last plan() evaluated the distance D (its cost): 1 for a re-plan from a

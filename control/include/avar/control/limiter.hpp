@@ -6,16 +6,16 @@
 // the time-optimal jerk-limited profile from that state to rest at the goal (JerkProfile: jerk in
 // {-J, 0, +J}, |a| <= A, |v| <= V). The commands are samples of one continuous motion that
 // respects V, A and J, so their first, second and third differences over dt do too. The profile
-// is re-planned from the current state every tick, so a moving target is followed at once (with
-// the lag the limits impose) and a held target is reached on one optimal profile, exactly and at
-// rest: a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
+// is re-planned from the current state every tick the goal moves, so a moving target is followed
+// at once (with the lag the limits impose); a held target is reached on one optimal profile,
+// exactly and at rest, followed without solving it again (re-planning would give it back): a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
 // no further than its start's braking point (where braking at the limits comes to rest) or its
 // goal; both start within [min, max], so from every state it produces braking stops within the
 // range and no command leaves it (a last clamp absorbs rounding). Nothing is delayed: a target
 // starts moving the command on the tick it arrives. Units: channel units and seconds.
 // Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
-// allocation, exception or lock) and bounded per channel: one plan, typically 1-6 evaluations
-// of a closed form, at most JerkProfile::kMaxEvaluations.
+// allocation, exception or lock) and bounded per channel: at most one plan, typically 1-6
+// evaluations of a closed form, at most JerkProfile::kMaxEvaluations.
 
 #include <cstdint>
 #include <span>
@@ -90,7 +90,8 @@ class Limiter {
   /// far the limits made the figure trail the show.
   double max_lag(std::size_t channel) const noexcept { return channels_[channel].max_lag; }
   /// The cost of the channel's plan in the last tick: evaluations of the profile's distance
-  /// (0 when it was at rest on its goal). See JerkProfile::evaluations().
+  /// (0 when it was at rest on its goal, or followed its last plan toward a held goal). See
+  /// JerkProfile::evaluations().
   int evaluations(std::size_t channel) const noexcept { return channels_[channel].evaluations; }
 
  private:
@@ -112,7 +113,9 @@ class Limiter {
     double rest_origin = 0;     ///< where the channel last left rest
     double rest_direction = 0;  ///< and which way (+1 or -1)
     bool on_rest_curve = false;  ///< and its state is still on the start common to plans from there
-    int planned_ticks = 0;     ///< consecutive ticks that planned (k: the last k peaks are recent)
+    double elapsed = 0;        ///< s along the channel's last plan
+    bool follows = false;      ///< that plan ends on the goal: a held goal follows it unsolved
+    int planned_ticks = 0;     ///< consecutive ticks in motion (k: the last k peaks are recent)
     bool extrapolate = true;   ///< the peaks' extrapolation guessed the last plan's better than its predecessor
     std::uint64_t clamped = 0;
     double max_lag = 0;
@@ -125,11 +128,14 @@ class Limiter {
   /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
   static double first_guess(const Channel& c) noexcept;
   static double extrapolated_peak(const Channel& c) noexcept;
+  /// Takes `next` as the channel's state (clamped into range for rounding; a non-finite one
+  /// stops the channel where it is).
+  static void settle(Channel& c, const MotionState& next) noexcept;
 
   double dt_s_;
-  /// Planned into for each channel in turn (kept, not constructed per plan: zeroing it was a
-  /// tenth of the limiter's cost).
-  JerkProfile profile_;
+  /// Each channel's last plan (kept, not constructed per plan: zeroing one was a tenth of the
+  /// limiter's cost).
+  std::vector<JerkProfile> plans_;
   std::vector<Channel> channels_;
   std::vector<double> last_;
 };
