@@ -406,9 +406,10 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       // (newton_residual). (Plans that end sooner must end on the goal to rounding, which no
       // estimate predicts reliably: a miss would cost a second solve.)
       const bool outlasts = r.duration > slack.after;
+      double predicted_residual = std::numeric_limits<double>::quiet_NaN();
       if (predict && next > lo && next < hi && (k > 0 || outlasts)) {
-        const double predicted_residual = k > 0 ? r.distance / (previous_residual * previous_residual) * r.distance * r.distance
-                                                : newton_residual(r, x, next - x, bounds);
+        predicted_residual = k > 0 ? r.distance / (previous_residual * previous_residual) * r.distance * r.distance
+                                   : newton_residual(r, x, next - x, bounds);
         const double allowed = outlasts ? std::max(tolerance, slack.distance) : tolerance;
         if (std::abs(predicted_residual) <= 0.25 * allowed) {
           vp = next;
@@ -416,10 +417,10 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
           break;
         }
       }
-      if (predict && k == 0 && outlasts) {
-        // Where the Newton step's D'' step²/2 is not small enough on the first step, a
-        // second-order step leaves D''' step³/6 (where both are known: the step stays inside r's
-        // regimes).
+      if (predict && k == 0 && outlasts && predicted_residual == predicted_residual) {
+        // Where the Newton step's D'' step²/2 is known (the step stays inside r's regimes) but not
+        // small enough on the first step, a second-order step leaves D''' step³/6. (Where it is
+        // not known, the second-order step measured never inside either.)
         const SecondOrderStep second = second_order_step(r, x, bounds);
         const double to = x + second.step;
         if (to > lo && to < hi && std::abs(second.residual) <= 0.25 * std::max(tolerance, slack.distance)) {
