@@ -131,10 +131,12 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
   }
   const auto from = limiter_.last();
   std::copy(from.begin(), from.end(), commanded_.begin());
-  // The soft start is the limiter's own glide to the first frame: every channel re-plans it
-  // each tick toward a held goal (one evaluation), and the show starts from rest on that frame.
+  // The soft start is the limiter's own glide to the first frame: every channel plans it once
+  // and follows it toward the held goal, and the show starts from rest on that frame. The first
+  // tick then finds the limiter in cache.
   homing_duration_ = limiter_.glide_duration(first_frame_, ramp_velocity_, options_.min_ramp_s);
   limiter_.glide_to(first_frame_, homing_duration_);
+  limiter_.warm(first_frame_);
   phase_ = Phase::homing;
   phase_start_ = now_s;
   last_now_ = now_s;

@@ -82,6 +82,19 @@ double Limiter::heading(std::size_t channel) const noexcept {
   return c.gliding ? std::clamp(stopping_point(c.state, own_limits(c.limits)), c.limits.min, c.limits.max) : c.goal;
 }
 
+void Limiter::warm(std::span<const double> target) noexcept {
+  for (std::size_t i = 0; i < channels_.size() && i < target.size(); ++i) {
+    Channel& c = channels_[i];
+    if (!std::isfinite(target[i]) || c.state.v != 0 || c.state.a != 0) continue;
+    const auto [lo, hi] = target_range(c.limits);
+    const double goal = std::clamp(target[i], lo, hi);
+    if (goal == c.state.p) continue;
+    // (Into the channel's stored plan, which a channel at rest never follows: it plans again.)
+    plans_[i].plan(c.state, goal, c.jerk_limits, rest_to_rest_peak(goal - c.state.p, c.jerk_limits), {0, 2 * dt_s_});
+    c.follows = false;
+  }
+}
+
 bool Limiter::settled() const noexcept {
   for (const Channel& c : channels_)
     if (c.state.p != c.goal || c.state.v != 0 || c.state.a != 0) return false;

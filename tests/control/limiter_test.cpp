@@ -549,6 +549,27 @@ TEST(Limiter, AGlideBringsEveryChannelToItsGoalTogetherOnTheSmoothestMoveFromOne
   EXPECT_DOUBLE_EQ(out[2], 5.0);  // 10.3 units in 0.2 s: at the glide's jerk it would take 2.4 s
 }
 
+TEST(Limiter, WarmingChangesNothingThatApplyDoes) {
+  // warm() makes and drops the first plans (cache only): the commands are bit for bit those of a
+  // limiter that was not warmed, gliding or not, and channels in motion are left alone.
+  const std::vector<ChannelLimits> limits(3, ChannelLimits{-90, 90, 400, 4000, 80000, 0});
+  Limiter warmed(limits, 0.001), cold(limits, 0.001);
+  const std::vector<double> start{0, 10, -5}, goal{60, 4, -5}, next{-20, 30, 7};
+  for (Limiter* l : {&warmed, &cold}) {
+    l->reset(start);
+    l->glide_to(goal, 2.0);
+  }
+  warmed.warm(goal);
+  std::vector<double> a(3), b(3);
+  for (int k = 0; k < 3000; ++k) {
+    const std::vector<double>& target = k < 500 ? goal : next;
+    if (k == 500) warmed.warm(next);  // (in motion: nothing to do)
+    warmed.apply(target, a);
+    cold.apply(target, b);
+    ASSERT_EQ(a, b) << "tick " << k;
+  }
+}
+
 TEST(Limiter, ATargetLeavingRestIsFollowedAtOneEvaluationAPlanWhileItsPlansShareTheirStart) {
   // Every time-optimal plan from rest in one direction starts alike, so while the state is still
   // on that start the next plan's peak is the rest-to-rest move's from where the channel left

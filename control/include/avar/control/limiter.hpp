@@ -69,6 +69,11 @@ class Limiter {
   /// any state within them). Channels in motion, and those already on their goal, do not glide.
   void glide_to(std::span<const double> goal, double duration_s) noexcept;
 
+  /// Brings the limiter into cache for its first apply() toward `target`, as the soft start's
+  /// set-up does before the first tick: each channel at rest makes the plan apply() would and
+  /// drops it. Changes no state, command or goal. Real-time safe.
+  void warm(std::span<const double> target) noexcept;
+
   /// True when every channel's command has come to rest on its goal.
   bool settled() const noexcept;
 
