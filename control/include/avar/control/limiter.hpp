@@ -133,6 +133,9 @@ class Limiter {
   /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
   static double first_guess(const Channel& c) noexcept;
   static double extrapolated_peak(const Channel& c) noexcept;
+  /// Solves the channel's plan from its state toward its goal into `profile` and takes its
+  /// first tick.
+  void plan(Channel& c, JerkProfile& profile) noexcept;
   /// Takes `next` as the channel's state (clamped into range for rounding; a non-finite one
   /// stops the channel where it is).
   static void settle(Channel& c, const MotionState& next) noexcept;
