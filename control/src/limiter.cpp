@@ -40,9 +40,9 @@ void Limiter::reset(std::span<const double> pose) noexcept {
   }
 }
 
-std::pair<double, double> Limiter::target_range(const ChannelLimits& l) noexcept {
+double Limiter::goal_of(const ChannelLimits& l, double target) noexcept {
   const double mid = 0.5 * (l.min + l.max);
-  return {std::min(l.min + l.soft_margin, mid), std::max(l.max - l.soft_margin, mid)};
+  return std::clamp(target, std::min(l.min + l.soft_margin, mid), std::max(l.max - l.soft_margin, mid));
 }
 
 double Limiter::glide_duration(std::span<const double> goal, std::span<const double> peak_speed, double min_duration_s) const noexcept {
@@ -50,8 +50,7 @@ double Limiter::glide_duration(std::span<const double> goal, std::span<const dou
   for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
     const Channel& c = channels_[i];
     if (!std::isfinite(goal[i])) continue;
-    const auto [lo, hi] = target_range(c.limits);
-    const double d = std::abs(std::clamp(goal[i], lo, hi) - c.state.p);
+    const double d = std::abs(goal_of(c.limits, goal[i]) - c.state.p);
     const double speed = i < peak_speed.size() && peak_speed[i] > 0 ? std::min(peak_speed[i], c.limits.max_velocity) : c.limits.max_velocity;
     // Peak speed 2d/T, peak acceleration 8d/T², jerk 32d/T³, each within its limit.
     duration = std::max({duration, 2 * d / speed, std::sqrt(8 * d / c.limits.max_acceleration), std::cbrt(32 * d / c.limits.max_jerk)});
@@ -65,8 +64,7 @@ void Limiter::glide_to(std::span<const double> goal, double duration_s) noexcept
   for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
     Channel& c = channels_[i];
     if (!std::isfinite(goal[i]) || c.state.v != 0 || c.state.a != 0) continue;
-    const auto [lo, hi] = target_range(c.limits);
-    const double to = std::clamp(goal[i], lo, hi);
+    const double to = goal_of(c.limits, goal[i]);
     const double jerk = std::min(32 * std::abs(to - c.state.p) / cube, c.limits.max_jerk);
     if (!(jerk > 0)) continue;
     // With only the jerk limit binding (2d/T <= V and 8d/T² <= A: the duration allows them), the
@@ -86,8 +84,7 @@ void Limiter::warm(std::span<const double> target) noexcept {
   for (std::size_t i = 0; i < channels_.size() && i < target.size(); ++i) {
     Channel& c = channels_[i];
     if (!std::isfinite(target[i]) || c.state.v != 0 || c.state.a != 0) continue;
-    const auto [lo, hi] = target_range(c.limits);
-    const double goal = std::clamp(target[i], lo, hi);
+    const double goal = goal_of(c.limits, target[i]);
     if (goal == c.state.p) continue;
     // (Into the channel's stored plan, which a channel at rest never follows: it plans again.)
     plans_[i].plan(c.state, goal, c.jerk_limits, rest_to_rest_peak(goal - c.state.p, c.jerk_limits), {0, 2 * dt_s_});
@@ -171,9 +168,8 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
     Channel& c = channels_[i];
     const ChannelLimits& l = c.limits;
     if (std::isfinite(target[i])) {
-      const auto [lo, hi] = target_range(l);
-      if (target[i] < lo || target[i] > hi) ++c.clamped;
-      const double goal = std::clamp(target[i], lo, hi);
+      const double goal = goal_of(l, target[i]);
+      if (goal != target[i]) ++c.clamped;
       c.goal_moved = goal != c.goal;
       c.previous_goal_step = c.goal_step;
       c.goal_step = goal - c.goal;

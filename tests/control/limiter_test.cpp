@@ -431,8 +431,8 @@ TEST(Limiter, EveryPlanOfAMovingTargetStaysWithinTheEvaluationBound) {
 TEST(Limiter, AGoalThatEasesOutOfRestAndBackToRestIsFollowedCheaplyAtBothEnds) {
   // Every channel's goal leaves rest along a half-cosine at once, and comes to rest at once (as
   // homing did before it glided). Here the first plans end within a tick or two, before the
-  // plans from rest stop sharing their start. The peaks of the first plans grow about 2.3x a tick; guessing each from the last one cost
-  // 4-6 evaluations a plan. At the end every plan's peak collapses toward zero as its goal stops:
+  // plans from rest stop sharing their start. The peaks of the first plans grow about 2.3x a
+  // tick; guessing each from the last one cost 4-6 evaluations a plan. At the end every plan's peak collapses toward zero as its goal stops:
   // up to 52 (62 on the slower ramp) evaluations a tick for 16 channels, before a plan that brakes
   // with its run of peaks broken was guessed as a turn near rest; and up to 43 in the first ticks
   // of the slower ramp, before that guess was kept for goals that slow down.

@@ -5,10 +5,10 @@
 //   disabled --begin--> homing --soft start done--> running --show over / stop--> stopping
 //   stopping --at rest--> disabled;  any state --fault--> faulted --reset--> disabled
 //
-// Homing glides from the present pose to the show's first frame (Limiter::glide_to: jerk-limited,
-// all channels arriving together at rest), and the show starts there; stopping eases to rest. A fault
-// (e-stop, link watchdog or failure, tracking error, non-finite command, device over-temperature
-// or overload, deadline misses beyond the budget) is latched with its cause, where and when,
+// Homing glides from the present pose to the show's first frame (Limiter::glide_to:
+// jerk-limited, all channels arriving together at rest), and the show starts there; stopping
+// eases to rest. A fault (e-stop, link watchdog or failure, tracking error, non-finite command,
+// device over-temperature or overload, deadline misses beyond the budget) is latched with its cause, where and when,
 // and takes the single path to the safe state: every actuator does its fail-safe action from
 // the rig (hold, ease to rest, or release) until reset() clears the fault.
 //

@@ -8,7 +8,8 @@
 // respects V, A and J, so their first, second and third differences over dt do too. The profile
 // is re-planned from the current state every tick the goal moves, so a moving target is followed
 // at once (with the lag the limits impose); a held target is reached on one optimal profile,
-// exactly and at rest, followed without solving it again (re-planning would give it back): a rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
+// exactly and at rest, followed without solving it again (re-planning would give it back): a
+// rest-to-rest move of d takes d/V + V/A + A/J when it reaches V and A. A profile goes
 // no further than its start's braking point (where braking at the limits comes to rest) or its
 // goal; both start within [min, max], so from every state it produces braking stops within the
 // range and no command leaves it (a last clamp absorbs rounding). Nothing is delayed: a target
@@ -19,7 +20,6 @@
 
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "avar/control/jerk_profile.hpp"
@@ -63,8 +63,8 @@ class Limiter {
   /// quarter of the time, -J for half, +J for the last quarter, with J = 32d/T³ for a distance d
   /// (never above the channel's jerk limit: a duration shorter than glide_duration() makes the
   /// channels it does not suit arrive late). It is the time-optimal profile under that lower
-  /// jerk limit, so apply() with `goal` as the target re-plans it every tick at the cost of a
-  /// held goal. The lower limit lasts while the target stays on the goal; any other target ends
+  /// jerk limit, so apply() with `goal` as the target plans it once and follows it. The lower
+  /// limit lasts while the target stays on the goal; any other target ends
   /// the glide at once and the channel's own limits apply again (raising limits is safe from
   /// any state within them). Channels in motion, and those already on their goal, do not glide.
   void glide_to(std::span<const double> goal, double duration_s) noexcept;
@@ -127,8 +127,8 @@ class Limiter {
     int evaluations = 0;
   };
 
-  /// The range less the soft margins, where targets are clamped: {low, high}.
-  static std::pair<double, double> target_range(const ChannelLimits& l) noexcept;
+  /// A target clamped into the range less the soft margins: the goal it makes.
+  static double goal_of(const ChannelLimits& l, double target) noexcept;
   static JerkLimits own_limits(const ChannelLimits& l) noexcept { return {l.max_velocity, l.max_acceleration, l.max_jerk}; }
   /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
   static double first_guess(const Channel& c) noexcept;
