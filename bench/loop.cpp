@@ -39,7 +39,7 @@ class DiscardTransport final : public firmware_iface::ByteTransport {
 
 /// 32 channels on two 16-channel Maestro links, every channel animated by a looping Bezier wave.
 struct Figure32 {
-  control::Rig rig;
+  rig::Rig rig;
   playback::Show show;
   DiscardTransport t0, t1;
   std::vector<std::unique_ptr<firmware_iface::MaestroLink>> links;

@@ -11,7 +11,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
-#include "avar/figure_links.hpp"
+#include "avar/assembly/maestro_protocol.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 
 namespace {
@@ -35,10 +35,10 @@ class DiscardTransport final : public avar::firmware_iface::ByteTransport {
 };
 
 struct Head {
-  avar::control::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  avar::rig::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   avar::playback::Show show = avar::config::load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
   DiscardTransport transport;
-  avar::firmware_iface::MaestroLink link{transport, avar::app::maestro_config(rig, 0)};
+  avar::firmware_iface::MaestroLink link{transport, avar::assembly::maestro_config(rig, 0)};
 };
 
 void BM_TickHelloHead(benchmark::State& state) {

@@ -14,7 +14,7 @@ namespace avar::app {
 int run_check(const std::string& show_path, const std::string& rig_path, const std::string& retime_path, std::ostream& out,
               std::ostream& err) {
   try {
-    const control::Rig rig = config::load_rig_file(rig_path);
+    const rig::Rig rig = config::load_rig_file(rig_path);
     const playback::Show show = config::load_show_file(show_path);
     const config::ShowCheck check = config::check_show_against_rig(show, rig);
     for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';

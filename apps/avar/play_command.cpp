@@ -15,8 +15,8 @@
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
+#include "avar/assembly/figure_links.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/figure_links.hpp"
 #include "avar/interrupts.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/svg_plot.hpp"
@@ -26,7 +26,7 @@ namespace avar::app {
 namespace {
 
 struct Loaded {
-  control::Rig rig;
+  rig::Rig rig;
   playback::Show show;
 };
 
@@ -45,9 +45,9 @@ std::optional<Loaded> load_and_check(const std::string& show_path, const std::st
   }
 }
 
-void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& figure, const control::Controller& controller,
+void print_summary(std::ostream& out, const Loaded& loaded, const assembly::FigureLinks& figure, const control::Controller& controller,
                    const PlayRecorder& recorder, const control::RunResult& run, bool realtime, double rate_hz) {
-  const control::Rig& rig = loaded.rig;
+  const rig::Rig& rig = loaded.rig;
   out << "\nplayed '" << loaded.show.name << "' on rig '" << rig.name << "' at " << rate_hz << " Hz, "
       << (realtime ? "real time" : "simulated time") << '\n';
   for (std::size_t i = 0; i < rig.links.size(); ++i) {
@@ -105,12 +105,12 @@ void print_summary(std::ostream& out, const Loaded& loaded, const FigureLinks& f
   }
 }
 
-void write_trace(const std::string& path, const control::Rig& rig, const FigureLinks& figure, const PlayRecorder& r) {
+void write_trace(const std::string& path, const rig::Rig& rig, const assembly::FigureLinks& figure, const PlayRecorder& r) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
   // Channels on smart buses also get what their devices report; smart buses, their wire counters.
   std::vector<char> reported(rig.channels.size(), 0);
-  for (const control::ActuatorSpec& a : rig.actuators)
+  for (const rig::ActuatorSpec& a : rig.actuators)
     if (figure.reports_telemetry(a.link)) reported[a.channel] = 1;
   std::vector<std::size_t> counted_links;
   for (std::size_t l = 0; l < rig.links.size(); ++l)
@@ -181,7 +181,7 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   std::optional<Loaded> loaded = load_and_check(options.show_path, options.rig_path, err);
   if (!loaded) return kExitBadInput;
-  const control::Rig& rig = loaded->rig;
+  const rig::Rig& rig = loaded->rig;
 
   const double rate = options.rate_hz.value_or(rig.rate_hz);
   if (!(rate >= 1 && rate <= 1000)) {
@@ -193,9 +193,10 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
-  std::unique_ptr<FigureLinks> figure;
+  std::unique_ptr<assembly::FigureLinks> figure;
   try {
-    figure = std::make_unique<FigureLinks>(rig, LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate});
+    figure = std::make_unique<assembly::FigureLinks>(
+        rig, assembly::LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate, {}});
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
@@ -225,6 +226,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   // On the simulated clock a run is deterministic, trace included: stages are not timed.
   if (options.fast) controller_options.stage_clock = nullptr;
   if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
+  controller_options.positions = figure.get();  // the simulator's ground truth, for simulated links
   control::Controller controller(rig, loaded->show, links, controller_options);
   controller.begin(0.0, start_pose);
 
@@ -244,6 +246,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
   run_options.deadline_miss_budget = options.deadline_miss_budget;
   run_options.estop = &interrupts.estop();
+  run_options.plant = figure.get();
   const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
   recorder.finish();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';

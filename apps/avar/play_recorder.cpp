@@ -9,9 +9,10 @@
 
 namespace avar::app {
 
-PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
+PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
                            std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
     : figure_(figure),
+      links_(figure.links()),
       channels_(channels),
       keep_samples_(keep_samples),
       progress_(progress),
@@ -35,12 +36,12 @@ PlayRecorder::PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_
   }
 }
 
-void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double lateness_s, control::Controller& controller) {
+void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double lateness_s, control::Controller& controller) {
   const std::span<bool> known(known_.get(), channels_);
   std::fill(known.begin(), known.end(), false);
-  if (figure_.any_simulated()) figure_.step_simulation(dt_s, measured_, known);
+  figure_.measure(measured_, known);
   // Positions the devices themselves reported stand in where no simulator knows the truth.
-  figure_.read_telemetry(telemetry_);
+  for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
   for (std::size_t c = 0; c < channels_; ++c) {
     const firmware_iface::ChannelTelemetry& t = telemetry_[c];
     if (t.updates == telemetry_seen_[c]) continue;
@@ -52,8 +53,6 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double dt_s, double l
   }
   for (bool k : known) has_measurements_ = has_measurements_ || k;
   stats_.add(controller.commanded(), measured_, known);
-  controller.feed_back(measured_, known);
-  controller.feed_telemetry(telemetry_);
 
   if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
   if (controller.stop_requested() && !stop_announced_) {

@@ -1,6 +1,7 @@
 #pragma once
-// Watches a play run tick by tick: steps the simulated devices, accumulates tracking
-// statistics, keeps the samples a trace or plot needs, and draws the progress line.
+// Watches a play run tick by tick, and only watches: accumulates tracking statistics (against
+// the simulator's ground truth where there is one, the devices' reports elsewhere), keeps the
+// samples a trace or plot needs, and draws the progress line. Nothing in the loop depends on it.
 
 #include <cstdint>
 #include <iosfwd>
@@ -9,7 +10,7 @@
 #include <vector>
 
 #include "avar/control/runner.hpp"
-#include "avar/figure_links.hpp"
+#include "avar/assembly/figure_links.hpp"
 #include "avar/tracking_stats.hpp"
 
 namespace avar::app {
@@ -24,7 +25,7 @@ class PlayRecorder final : public control::TickObserver {
   /// keep_samples: store every tick for a trace or plot (sized for expected_ticks up front).
   /// progress: nullptr for none; otherwise the stream and whether it is a terminal. notices:
   /// where to say that a stop was requested (nullptr for nowhere).
-  PlayRecorder(FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
+  PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
                std::ostream* progress, bool progress_is_terminal, std::ostream* notices);
 
   void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& controller) override;
@@ -52,7 +53,8 @@ class PlayRecorder final : public control::TickObserver {
  private:
   void draw_progress(double now_s, const control::Controller& controller);
 
-  FigureLinks& figure_;
+  const assembly::FigureLinks& figure_;
+  std::vector<firmware_iface::ActuatorLink*> links_;
   std::size_t channels_;
   bool keep_samples_;
   std::ostream* progress_;

@@ -139,7 +139,7 @@ void write_csv(const std::vector<std::string>& header, const Grid& grid, std::os
 /// The CSV of a show: a plain show's curves evaluated directly (a looping show is not wrapped);
 /// a layered show composed as it plays, on the rig's channels and rest pose when a rig is given,
 /// else over 0 for channels without a show track.
-void write_show_csv(const playback::Show& show, const std::optional<control::Rig>& rig, const Grid& grid,
+void write_show_csv(const playback::Show& show, const std::optional<rig::Rig>& rig, const Grid& grid,
                     const std::vector<std::string>& wanted, std::ostream& out) {
   const std::vector<std::string> available = driven_channels(show);
   const std::vector<std::size_t> columns = columns_for(available, wanted);
@@ -171,9 +171,9 @@ void write_show_csv(const playback::Show& show, const std::optional<control::Rig
 }
 
 /// The rig of --rig, checked against the show (a channel it lacks is refused with its place).
-std::optional<control::Rig> rig_for(const SampleOptions& o, const playback::Show& show) {
+std::optional<rig::Rig> rig_for(const SampleOptions& o, const playback::Show& show) {
   if (!o.rig_path) return std::nullopt;
-  control::Rig rig = config::load_rig_file(*o.rig_path);
+  rig::Rig rig = config::load_rig_file(*o.rig_path);
   const config::ShowCheck check = config::check_show_against_rig(show, rig);
   if (!check.ok()) throw InputError(check.errors.front().where, check.errors.front().message);
   return rig;
@@ -214,7 +214,7 @@ int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& er
   try {
     const playback::Show show = config::load_show_file(options.show_path);
     const Grid grid = grid_for(options, show.duration);
-    const std::optional<control::Rig> rig = rig_for(options, show);
+    const std::optional<rig::Rig> rig = rig_for(options, show);
     if (!options.out_path) {
       write_show_csv(show, rig, grid, options.channels, out);
       return kExitOk;

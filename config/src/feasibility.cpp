@@ -51,7 +51,7 @@ Demand measure(const playback::Curve& curve, double t0, double t1) {
 }
 
 /// The findings of one segment's demand against its channel's limits.
-void report(const Demand& d, const Infeasible& base, const control::ChannelSpec& c, std::vector<Infeasible>& found) {
+void report(const Demand& d, const Infeasible& base, const rig::ChannelSpec& c, std::vector<Infeasible>& found) {
   if (d.speed > c.max_velocity * (1 + 1e-9)) {
     Infeasible f = base;
     f.required = d.speed, f.allowed = c.max_velocity;
@@ -144,9 +144,9 @@ void add_merged(const Infeasible& f, std::vector<Infeasible>& found) {
 /// A layered show is checked on its composed motion, as the sampler plays it on this rig: between
 /// consecutive breakpoints (composed_breakpoints) the motion is smooth and is measured as a
 /// segment is; at a breakpoint a jump (a cut without a fade, a step key) is listed as a jump.
-std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, const control::Rig& rig) {
+std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, const rig::Rig& rig) {
   std::vector<std::string> names;
-  for (const control::ChannelSpec& c : rig.channels) names.push_back(c.name);
+  for (const rig::ChannelSpec& c : rig.channels) names.push_back(c.name);
   const std::vector<double> rest = rig.rest_frame();
   std::optional<playback::Sampler> sampler;
   try {
@@ -186,7 +186,7 @@ std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, c
 }
 
 /// The factor by which a segment must be slowed: speed scales with 1/f, acceleration with 1/f².
-double stretch_needed(const Demand& d, const control::ChannelSpec& c) {
+double stretch_needed(const Demand& d, const rig::ChannelSpec& c) {
   return std::max({1.0, d.speed / c.max_velocity, std::sqrt(d.acceleration / c.max_acceleration)});
 }
 
@@ -238,13 +238,13 @@ std::string Infeasible::to_string() const {
   return avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: " + what;
 }
 
-std::vector<Infeasible> check_feasibility(const playback::Show& show, const control::Rig& rig) {
+std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig::Rig& rig) {
   if (show.layered()) return check_composed_feasibility(show, rig);
   std::vector<Infeasible> found;
   for (const playback::Track& track : show.tracks) {
     const auto ci = rig.find_channel(track.channel);
     if (!ci) continue;
-    const control::ChannelSpec& c = rig.channels[*ci];
+    const rig::ChannelSpec& c = rig.channels[*ci];
     const auto& keys = track.raw.keys;
     for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
       const double t0 = keys[k].time, t1 = keys[k + 1].time;
@@ -265,7 +265,7 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const cont
   return found;
 }
 
-playback::Show retime(const playback::Show& show, const control::Rig& rig) {
+playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
   if (show.layered())
     throw InputError(show.where, "show '" + show.name + "' has layers of clips, which retiming cannot stretch honestly (a stretch would "
                                  "change where clips overlap and fade); expected a show without layers (slow a placement with its "

@@ -8,15 +8,15 @@
 
 #include "avar/config/rig_kinematics.hpp"
 #include "avar/config/yaml_support.hpp"
-#include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/assembly/protocol.hpp"
 
 namespace avar::config {
 namespace {
 
-using control::ActuatorSpec;
-using control::ChannelSpec;
-using control::LinkSpec;
-using control::Rig;
+using rig::ActuatorSpec;
+using rig::ChannelSpec;
+using rig::LinkSpec;
+using rig::Rig;
 
 double positive(const YamlRef& node, std::string_view what) {
   const double v = node.as_double(what);
@@ -63,80 +63,25 @@ ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   return c;
 }
 
-int maestro_channels_for_model(const YamlRef& node) {
-  const std::string model = node.as_string("the Maestro model");
-  if (model == "micro6") return 6;
-  if (model == "mini12") return 12;
-  if (model == "mini18") return 18;
-  if (model == "mini24") return 24;
-  node.fail("unknown Maestro model " + node.describe() + "; expected one of: micro6, mini12, mini18, mini24");
-}
-
-/// What each protocol's device accepts on its serial side.
-struct ProtocolFacts {
-  control::Protocol protocol;
-  const char* name;
-  int default_baud;
-  std::vector<int> bauds;  ///< the rates the device can do; empty: any standard rate
-  const char* bauds_text;
-};
-
-const std::vector<ProtocolFacts>& protocol_facts() {
-  static const std::vector<ProtocolFacts> facts{
-      {control::Protocol::maestro, "maestro", 115200, {}, "300 to 200000"},
-      {control::Protocol::dynamixel, "dynamixel", 57600, {9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000},
-       "9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000"},
-      {control::Protocol::feetech, "feetech", 1000000, {38400, 57600, 115200, 500000, 1000000},
-       "38400, 57600, 115200, 500000, 1000000"},
-      {control::Protocol::ssc32, "ssc32", 9600, {2400, 9600, 38400, 115200}, "2400, 9600, 38400, 115200"},
-      {control::Protocol::dmx, "dmx", 57600, {}, "any (the widget is a USB device)"},
-  };
-  return facts;
-}
-
-const ProtocolFacts& facts_of(control::Protocol p) {
-  for (const ProtocolFacts& f : protocol_facts())
-    if (f.protocol == p) return f;
-  return protocol_facts().front();
-}
-
-std::string protocol_names() {
-  std::string names;
-  for (const ProtocolFacts& f : protocol_facts()) names += (names.empty() ? "" : ", ") + std::string(f.name);
-  return names;
-}
-
-void read_servo_bus(const YamlRef& node, const std::string& what, LinkSpec& link) {
-  const bool feetech = link.protocol == control::Protocol::feetech;
-  if (feetech) node.expect_only_keys({"series", "readback", "reply_timeout_ms", "retries"}, what);
-  else node.expect_only_keys({"readback", "reply_timeout_ms", "retries"}, what);
-  if (auto r = node.find("readback")) {
-    const std::string mode = r->as_string("readback");
-    if (mode == "none") link.bus.readback = control::Readback::none;
-    else if (mode == "position") link.bus.readback = control::Readback::position;
-    else if (mode == "full") link.bus.readback = control::Readback::full;
-    else r->fail("unknown readback " + r->describe() + "; expected one of: none, position, full");
+/// The link's protocol block as written, for its registry entry to interpret.
+rig::LinkSettings read_settings(const YamlRef& block, const std::string& what) {
+  rig::LinkSettings settings;
+  settings.where = block.where();
+  settings.what = what;
+  if (block.node.IsNull()) return settings;
+  for (auto it = block.node.begin(); it != block.node.end(); ++it) {
+    const YamlRef key{it->first, block.file};
+    settings.entries.push_back({it->first.Scalar(), key.where(), YamlRef{it->second, block.file}.scalar()});
   }
-  if (auto t = node.find("reply_timeout_ms")) {
-    const long long ms = t->as_integer("reply_timeout_ms");
-    if (ms < 1 || ms > 1000) t->fail("expected reply_timeout_ms from 1 to 1000, found " + t->describe());
-    link.bus.reply_timeout_ms = static_cast<int>(ms);
-  }
-  if (auto r = node.find("retries")) {
-    const long long n = r->as_integer("retries");
-    if (n < 0 || n > 10) r->fail("expected retries from 0 to 10, found " + r->describe());
-    link.bus.retries = static_cast<int>(n);
-  }
-  if (auto series = node.find("series")) {
-    const std::string sname = series->as_string("the Feetech series");
-    if (sname == "scs") link.bus.scs = true;
-    else if (sname != "sts") series->fail("unknown Feetech series " + series->describe() + "; expected one of: sts, scs");
-  }
+  return settings;
 }
 
 LinkSpec read_link(const std::string& name, const YamlRef& node) {
   const std::string what = "link '" + name + "'";
-  node.expect_only_keys({"port", "baud", "watchdog_ms", "maestro", "dynamixel", "feetech", "ssc32", "dmx"}, what);
+  const std::string names = assembly::protocol_names();
+  std::vector<std::string_view> keys{"port", "baud", "watchdog_ms"};
+  for (const assembly::Protocol* p : assembly::protocols()) keys.push_back(p->name);
+  node.expect_only_keys(keys, what);
   LinkSpec link;
   link.name = name;
   link.where = node.where();
@@ -144,88 +89,30 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
 
   // The protocol is the one settings block the link has: maestro: {...}, dynamixel: {} ...
   std::optional<YamlRef> settings;
-  for (const ProtocolFacts& f : protocol_facts()) {
-    auto block = node.find(f.name);
+  const assembly::Protocol* protocol = nullptr;
+  for (const assembly::Protocol* p : assembly::protocols()) {
+    auto block = node.find(p->name);
     if (!block) continue;
-    if (settings)
-      block->fail(what + " names two protocols; expected exactly one of: " + protocol_names());
+    if (settings) block->fail(what + " names two protocols; expected exactly one of: " + names);
     settings = block;
-    link.protocol = f.protocol;
+    protocol = p;
   }
   if (!settings)
-    node.fail("expected " + what + " to name its protocol with a settings block, one of: " + protocol_names() +
-              " (for example `dynamixel: {}`)");
+    node.fail("expected " + what + " to name its protocol with a settings block, one of: " + names + " (for example `dynamixel: {}`)");
+  link.protocol = protocol->name;
   if (!settings->node.IsNull() && !settings->node.IsMap())
-    settings->fail("expected the " + std::string(to_string(link.protocol)) + " settings of " + what +
-                   " to be a map (use {} for the defaults)");
+    settings->fail("expected the " + link.protocol + " settings of " + what + " to be a map (use {} for the defaults)");
 
-  const ProtocolFacts& facts = facts_of(link.protocol);
-  link.baud = facts.default_baud;
-  if (auto baud = node.find("baud")) {
-    const long long b = baud->as_integer("the baud rate of " + what);
-    const bool standard = b > 0 && b <= 4'000'000 && firmware_iface::SerialTransport::is_supported_baud(static_cast<int>(b));
-    if (!standard)
-      baud->fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " + baud->describe());
-    const bool device_can = facts.bauds.empty()
-                                ? (link.protocol != control::Protocol::maestro || (b >= 300 && b <= 200000))
-                                : std::find(facts.bauds.begin(), facts.bauds.end(), b) != facts.bauds.end();
-    if (!device_can)
-      baud->fail("a " + std::string(facts.name) + " device cannot run at " + baud->describe() + " baud; expected one of: " +
-                 facts.bauds_text);
-    link.baud = static_cast<int>(b);
-  }
+  link.baud = protocol->default_baud;
+  if (auto baud = node.find("baud")) link.baud = assembly::checked_baud(*protocol, baud->scalar(), "the baud rate of " + what);
   if (auto w = node.find("watchdog_ms")) {
     const double ms = w->as_double("watchdog_ms of " + what);
     if (ms < 1 || ms > 60000) w->fail("expected watchdog_ms of " + what + " from 1 to 60000 milliseconds, found " + w->describe());
     link.watchdog_s = ms / 1000.0;
   }
-  const std::string swhat = "the " + std::string(facts.name) + " settings of " + what;
-  const YamlRef& m = *settings;
-  switch (link.protocol) {
-    case control::Protocol::maestro:
-      m.expect_only_keys({"model", "device_number", "crc", "baud_detect"}, swhat);
-      if (auto model = m.find("model")) link.maestro.channel_count = maestro_channels_for_model(*model);
-      if (auto dev = m.find("device_number")) {
-        const long long d = dev->as_integer("the device number");
-        if (d < 0 || d > 127) dev->fail("expected a device number from 0 to 127, found " + dev->describe());
-        link.maestro.pololu_form = true;
-        link.maestro.device_number = static_cast<std::uint8_t>(d);
-      }
-      if (auto crc = m.find("crc")) link.maestro.crc = crc->as_bool("crc");
-      if (auto bd = m.find("baud_detect")) link.maestro.baud_detect = bd->as_bool("baud_detect");
-      break;
-    case control::Protocol::dynamixel:
-    case control::Protocol::feetech: read_servo_bus(m, swhat, link); break;
-    case control::Protocol::ssc32:
-    case control::Protocol::dmx: m.expect_only_keys({}, swhat); break;
-  }
+  link.settings = read_settings(*settings, "the " + link.protocol + " settings of " + what);
+  protocol->validate_settings(link);
   return link;
-}
-
-/// How an actuator is addressed and calibrated on each protocol.
-struct AddressRule {
-  const char* key;         ///< device_channel, id or address
-  long long low, high;     ///< valid addresses
-  const char* cal_min;     ///< calibration keys
-  const char* cal_max;
-  const char* trim;
-  double device_low, device_high;  ///< the device's own range
-  const char* unit;
-};
-
-AddressRule address_rule(const LinkSpec& link, bool fine) {
-  switch (link.protocol) {
-    case control::Protocol::maestro:
-      return {"device_channel", 0, link.maestro.channel_count - 1, "min_us", "max_us", "trim_us", 64, 4000, "µs"};
-    case control::Protocol::ssc32: return {"device_channel", 0, 31, "min_us", "max_us", "trim_us", 500, 2500, "µs"};
-    case control::Protocol::dynamixel:
-      return {"id", 0, 252, "min_position", "max_position", "trim", 0, 4095, "position pulses"};
-    case control::Protocol::feetech:
-      return {"id", 0, 253, "min_position", "max_position", "trim", 0, link.bus.scs ? 1023.0 : 4095.0, "position steps"};
-    case control::Protocol::dmx:
-      return {"address", 1, fine ? 511 : 512, "min_level", "max_level", "trim", 0, fine ? 65535.0 : 255.0, "DMX level"};
-  }
-  return {"device_channel", 0, 0, "min", "max", "trim", 0, 0, ""};
 }
 
 ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t index) {
@@ -254,21 +141,21 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   }
   a.link = *li;
   const LinkSpec& spec = rig.links[a.link];
-  const std::string protocol_name = to_string(spec.protocol);
+  const assembly::Protocol& link_protocol = assembly::protocol_of(spec);
+  const std::string& protocol_name = spec.protocol;
   if (auto protocol = node.find("protocol")) {
     const std::string p = protocol->as_string("the protocol of " + what);
-    bool known = false;
-    for (const ProtocolFacts& f : protocol_facts()) known = known || p == f.name;
-    if (!known) protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + protocol_names());
+    if (!assembly::find_protocol(p))
+      protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + assembly::protocol_names());
     if (p != protocol_name)
       protocol->fail("link '" + link_name + "' speaks " + protocol_name + ", not " + p + "; expected protocol: " + protocol_name);
   }
 
   if (auto fine = node.find("fine")) {
-    if (spec.protocol != control::Protocol::dmx) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
+    if (!link_protocol.has_fine_addresses) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
     a.fine = fine->as_bool("fine");
   }
-  const AddressRule rule = address_rule(spec, a.fine);
+  const assembly::AddressRule rule = link_protocol.address_rule(spec, a.fine);
   for (const char* key : {"device_channel", "id", "address"})
     if (std::string(key) != rule.key)
       if (auto wrong = node.find(key))
@@ -293,8 +180,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     return v;
   };
   // A DMX dimmer spans its whole range by default; servos must be calibrated.
-  const auto cal_node = spec.protocol == control::Protocol::dmx ? node.find("calibration")
-                                                               : std::optional<YamlRef>(node.at("calibration", what));
+  const auto cal_node = link_protocol.needs_calibration ? std::optional<YamlRef>(node.at("calibration", what))
+                                                       : node.find("calibration");
   if (cal_node) {
     const YamlRef& cal = *cal_node;
     cal.expect_only_keys({rule.cal_min, rule.cal_max, "reverse", rule.trim}, cwhat);
@@ -314,9 +201,9 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   }
   if (auto f = node.find("failsafe")) {
     const std::string action = f->as_string("the fail-safe action of " + what);
-    if (action == "hold") a.failsafe = control::Failsafe::hold;
-    else if (action == "rest") a.failsafe = control::Failsafe::rest;
-    else if (action == "release") a.failsafe = control::Failsafe::release;
+    if (action == "hold") a.failsafe = rig::Failsafe::hold;
+    else if (action == "rest") a.failsafe = rig::Failsafe::rest;
+    else if (action == "release") a.failsafe = rig::Failsafe::release;
     else f->fail("unknown fail-safe action " + f->describe() + "; expected one of: hold, rest, release");
   }
   if (auto s = node.find("speed")) a.speed_limit = positive(*s, "the speed limit of " + what + " (" + ch.unit + "/s)");
@@ -327,7 +214,7 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
 
 }  // namespace
 
-control::Rig load_rig_file(const std::string& path) {
+rig::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
   root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics"}, "the rig file");
@@ -363,11 +250,11 @@ control::Rig load_rig_file(const std::string& path) {
     const YamlRef node = actuators[i];
     ActuatorSpec a = read_actuator(rig, node, i);
     const LinkSpec& link = rig.links[a.link];
-    const AddressRule rule = address_rule(link, a.fine);
+    const assembly::AddressRule rule = assembly::protocol_of(link).address_rule(link, a.fine);
     // A 16-bit DMX channel takes two slots.
     for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
       if (!used.insert({a.link, slot}).second)
-        node.at(rule.key, "").fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + to_string(link.protocol) +
+        node.at(rule.key, "").fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + link.protocol +
                                    " link '" + link.name + "' is used by two actuators");
     rig.actuators.push_back(std::move(a));
   }

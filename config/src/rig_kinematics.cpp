@@ -57,14 +57,14 @@ struct PendingJoint {
 
 /// Reads how a movable joint is driven: {channel, scale, offset} from `node`, the scale from the
 /// channel's unit when not given. Returns the binding (q_index left for the caller).
-control::JointBinding read_binding(const control::Rig& rig, const YamlRef& node, const std::string& what,
+rig::JointBinding read_binding(const rig::Rig& rig, const YamlRef& node, const std::string& what,
                                    kinematics::JointType type) {
-  control::JointBinding binding;
+  rig::JointBinding binding;
   const YamlRef channel = node.at("channel", what + " (the channel that drives it)");
   const std::string channel_name = channel.as_string("the channel of " + what);
   const auto ci = rig.find_channel(channel_name);
   if (!ci) channel.fail("unknown channel '" + channel_name + "'; expected one of the rig's channels: " + rig.channel_names());
-  const control::ChannelSpec& ch = rig.channels[*ci];
+  const rig::ChannelSpec& ch = rig.channels[*ci];
   binding.channel = *ci;
   const bool revolute = type == kinematics::JointType::revolute;
   if (auto scale = node.find("scale")) {
@@ -82,8 +82,8 @@ control::JointBinding read_binding(const control::Rig& rig, const YamlRef& node,
 }
 
 /// The channel's range as joint limits.
-std::pair<double, double> channel_limits(const control::Rig& rig, const control::JointBinding& b) {
-  const control::ChannelSpec& ch = rig.channels[b.channel];
+std::pair<double, double> channel_limits(const rig::Rig& rig, const rig::JointBinding& b) {
+  const rig::ChannelSpec& ch = rig.channels[b.channel];
   const double lo = b.to_joint(ch.min), hi = b.to_joint(ch.max);
   return {std::min(lo, hi), std::max(lo, hi)};
 }
@@ -91,7 +91,7 @@ std::pair<double, double> channel_limits(const control::Rig& rig, const control:
 /// A model imported from URDF or DH, bound to channels by `joints: {joint: {channel, scale,
 /// offset}}`; every movable joint needs a channel, and its limits become the intersection of its
 /// own and its channel's, so the solver never asks for what the channel cannot do.
-control::RigKinematics bind_imported(const control::Rig& rig, const kinematics::Model& imported, const YamlRef& joints,
+rig::RigKinematics bind_imported(const rig::Rig& rig, const kinematics::Model& imported, const YamlRef& joints,
                                      const YamlRef& section) {
   joints.expect_map("joints (a map of joint name to {channel, scale, offset})");
   std::string names;
@@ -104,7 +104,7 @@ control::RigKinematics bind_imported(const control::Rig& rig, const kinematics::
       name.fail("unknown movable joint '" + name.node.Scalar() + "'; expected one of: " + names);
   }
   kinematics::ModelBuilder builder;
-  std::vector<control::JointBinding> bindings;
+  std::vector<rig::JointBinding> bindings;
   for (const kinematics::Joint& j : imported.joints()) {
     kinematics::JointSpec spec{j.name, j.type, j.on_base() ? std::string() : imported.joint(j.parent).name, j.origin, j.axis,
                                j.lower, j.upper};
@@ -113,7 +113,7 @@ control::RigKinematics bind_imported(const control::Rig& rig, const kinematics::
       const auto entry = joints.find(j.name);
       if (!entry) joints.fail(what + " has no channel; expected " + j.name + ": {channel: ...} among the joints");
       entry->expect_only_keys({"channel", "scale", "offset"}, what);
-      control::JointBinding b = read_binding(rig, *entry, what, j.type);
+      rig::JointBinding b = read_binding(rig, *entry, what, j.type);
       const auto [lo, hi] = channel_limits(rig, b);
       spec.lower = std::max(j.lower, lo);
       spec.upper = std::min(j.upper, hi);
@@ -127,7 +127,7 @@ control::RigKinematics bind_imported(const control::Rig& rig, const kinematics::
   }
   for (const kinematics::Effector& e : imported.effectors())
     builder.add_effector({e.name, imported.joint(e.joint).name, e.tool}, e.where);
-  return control::RigKinematics{builder.build(), std::move(bindings), section.where()};
+  return rig::RigKinematics{builder.build(), std::move(bindings), section.where()};
 }
 
 /// dh: {convention: standard | modified, rows: [{a, alpha, d, theta}], tool: {xyz, rpy}}
@@ -166,7 +166,7 @@ kinematics::Model read_dh(const YamlRef& node) {
 
 }  // namespace
 
-control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRef& node) {
+rig::RigKinematics read_rig_kinematics(const rig::Rig& rig, const YamlRef& node) {
   node.expect_map("the kinematics section ({joints: ..., effectors: ...}, or urdf: FILE / dh: {...} with joints)");
   node.expect_only_keys({"joints", "effectors", "urdf", "dh"}, "the kinematics section");
   if (node.find("urdf") && node.find("dh")) node.fail("the kinematics section names both urdf and dh; expected one geometry");
@@ -233,7 +233,7 @@ control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRe
   for (const std::string& name : order_in_file) place(name);
 
   kinematics::ModelBuilder builder;
-  std::vector<control::JointBinding> bindings;
+  std::vector<rig::JointBinding> bindings;
   for (const std::string& name : order) {
     const PendingJoint& j = pending.at(name);
     const std::string what = "joint '" + name + "'";
@@ -251,7 +251,7 @@ control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRe
     }
     spec.origin = read_origin(j.node.find("origin"), "the origin of " + what);
     const bool movable = spec.type != kinematics::JointType::fixed;
-    control::JointBinding binding;
+    rig::JointBinding binding;
     if (movable) {
       spec.axis = read_vector(j.node.at("axis", what), "the axis of " + what);
       binding = read_binding(rig, j.node, what, spec.type);
@@ -289,7 +289,7 @@ control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRe
       builder.add_effector(spec, e.where());
     }
   }
-  return control::RigKinematics{builder.build(), std::move(bindings), node.where()};
+  return rig::RigKinematics{builder.build(), std::move(bindings), node.where()};
 }
 
 }  // namespace avar::config

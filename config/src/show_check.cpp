@@ -7,12 +7,12 @@
 namespace avar::config {
 namespace {
 
-std::string limits_text(const control::ChannelSpec& c) {
+std::string limits_text(const rig::ChannelSpec& c) {
   return "[" + format_number(c.min) + ", " + format_number(c.max) + "]" + (c.unit.empty() ? "" : " " + c.unit);
 }
 
 /// Scans the curve between two keys on a fine grid for its extreme values.
-void check_segment_overshoot(const playback::Track& track, std::size_t k, const control::ChannelSpec& c,
+void check_segment_overshoot(const playback::Track& track, std::size_t k, const rig::ChannelSpec& c,
                              std::vector<Finding>& warnings) {
   const auto& keys = track.raw.keys;
   const double t0 = keys[k].time;
@@ -34,7 +34,7 @@ void check_segment_overshoot(const playback::Track& track, std::size_t k, const 
 /// Clips and layers: every channel a clip drives or a mask names must be the rig's; the channels
 /// that layers touch count as driven. Clip key values are offsets in additive layers, so their
 /// range is checked on the composed motion (check_feasibility), not here.
-void check_layers(const playback::Show& show, const control::Rig& rig, std::vector<bool>& driven, ShowCheck& result) {
+void check_layers(const playback::Show& show, const rig::Rig& rig, std::vector<bool>& driven, ShowCheck& result) {
   const auto unknown = [&](const SourceLocation& where, const std::string& what, const std::string& channel) {
     result.errors.push_back({where, "unknown channel '" + channel + "' in " + what + "; expected one of the rig '" + rig.name +
                                         "' channels: " + rig.channel_names()});
@@ -66,7 +66,7 @@ const playback::Track* track_driving(const playback::Show& show, const std::stri
 
 std::string Finding::to_string() const { return avar::to_string(where) + ": " + message; }
 
-ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig& rig) {
+ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig) {
   ShowCheck result;
   std::vector<bool> driven(rig.channels.size(), false);
   for (const playback::Track& track : show.tracks) {
@@ -77,7 +77,7 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
       continue;
     }
     driven[*ci] = true;
-    const control::ChannelSpec& c = rig.channels[*ci];
+    const rig::ChannelSpec& c = rig.channels[*ci];
     const auto& keys = track.raw.keys;
     bool keys_in_range = true;
     for (const playback::RawKey& key : keys) {
@@ -108,7 +108,7 @@ ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig&
                                                  (names.empty() ? "(none)" : names)});
       continue;
     }
-    for (std::size_t b : control::bindings_moving(*rig.kinematics, *effector)) {
+    for (std::size_t b : rig::bindings_moving(*rig.kinematics, *effector)) {
       const std::size_t channel = rig.kinematics->bindings[b].channel;
       if (const playback::Track* track = track_driving(show, rig.channels[channel].name))
         result.errors.push_back({track->where, "channel '" + track->channel + "' is moved by target '" + target.effector +

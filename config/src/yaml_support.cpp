@@ -1,7 +1,6 @@
 #include "avar/config/yaml_support.hpp"
 
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -45,7 +44,7 @@ void YamlRef::expect_sequence(std::string_view what) const {
   if (!node.IsSequence()) fail("expected " + std::string(what) + " to be a list, found " + describe());
 }
 
-void YamlRef::expect_only_keys(std::initializer_list<std::string_view> allowed, std::string_view what) const {
+void YamlRef::expect_only_keys(std::span<const std::string_view> allowed, std::string_view what) const {
   expect_map(what);
   for (auto it = node.begin(); it != node.end(); ++it) {
     const std::string key = it->first.Scalar();
@@ -75,41 +74,18 @@ YamlRef YamlRef::at(std::string_view key, std::string_view what) const {
 
 YamlRef YamlRef::operator[](std::size_t index) const { return YamlRef{node[index], file}; }
 
-double YamlRef::as_double(std::string_view what) const {
-  if (!node.IsScalar()) fail("expected " + std::string(what) + " to be a number, found " + describe());
-  const std::string& s = node.Scalar();
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
-    fail("expected " + std::string(what) + " to be a finite number, found " + describe());
+ScalarValue YamlRef::scalar() const {
+  ScalarValue v;
+  v.scalar = node.IsScalar();
+  if (v.scalar) v.text = node.Scalar();
+  v.found = describe();
+  v.where = where();
   return v;
 }
 
-long long YamlRef::as_integer(std::string_view what) const {
-  if (!node.IsScalar()) fail("expected " + std::string(what) + " to be a whole number, found " + describe());
-  const std::string& s = node.Scalar();
-  char* end = nullptr;
-  errno = 0;
-  const long long v = std::strtoll(s.c_str(), &end, 10);
-  if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE)
-    fail("expected " + std::string(what) + " to be a whole number, found " + describe());
-  return v;
-}
-
-bool YamlRef::as_bool(std::string_view what) const {
-  if (node.IsScalar()) {
-    const std::string& s = node.Scalar();
-    if (s == "true" || s == "yes" || s == "on") return true;
-    if (s == "false" || s == "no" || s == "off") return false;
-  }
-  fail("expected " + std::string(what) + " to be true or false, found " + describe());
-}
-
-std::string YamlRef::as_string(std::string_view what) const {
-  if (!node.IsScalar() || node.Scalar().empty())
-    fail("expected " + std::string(what) + " to be a name, found " + describe());
-  return node.Scalar();
-}
+double YamlRef::as_double(std::string_view what) const { return scalar().as_double(what); }
+long long YamlRef::as_integer(std::string_view what) const { return scalar().as_integer(what); }
+bool YamlRef::as_bool(std::string_view what) const { return scalar().as_bool(what); }
+std::string YamlRef::as_string(std::string_view what) const { return scalar().as_string(what); }
 
 }  // namespace avar::config

@@ -10,17 +10,17 @@ namespace avar::control {
 namespace {
 
 /// The frame's channel names, by which the sampler binds every track, clip and mask of the show.
-std::vector<std::string> channel_names_of(const Rig& rig) {
+std::vector<std::string> channel_names_of(const rig::Rig& rig) {
   std::vector<std::string> names;
   names.reserve(rig.channels.size());
-  for (const ChannelSpec& c : rig.channels) names.push_back(c.name);
+  for (const rig::ChannelSpec& c : rig.channels) names.push_back(c.name);
   return names;
 }
 
-std::vector<ChannelLimits> limits_of(const Rig& rig) {
+std::vector<ChannelLimits> limits_of(const rig::Rig& rig) {
   std::vector<ChannelLimits> limits;
   limits.reserve(rig.channels.size());
-  for (const ChannelSpec& c : rig.channels)
+  for (const rig::ChannelSpec& c : rig.channels)
     limits.push_back({c.min, c.max, c.max_velocity, c.max_acceleration, c.max_jerk, c.soft_margin});
   return limits;
 }
@@ -70,7 +70,7 @@ std::int64_t monotonic_ns() noexcept {
   return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
 }
 
-Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
+Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
                        ControllerOptions options)
     : rig_(rig),
       show_(show),
@@ -90,14 +90,18 @@ Controller::Controller(const Rig& rig, const playback::Show& show, std::vector<f
       measured_(rig.channels.size()),
       measured_known_(rig.channels.size(), 0),
       telemetry_seen_(rig.channels.size(), 0),
+      telemetry_(rig.channels.size()),
+      link_telemetry_seen_(rig.channels.size(), 0),
+      source_measured_(rig.channels.size(), 0.0),
+      source_known_(new bool[rig.channels.size()]()),
       link_dead_(links_.size(), 0) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
   // A channel eases to rest on a fault unless none of its actuators asks for that.
   std::vector<char> has_actuator(rig.channels.size(), 0);
-  for (const ActuatorSpec& a : rig.actuators) {
+  for (const rig::ActuatorSpec& a : rig.actuators) {
     if (!has_actuator[a.channel]) channel_rests_[a.channel] = 0;
     has_actuator[a.channel] = 1;
-    if (a.failsafe == Failsafe::rest) channel_rests_[a.channel] = 1;
+    if (a.failsafe == rig::Failsafe::rest) channel_rests_[a.channel] = 1;
   }
   if (!show.targets.empty()) {
     if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
@@ -177,8 +181,8 @@ void Controller::fault(FaultCause cause, std::size_t index, double value, double
   drive_in_fault_ = phase_ != Phase::disabled;
   phase_ = Phase::faulted;
   if (!drive_in_fault_) return;
-  for (const ActuatorSpec& a : rig_.actuators)
-    if (a.failsafe == Failsafe::release && a.link < links_.size()) links_[a.link]->release_channel(a.channel);
+  for (const rig::ActuatorSpec& a : rig_.actuators)
+    if (a.failsafe == rig::Failsafe::release && a.link < links_.size()) links_[a.link]->release_channel(a.channel);
   for (std::size_t c = 0; c < failsafe_goal_.size(); ++c) failsafe_goal_[c] = channel_rests_[c] ? rest_[c] : limiter_.heading(c);
   ease_to(failsafe_goal_, now_s);
 }
@@ -191,11 +195,15 @@ void Controller::feed_back(std::span<const double> measured, std::span<const boo
 }
 
 void Controller::feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept {
-  using firmware_iface::DeviceFault;
-  for (std::size_t c = 0; c < telemetry_seen_.size() && c < telemetry.size(); ++c) {
+  take_telemetry(telemetry, telemetry_seen_);
+}
+
+void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry,
+                                std::vector<std::uint64_t>& seen) noexcept {
+  for (std::size_t c = 0; c < seen.size() && c < telemetry.size(); ++c) {
     const firmware_iface::ChannelTelemetry& t = telemetry[c];
-    if (t.updates == telemetry_seen_[c]) continue;
-    telemetry_seen_[c] = t.updates;
+    if (t.updates == seen[c]) continue;
+    seen[c] = t.updates;
     if (std::isfinite(t.position)) {
       measured_[c] = t.position;
       measured_known_[c] = 1;
@@ -205,6 +213,21 @@ void Controller::feed_telemetry(std::span<const firmware_iface::ChannelTelemetry
     if (t.faults & ~std::uint32_t{firmware_iface::kDeviceOverheat | firmware_iface::kDeviceOverload})
       fault(FaultCause::device_error, c, static_cast<double>(t.faults), last_now_);
   }
+}
+
+void Controller::read_feedback() noexcept {
+  if (options_.positions) {
+    const std::span<bool> known(source_known_.get(), source_measured_.size());
+    std::fill(known.begin(), known.end(), false);
+    options_.positions->measure(source_measured_, known);
+    for (std::size_t c = 0; c < known.size(); ++c) {
+      if (!known[c]) continue;
+      measured_[c] = source_measured_[c];
+      measured_known_[c] = 1;
+    }
+  }
+  for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
+  take_telemetry(telemetry_, link_telemetry_seen_);
 }
 
 bool Controller::active() const noexcept {
@@ -237,6 +260,8 @@ void Controller::release_now() noexcept {
 
 Status Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
+  // Before the clock moves on: what the devices reported came with the last tick's exchange.
+  read_feedback();
   last_now_ = now_s;
   if (phase_ == Phase::disabled || (phase_ == Phase::faulted && !drive_in_fault_)) return Status::ok;
 

@@ -8,7 +8,7 @@
 
 namespace avar::control {
 
-IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame)
+IkStage::IkStage(const rig::RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame)
     : kinematics_(kinematics),
       show_(show),
       workspace_(kinematics.model, std::max<std::size_t>(1, show.targets.size())),
@@ -42,7 +42,7 @@ IkStage::IkStage(const RigKinematics& kinematics, const playback::Show& show, st
 
 void IkStage::reseed(std::span<const double> frame) noexcept {
   const kinematics::Model& model = kinematics_.model;
-  for (const JointBinding& b : kinematics_.bindings)
+  for (const rig::JointBinding& b : kinematics_.bindings)
     q_[b.q_index] = std::clamp(b.to_joint(frame[b.channel]), model.lower_limits()[b.q_index], model.upper_limits()[b.q_index]);
   cold_ = true;
 }
@@ -86,7 +86,7 @@ kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept 
     stats_.worst_orientation_error = std::max(stats_.worst_orientation_error, result.orientation_error);
   }
   for (std::size_t b : driven_bindings_) {
-    const JointBinding& binding = kinematics_.bindings[b];
+    const rig::JointBinding& binding = kinematics_.bindings[b];
     frame[binding.channel] = binding.to_channel(q_[binding.q_index]);
   }
   return result;

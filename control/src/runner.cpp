@@ -67,6 +67,7 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
 
     controller.tick(now);
     ++result.ticks;
+    if (options.plant) options.plant->advance(dt);
     observer.after_tick(k, now, dt, lateness, controller);
 
     if (realtime) {

@@ -33,7 +33,7 @@ TEST(LayeredShow, SampleWritesTheComposedChannelsOverTheRigsRestPose) {
   // The show's tracks first, then the channels its layers touch, in file order.
   ASSERT_EQ(rows[0], (std::vector<std::string>{"seconds", "lid_left", "lid_right", "neck_pan", "neck_tilt", "eyes_pan", "jaw"}));
   ASSERT_EQ(rows.size(), 1u + 14 * 20 + 1);
-  const control::Rig rig = config::load_rig_file(kLayeredRig);
+  const rig::Rig rig = config::load_rig_file(kLayeredRig);
   const playback::Show show = config::load_show_file(kLayeredShow);
   std::vector<std::string> names;
   for (const auto& c : rig.channels) names.push_back(c.name);

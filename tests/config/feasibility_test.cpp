@@ -9,8 +9,8 @@
 namespace avar::config {
 namespace {
 
-control::Rig rig() {
-  control::Rig r;
+rig::Rig rig() {
+  rig::Rig r;
   r.name = "r";
   for (const char* name : {"jaw", "pan"})
     r.channels.push_back({.name = name, .unit = "deg", .min = -30, .max = 30, .rest = 0, .max_velocity = 10,

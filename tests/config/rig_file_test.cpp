@@ -1,5 +1,8 @@
 #include "avar/config/rig_file.hpp"
 
+#include "avar/assembly/feetech_protocol.hpp"
+#include "avar/assembly/maestro_protocol.hpp"
+
 #include <gtest/gtest.h>
 
 #include "../support/input_errors.hpp"
@@ -27,7 +30,7 @@ actuators:
 )";
 
 TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
-  const control::Rig rig = load_rig_file(write_temp("good_rig.yaml", kGoodRig));
+  const rig::Rig rig = load_rig_file(write_temp("good_rig.yaml", kGoodRig));
   EXPECT_EQ(rig.name, "two");
   ASSERT_EQ(rig.channels.size(), 2u);
   EXPECT_EQ(rig.channels[1].name, "pan");
@@ -37,7 +40,7 @@ TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
   EXPECT_DOUBLE_EQ(rig.channels[0].ramp_velocity, 15);  // default: half a range per second
   ASSERT_EQ(rig.links.size(), 1u);
   EXPECT_TRUE(rig.links[0].simulated());
-  EXPECT_EQ(rig.links[0].maestro.channel_count, 12);
+  EXPECT_EQ(assembly::maestro_options(rig.links[0]).channel_count, 12);
   ASSERT_EQ(rig.actuators.size(), 2u);
   EXPECT_EQ(rig.actuators[1].channel, 1u);
   EXPECT_EQ(rig.actuators[1].device_channel, 3);
@@ -49,7 +52,7 @@ TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
 }
 
 TEST(RigFile, BundledExampleLoads) {
-  const control::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  const rig::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   EXPECT_EQ(rig.channels.size(), 8u);
   EXPECT_EQ(rig.actuators.size(), 8u);
 }
@@ -127,17 +130,18 @@ actuators:
 )";
 
 TEST(RigFile, EveryProtocolLoadsWithItsAddressingAndSettings) {
-  const control::Rig rig = load_rig_file(write_temp("bus.yaml", kBusRig));
+  const rig::Rig rig = load_rig_file(write_temp("bus.yaml", kBusRig));
   ASSERT_EQ(rig.links.size(), 4u);
-  EXPECT_EQ(rig.links[0].protocol, control::Protocol::dynamixel);
-  EXPECT_EQ(rig.links[0].bus.readback, control::Readback::position);
-  EXPECT_EQ(rig.links[0].bus.reply_timeout_ms, 5);
-  EXPECT_EQ(rig.links[0].bus.retries, 2);
-  EXPECT_EQ(rig.links[1].protocol, control::Protocol::feetech);
-  EXPECT_TRUE(rig.links[1].bus.scs);
+  EXPECT_EQ(rig.links[0].protocol, "dynamixel");
+  const assembly::ServoBusOptions bus = assembly::servo_bus_options(rig.links[0]);
+  EXPECT_EQ(bus.readback, assembly::Readback::position);
+  EXPECT_EQ(bus.reply_timeout_ms, 5);
+  EXPECT_EQ(bus.retries, 2);
+  EXPECT_EQ(rig.links[1].protocol, "feetech");
+  EXPECT_EQ(assembly::feetech_series(rig.links[1]), firmware_iface::feetech::Series::scs);
   EXPECT_EQ(rig.links[1].baud, 1000000);  // Feetech's factory rate
-  EXPECT_EQ(rig.links[2].protocol, control::Protocol::ssc32);
-  EXPECT_EQ(rig.links[3].protocol, control::Protocol::dmx);
+  EXPECT_EQ(rig.links[2].protocol, "ssc32");
+  EXPECT_EQ(rig.links[3].protocol, "dmx");
   EXPECT_EQ(rig.actuators[0].device_channel, 1);
   EXPECT_DOUBLE_EQ(rig.actuators[0].calibration.device_at_max, 3072);
   EXPECT_EQ(rig.actuators[1].device_channel, 7);

@@ -40,9 +40,9 @@ kinematics:
 )";
 
 TEST(RigKinematics, JointsInAnyOrderBindToTheirChannelsWithTheChannelsLimits) {
-  const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kHead));
+  const rig::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kHead));
   ASSERT_TRUE(rig.kinematics);
-  const control::RigKinematics& k = *rig.kinematics;
+  const rig::RigKinematics& k = *rig.kinematics;
   ASSERT_EQ(k.model.dof(), 3u);
   ASSERT_EQ(k.bindings.size(), 3u);
   // Parents first: neck_pan, neck_tilt, then the jaw slide.
@@ -103,7 +103,7 @@ kinematics:
 )";
 
 TEST(RigKinematics, AUrdfBindsItsJointsToChannelsWithTheNarrowerLimits) {
-  const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kImported));
+  const rig::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", kImported));
   ASSERT_TRUE(rig.kinematics);
   const kinematics::Model& m = rig.kinematics->model;
   ASSERT_EQ(m.dof(), 2u);
@@ -122,7 +122,7 @@ TEST(RigKinematics, ADenavitHartenbergChainBindsJoint1ToN) {
   const std::string dh = replace(replace(kImported, "  urdf: " AVAR_SOURCE_DIR "/tests/kinematics/fixtures/pan_tilt_head.urdf",
                                          "  dh:\n    convention: standard\n    rows: [{d: 0.1, alpha: -1.5707963267948966}, {a: 0.2}]"),
                                  "    pan: {channel: pan}\n    tilt: {channel: tilt}", "    joint1: {channel: pan}\n    joint2: {channel: tilt}");
-  const control::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", dh));
+  const rig::Rig rig = load_rig_file(avar::testing::write_temp_file("rig.yaml", dh));
   ASSERT_TRUE(rig.kinematics);
   EXPECT_EQ(rig.kinematics->model.dof(), 2u);
   EXPECT_TRUE(rig.kinematics->model.find_effector("tip"));

@@ -5,8 +5,8 @@
 namespace avar::config {
 namespace {
 
-control::Rig check_rig() {
-  control::Rig r;
+rig::Rig check_rig() {
+  rig::Rig r;
   r.name = "r";
   r.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 100, .max_acceleration = 1000, .max_jerk = 10000, .ramp_velocity = 10, .where = {}});
   r.channels.push_back({.name = "pan", .unit = "deg", .min = -60, .max = 60, .rest = 0, .max_velocity = 100, .max_acceleration = 1000, .max_jerk = 10000, .ramp_velocity = 10, .where = {}});

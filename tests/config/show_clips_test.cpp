@@ -147,7 +147,7 @@ TEST(ShowClips, TheWriterRoundTripsClipsAndLayersExactly) {
 }
 
 TEST(ShowClips, TheCheckRejectsUnknownChannelsInClipsAndMasksNamingTheRigsChannels) {
-  const control::Rig rig = load_rig_file(kClipsRig);
+  const rig::Rig rig = load_rig_file(kClipsRig);
   const std::string path =
       avar::testing::write_temp_file("show.yaml", replace(replace(kClipsShow, "channels: [jaw, neck_pan]", "channels: [jaw, neck_yaw]"),
                                                           "      jaw: [", "      chin: ["));
@@ -164,7 +164,7 @@ TEST(ShowClips, TheCheckRejectsUnknownChannelsInClipsAndMasksNamingTheRigsChanne
 }
 
 TEST(ShowClips, FeasibilityJudgesTheComposedMotionAndRetimeRefusesLayeredShows) {
-  const control::Rig rig = load_rig_file(kClipsRig);
+  const rig::Rig rig = load_rig_file(kClipsRig);
   const playback::Show example = load_show_file(kExample);
   EXPECT_TRUE(check_feasibility(example, rig).empty());
   // The idle sway (10 deg in 2 s) played 40 times faster asks neck_pan for 200 deg/s, more than

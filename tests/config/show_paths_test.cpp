@@ -199,7 +199,7 @@ TEST(ShowPaths, PathTargetsAndOrientationKeysSurviveAWriterRoundTripExactly) {
 }
 
 TEST(ShowPaths, TheExampleChecksAgainstItsRigAndUnknownEffectorsAreReported) {
-  const control::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml");
+  const rig::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml");
   const ShowCheck ok = check_show_against_rig(load_show_file(AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml"), rig);
   EXPECT_TRUE(ok.errors.empty()) << ok.errors.front().to_string();
   const ShowCheck bad = check_show_against_rig(load(kPathsShow), rig);
@@ -208,7 +208,7 @@ TEST(ShowPaths, TheExampleChecksAgainstItsRigAndUnknownEffectorsAreReported) {
 }
 
 TEST(ShowPaths, TheIkStageAimsTheGazeHeadAlongTheExamplePathEveryTick) {
-  const control::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml");
+  const rig::Rig rig = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml");
   const playback::Show show = load_show_file(AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml");
   control::IkStage stage(*rig.kinematics, show, rig.rest_frame());
   std::vector<double> frame = rig.rest_frame();

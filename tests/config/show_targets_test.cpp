@@ -81,7 +81,7 @@ TEST(ShowTargets, BadTargetsAreRejectedWithWhereAndWhat) {
 }
 
 TEST(ShowTargets, TheRigMustHaveTheEffectorAndTracksMustNotFightTheSolver) {
-  const control::Rig rig = load_rig_file(kTargetsRig);
+  const rig::Rig rig = load_rig_file(kTargetsRig);
   const auto check = [&](const std::string& text) {
     return check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", text)), rig);
   };
@@ -93,7 +93,7 @@ TEST(ShowTargets, TheRigMustHaveTheEffectorAndTracksMustNotFightTheSolver) {
   ASSERT_EQ(both.errors.size(), 1u);
   EXPECT_EQ(both.errors[0].message,
             "channel 'neck_pan' is moved by target 'eyes' (inverse kinematics) and also has a track; expected one or the other");
-  const control::Rig plain = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  const rig::Rig plain = load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   const ShowCheck no_kinematics = check_show_against_rig(load_show_file(avar::testing::write_temp_file("show.yaml", kTargetsShow)), plain);
   ASSERT_FALSE(no_kinematics.ok());
   EXPECT_NE(no_kinematics.errors.back().message.find("has no kinematics section"), std::string::npos);

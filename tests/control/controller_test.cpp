@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../support/recording_link.hpp"
+#include "../support/rig_names.hpp"
 
 namespace avar::control {
 namespace {

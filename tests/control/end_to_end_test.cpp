@@ -17,6 +17,7 @@
 #include "avar/sim/sim_dynamixel.hpp"
 #include "avar/sim/sim_maestro.hpp"
 #include "avar/sim/sim_wire.hpp"
+#include "../support/rig_names.hpp"
 
 namespace avar::control {
 namespace {

@@ -11,6 +11,7 @@
 
 #include "avar/control/controller.hpp"
 #include "avar/kinematics/model_builder.hpp"
+#include "../support/rig_names.hpp"
 
 namespace avar::control {
 namespace {

@@ -9,6 +9,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "../support/recording_link.hpp"
+#include "../support/rig_names.hpp"
 
 namespace avar::control {
 namespace {

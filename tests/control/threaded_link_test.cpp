@@ -14,6 +14,7 @@
 #include "avar/firmware_iface/dynamixel_link.hpp"
 #include "avar/sim/sim_dynamixel.hpp"
 #include "avar/sim/sim_wire.hpp"
+#include "../support/rig_names.hpp"
 
 namespace avar::control {
 namespace {

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <memory>
+#include "../support/rig_names.hpp"
 
 
 namespace avar::control {

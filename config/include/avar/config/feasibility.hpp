@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/playback/show.hpp"
 
@@ -37,14 +37,14 @@ struct Infeasible {
 /// a discontinuity at a cut (a placement without a fade, a step key) is listed as a jump.
 /// Consecutive pieces with the same finding for the same placement are merged into one span.
 /// If any channel is unknown to the rig nothing is checked (check_show_against_rig reports it).
-std::vector<Infeasible> check_feasibility(const playback::Show& show, const control::Rig& rig);
+std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig::Rig& rig);
 
 /// A copy of the show whose offending spans are stretched in time just enough for the speed and
 /// acceleration limits, every track alike so that they stay in step, all other timing kept
 /// (later keys shift by the added time). Jumps and range problems are left as they are. Throws
 /// InputError for a layered show: stretching show time would move where its clips overlap and
 /// fade, so it is refused rather than retimed dishonestly.
-playback::Show retime(const playback::Show& show, const control::Rig& rig);
+playback::Show retime(const playback::Show& show, const rig::Rig& rig);
 
 
 }  // namespace avar::config

@@ -4,11 +4,11 @@
 
 #include <string>
 
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 
 namespace avar::config {
 
 /// Loads and validates a rig file. Throws InputError on the first problem found.
-control::Rig load_rig_file(const std::string& path);
+rig::Rig load_rig_file(const std::string& path);
 
 }  // namespace avar::config

@@ -6,11 +6,11 @@
 // line and what was expected. Load time only.
 
 #include "avar/config/yaml_support.hpp"
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 
 namespace avar::config {
 
 /// Reads the section; `rig` must already hold its channels (joints bind to them by name).
-control::RigKinematics read_rig_kinematics(const control::Rig& rig, const YamlRef& node);
+rig::RigKinematics read_rig_kinematics(const rig::Rig& rig, const YamlRef& node);
 
 }  // namespace avar::config

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/playback/show.hpp"
 
@@ -27,6 +27,6 @@ struct ShowCheck {
 /// key value of a show track outside its channel's limits; a channel moved both by a target and
 /// by a track (of the show or of a clip a layer places). Warnings: a curve that overshoots the limits between keys (it will be clamped), and
 /// rig channels that no track drives (they hold their rest pose).
-ShowCheck check_show_against_rig(const playback::Show& show, const control::Rig& rig);
+ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig);
 
 }  // namespace avar::config

@@ -6,10 +6,12 @@
 
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
 #include "avar/core/input_error.hpp"
+#include "avar/core/scalar_value.hpp"
 
 namespace avar::config {
 
@@ -30,7 +32,10 @@ struct YamlRef {
   void expect_map(std::string_view what) const;
   void expect_sequence(std::string_view what) const;
   /// Fails if the map has a key not in `allowed` (catches typos such as "interpolaton").
-  void expect_only_keys(std::initializer_list<std::string_view> allowed, std::string_view what) const;
+  void expect_only_keys(std::span<const std::string_view> allowed, std::string_view what) const;
+  void expect_only_keys(std::initializer_list<std::string_view> allowed, std::string_view what) const {
+    expect_only_keys(std::span<const std::string_view>(allowed.begin(), allowed.size()), what);
+  }
 
   bool has(std::string_view key) const;
   /// The child at `key`; fails naming the map when it is missing.
@@ -39,7 +44,9 @@ struct YamlRef {
   YamlRef operator[](std::size_t index) const;
   std::size_t size() const { return node.size(); }
 
-  /// Scalar conversions; each fails with what was found and what was expected.
+  /// The node as a scalar value with its place (ScalarValue::scalar is false for maps, lists).
+  ScalarValue scalar() const;
+  /// Scalar conversions (ScalarValue's); each fails with what was found and what was expected.
   double as_double(std::string_view what) const;        ///< finite number
   long long as_integer(std::string_view what) const;    ///< whole number
   bool as_bool(std::string_view what) const;             ///< true / false

@@ -1,6 +1,8 @@
 #pragma once
-// The control loop's tick and its supervisor. Every tick: sample the show -> limit -> finite
-// check -> hand the frame to the links. Around it, one state machine:
+// The control loop's tick and its supervisor. Every tick: read feedback (the links' device
+// telemetry and, where there is one, a position source such as the simulator's ground truth;
+// tracking, over-temperature and overload checks) -> sample the show -> inverse kinematics ->
+// limit -> finite check -> hand the frame to the links. Around it, one state machine:
 //
 //   disabled --begin--> homing --soft start done--> running --show over / stop--> stopping
 //   stopping --at rest--> disabled;  any state --fault--> faulted --reset--> disabled
@@ -17,14 +19,16 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "avar/control/ik_stage.hpp"
 #include "avar/control/limiter.hpp"
+#include "avar/control/plant.hpp"
 #include "avar/control/ramp.hpp"
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 #include "avar/core/status.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/playback/sampler.hpp"
@@ -83,6 +87,9 @@ struct ControllerOptions {
   double tick_period_s = 0.02;
   /// Clock for stage timing only (the motion never depends on it); nullptr: no timing.
   std::int64_t (*stage_clock)() noexcept = monotonic_ns;
+  /// Positions measured apart from the links (the simulator's ground truth, external encoders),
+  /// read at the start of every tick; borrowed, must outlive the controller. nullptr: none.
+  const PositionSource* positions = nullptr;
 };
 
 class Controller {
@@ -91,7 +98,7 @@ class Controller {
   /// already be validated against the rig (config::check_show_against_rig); a track whose
   /// channel is missing throws std::invalid_argument. links[i] serves rig.links[i]; links are
   /// borrowed and must outlive the controller.
-  Controller(const Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
+  Controller(const rig::Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
              ControllerOptions options = {});
 
   /// disabled -> homing at loop time now_s, from start_pose (the devices' reported positions,
@@ -109,14 +116,19 @@ class Controller {
   /// actions. Works from every state, disabled included (an e-stop while idle still latches).
   void fault(FaultCause cause, std::size_t index, double value, double now_s, Status status = Status::ok) noexcept;
 
+  /// Every tick reads its own feedback (ControllerOptions::positions, then each link's
+  /// telemetry, which overrides a position where a device reported one since the last tick).
+  /// The two calls below add feedback from elsewhere, for the next tick to check.
+  ///
   /// Position feedback for the tracking check: measured[channel] where known[channel].
   /// Checked against the last command on the next tick. Real-time safe.
   void feed_back(std::span<const double> measured, std::span<const bool> known) noexcept;
 
-  /// Telemetry from the links (Link::read_telemetry), indexed by channel: each entry refreshed
+  /// Telemetry indexed by channel, as Link::read_telemetry gives it: each entry refreshed
   /// since the last call (its `updates` grew) feeds its position to the tracking check, and its
   /// device fault bits latch device_overheat / device_overload / device_error faults on that
-  /// channel (value: temperature, load, or the fault bits). Real-time safe.
+  /// channel (value: temperature, load, or the fault bits), stamped with the last tick's time
+  /// (the exchange that brought the report). Real-time safe.
   void feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept;
 
   /// faulted -> disabled, clearing the latched fault, once the fail-safe motions are over.
@@ -141,6 +153,8 @@ class Controller {
   double show_start_time() const noexcept { return show_start_; }
   /// The frame that the last tick sent (after limits), indexed by channel.
   std::span<const double> commanded() const noexcept { return commanded_; }
+  /// Each channel's newest device report, as the last tick read it from the links.
+  std::span<const firmware_iface::ChannelTelemetry> telemetry() const noexcept { return telemetry_; }
   /// The frame that the last tick asked for before limits.
   std::span<const double> target() const noexcept { return target_; }
   const Limiter& limiter() const noexcept { return limiter_; }
@@ -155,10 +169,13 @@ class Controller {
   bool ramp_done(double now_s) const noexcept;
   bool show_over(double show_time_s) const noexcept;
   void lap(Stage s, std::int64_t& mark) noexcept;
+  /// The tick's first stage: the position source, then every link's telemetry.
+  void read_feedback() noexcept;
+  void take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry, std::vector<std::uint64_t>& seen) noexcept;
   /// The show's frame at a show time: tracks, then inverse kinematics for the targets.
   void sample_show(double show_time_s, std::span<double> frame) noexcept;
 
-  const Rig& rig_;
+  const rig::Rig& rig_;
   const playback::Show& show_;
   std::vector<firmware_iface::ActuatorLink*> links_;
   ControllerOptions options_;
@@ -177,6 +194,10 @@ class Controller {
   std::vector<double> measured_;
   std::vector<char> measured_known_;
   std::vector<std::uint64_t> telemetry_seen_;  ///< per channel: `updates` at the last feed_telemetry
+  std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< per channel: the links' newest reports
+  std::vector<std::uint64_t> link_telemetry_seen_;           ///< per channel: `updates` the tick took
+  std::vector<double> source_measured_;                      ///< per channel, from options.positions
+  std::unique_ptr<bool[]> source_known_;
   std::vector<char> link_dead_;
   std::array<StageTime, kStageCount> stage_times_{};
   Phase phase_ = Phase::disabled;

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 #include "avar/kinematics/ik_goal.hpp"
 #include "avar/kinematics/ik_result.hpp"
 #include "avar/kinematics/ik_workspace.hpp"
@@ -35,7 +35,7 @@ class IkStage {
   /// kinematics and show are borrowed and must outlive the stage. rest_frame: the rig's rest
   /// pose (channel units), the first seed. Throws std::invalid_argument for a target whose
   /// effector the model does not have (config::check_show_against_rig reports it first).
-  IkStage(const RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame);
+  IkStage(const rig::RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame);
 
   /// Solves for the targets at playing time t (seconds; wrapped like the tracks) and writes the
   /// driven channels' targets into frame (indexed by channel). Real-time safe.
@@ -50,7 +50,7 @@ class IkStage {
   std::span<const std::size_t> driven_channels() const noexcept { return driven_channels_; }
 
  private:
-  const RigKinematics& kinematics_;
+  const rig::RigKinematics& kinematics_;
   const playback::Show& show_;
   kinematics::IkWorkspace workspace_;
   std::vector<kinematics::IkGoal> goals_;

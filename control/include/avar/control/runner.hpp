@@ -11,6 +11,7 @@
 
 #include "avar/control/controller.hpp"
 #include "avar/control/latency_histogram.hpp"
+#include "avar/control/plant.hpp"
 #include "avar/control/realtime_setup.hpp"
 
 namespace avar::control {
@@ -25,15 +26,17 @@ struct RunOptions {
   std::uint64_t deadline_miss_budget = UINT64_MAX;
   /// The e-stop input: when it reads true the controller faults (nullptr: none).
   const std::atomic<bool>* estop = nullptr;
+  /// The simulated figure, advanced by each tick's period after the tick (nullptr: none).
+  Plant* plant = nullptr;
 };
 
-/// Called after every tick, on the loop thread (for the simulated plant, statistics, traces,
-/// progress). Implementations on a real-time loop must be quick.
+/// Called after every tick (and the plant's step), on the loop thread: statistics, traces,
+/// progress. An observer only watches: nothing in the loop depends on it. Implementations on a
+/// real-time loop must be quick.
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
   /// lateness_s: how late this tick's wake-up came after its deadline (0 on the stepped clock).
-  /// The observer may hand position feedback to the controller (Controller::feed_back).
   virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, Controller& controller) = 0;
 };
 

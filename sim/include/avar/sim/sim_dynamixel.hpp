@@ -52,6 +52,8 @@ class SimDynamixel final : public ByteDevice {
   std::uint8_t read_u8(std::size_t servo, std::uint16_t address) const { return servos_[servo].table[address]; }
   std::int32_t read_i32(std::size_t servo, std::uint16_t address) const;
   double temperature_c(std::size_t servo) const { return servos_[servo].temperature; }
+  /// Sets a servo's temperature (a test warming it); it heats and cools from there.
+  void set_temperature_c(std::size_t servo, double celsius) { servos_[servo].temperature = celsius; }
   /// Present position in pulses (the model's exact value; the table holds it rounded).
   double position(std::size_t servo) const { return servos_[servo].position; }
   std::uint64_t crc_errors() const { return crc_errors_; }

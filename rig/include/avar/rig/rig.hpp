@@ -1,19 +1,23 @@
 #pragma once
 // The rig: what a figure is made of, as loaded from a rig file. Names are resolved to dense
-// indices once at load; everything downstream uses indices.
+// indices once at load; everything downstream uses indices. This is a description only: what
+// each protocol makes of its link's settings is the protocol's own business (avar::assembly's
+// registry), so a new protocol adds nothing here.
 
 #include <cstddef>
-#include <cstdint>
+#include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "avar/core/input_error.hpp"
+#include "avar/core/scalar_value.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/kinematics/model.hpp"
 
-namespace avar::control {
+namespace avar::rig {
 
 /// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
 struct ChannelSpec {
@@ -33,49 +37,37 @@ struct ChannelSpec {
   SourceLocation where;
 };
 
-/// What a link speaks; every actuator on a link speaks its link's protocol.
-enum class Protocol {
-  maestro,    ///< Pololu Maestro (hobby servos, pulse widths)
-  dynamixel,  ///< ROBOTIS DYNAMIXEL Protocol 2.0 smart servos (X-series)
-  feetech,    ///< Feetech SCS / STS smart servos
-  ssc32,      ///< Lynxmotion SSC-32 / SSC-32U (hobby servos, pulse widths)
-  dmx,        ///< ENTTEC DMX USB Pro (one DMX512 universe)
-};
-const char* to_string(Protocol p) noexcept;
-
-/// Settings of a Pololu Maestro link.
-struct MaestroOptions {
-  int channel_count = 24;        ///< 6 (Micro), 12, 18 or 24 (Mini)
-  bool pololu_form = false;      ///< address by device number (daisy chains) instead of compact
-  std::uint8_t device_number = 12;
-  bool crc = false;              ///< append CRC-7 (the device's "Enable CRC" setting)
-  bool baud_detect = false;      ///< send 0xAA first (device in "UART, detect baud rate" mode)
+/// One setting of a link's protocol block (`maestro: {model: mini12}`): its key, where the key
+/// stands, and its value as written.
+struct LinkSetting {
+  std::string key;
+  SourceLocation key_where;
+  ScalarValue value;
 };
 
-/// What a smart-servo bus reads back every tick.
-enum class Readback {
-  none,      ///< write only
-  position,  ///< present position
-  full,      ///< position, load, temperature (and hardware errors on alert)
-};
+/// A link's protocol settings as written, validated and interpreted by the protocol's entry in
+/// the registry (avar::assembly::Protocol).
+struct LinkSettings {
+  std::vector<LinkSetting> entries;  ///< in file order
+  SourceLocation where;              ///< the settings block
+  std::string what;                  ///< names the block in messages: "the maestro settings of link 'head'"
 
-/// Settings of a smart-servo bus (DYNAMIXEL, Feetech).
-struct ServoBusOptions {
-  Readback readback = Readback::full;
-  int reply_timeout_ms = 10;  ///< longest wait for one exchange's replies
-  int retries = 1;            ///< re-reads per exchange for lost replies
-  bool scs = false;           ///< Feetech: SCS series (big-endian, 0..1023) instead of STS
+  const ScalarValue* find(std::string_view key) const;
+  /// Fails at the first key not in `allowed`, naming the block and the keys it takes.
+  void expect_only_keys(std::span<const std::string_view> allowed) const;
+  void expect_only_keys(std::initializer_list<std::string_view> allowed) const {
+    expect_only_keys(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+  }
 };
 
 /// One physical connection. port "sim" means: a simulated device on a pseudo-terminal.
 struct LinkSpec {
   std::string name;
-  Protocol protocol = Protocol::maestro;
+  std::string protocol;  ///< a protocol's name in the registry: maestro, dynamixel, feetech...
   std::string port;
-  int baud = 115200;
-  double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
-  MaestroOptions maestro;
-  ServoBusOptions bus;
+  int baud = 0;
+  double watchdog_s = 0.25;   ///< in real time: a link that completes no send for this long faults
+  LinkSettings settings;
   SourceLocation where;
 
   bool simulated() const { return port == "sim"; }
@@ -143,4 +135,4 @@ struct Rig {
   std::string channel_names() const;
 };
 
-}  // namespace avar::control
+}  // namespace avar::rig

@@ -1,6 +1,6 @@
-#include "avar/control/rig.hpp"
+#include "avar/rig/rig.hpp"
 
-namespace avar::control {
+namespace avar::rig {
 
 const char* to_string(Failsafe f) noexcept {
   switch (f) {
@@ -11,15 +11,21 @@ const char* to_string(Failsafe f) noexcept {
   return "unknown";
 }
 
-const char* to_string(Protocol p) noexcept {
-  switch (p) {
-    case Protocol::maestro: return "maestro";
-    case Protocol::dynamixel: return "dynamixel";
-    case Protocol::feetech: return "feetech";
-    case Protocol::ssc32: return "ssc32";
-    case Protocol::dmx: return "dmx";
+const ScalarValue* LinkSettings::find(std::string_view key) const {
+  for (const LinkSetting& e : entries)
+    if (e.key == key) return &e.value;
+  return nullptr;
+}
+
+void LinkSettings::expect_only_keys(std::span<const std::string_view> allowed) const {
+  for (const LinkSetting& e : entries) {
+    bool known = false;
+    for (std::string_view a : allowed) known = known || e.key == a;
+    if (known) continue;
+    std::string list;
+    for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    throw InputError(e.key_where, "unknown field '" + e.key + "' in " + what + "; expected one of: " + list);
   }
-  return "unknown";
 }
 
 std::vector<std::size_t> bindings_moving(const RigKinematics& kinematics, std::size_t effector) {
@@ -58,4 +64,4 @@ std::string Rig::channel_names() const {
   return out;
 }
 
-}  // namespace avar::control
+}  // namespace avar::rig

@@ -1,0 +1,85 @@
+#pragma once
+// The registry of protocols: everything avar knows about one kind of link, in one entry. A new
+// protocol joins by one entry (its own source file under assembly/src/protocols/) and one line in
+// the registry's list; the rig reader, the validation, the driver and the simulator all reach it
+// through here. Load-time only: nothing here runs in the tick.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/rig/rig.hpp"
+#include "avar/sim/byte_device.hpp"
+
+namespace avar::assembly {
+
+/// How an actuator is addressed and calibrated on a link.
+struct AddressRule {
+  const char* key;                 ///< device_channel, id or address
+  long long low, high;             ///< valid addresses
+  const char* cal_min;             ///< calibration keys
+  const char* cal_max;
+  const char* trim;
+  double device_low, device_high;  ///< the device's own range
+  const char* unit;
+};
+
+/// A simulated device for one link of a rig, and how to read an actuator's true position off it
+/// (channel units: the ground truth the simulator knows and a real figure never tells).
+struct SimulatedDevice {
+  std::unique_ptr<sim::ByteDevice> device;
+  std::function<double(const rig::ActuatorSpec&)> true_position;
+};
+
+/// What the assembly asks of a driver beyond the rig.
+struct DriverTuning {
+  /// Smallest wait for a reply (ms): a simulated device answers from a thread of this process,
+  /// which a busy machine may keep waiting longer than a real servo's reply timeout.
+  int min_reply_timeout_ms = 0;
+};
+
+struct Protocol {
+  const char* name;         ///< the settings block's key in a rig file: `maestro: {...}`
+  const char* device_name;  ///< for messages: "Maestro"
+  int default_baud;
+  const char* bauds_text;   ///< the rates the device runs at, for messages
+  bool (*device_accepts_baud)(int baud);
+  /// Checks the link's settings whole (keys, types, ranges); throws InputError at the setting.
+  void (*validate_settings)(const rig::LinkSpec& link);
+  AddressRule (*address_rule)(const rig::LinkSpec& link, bool fine);
+  /// Whether the actuator may set `fine` (16-bit DMX).
+  bool has_fine_addresses;
+  /// Whether an actuator must be calibrated (a DMX dimmer spans its range by default).
+  bool needs_calibration;
+  /// Whether the devices report telemetry (position, load, temperature) with these settings.
+  bool (*reports_telemetry)(const rig::LinkSpec& link);
+  /// The driver of link `link` of a validated rig over `transport` (borrowed).
+  std::unique_ptr<firmware_iface::ActuatorLink> (*make_link)(const rig::Rig& rig, std::size_t link,
+                                                            firmware_iface::ByteTransport& transport,
+                                                            const DriverTuning& tuning);
+  /// A simulated device set up as its owner would have set up the real one, parked at rest.
+  SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
+};
+
+/// Every protocol avar speaks, in the order messages list them.
+const std::vector<const Protocol*>& protocols();
+/// The protocol called `name`, or nullptr.
+const Protocol* find_protocol(std::string_view name);
+/// The protocol of a link of a validated rig (std::invalid_argument when unknown).
+const Protocol& protocol_of(const rig::LinkSpec& link);
+/// "maestro, dynamixel, ..." for messages.
+std::string protocol_names();
+
+/// The baud rate written for a link of protocol `p` (`what` names it: "the baud rate of link
+/// 'arm'"): a standard serial rate that the device runs at. Throws InputError at the value.
+int checked_baud(const Protocol& p, const ScalarValue& written, std::string_view what);
+
+/// Index of an actuator among its link's actuators (the order drivers and simulated devices
+/// list them in).
+std::size_t index_on_link(const rig::Rig& rig, const rig::ActuatorSpec& wanted);
+
+}  // namespace avar::assembly

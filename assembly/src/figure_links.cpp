@@ -1,0 +1,125 @@
+#include "avar/assembly/figure_links.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "avar/control/threaded_link.hpp"
+#include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/sim/pty_device_host.hpp"
+
+namespace avar::assembly {
+
+struct FigureLinks::Entry {
+  std::size_t link_index = 0;
+  bool simulated = false;
+  SimulatedDevice device;
+  std::unique_ptr<sim::PtyDeviceHost> host;
+  std::unique_ptr<firmware_iface::SerialTransport> transport;
+  std::unique_ptr<firmware_iface::ActuatorLink> link;
+  std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
+  firmware_iface::ActuatorLink* outer() const {
+    return threaded ? static_cast<firmware_iface::ActuatorLink*>(threaded.get()) : link.get();
+  }
+};
+
+FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
+    : rig_(rig), truth_(rig.channels.size(), 0.0), truth_known_(rig.channels.size(), 0) {
+  if (selection.port && rig.links.size() != 1)
+    throw InputError({rig.file, rig.links[0].where.line, rig.links[0].where.column},
+                     "--port sets the port of a rig's single link, but this rig has " + std::to_string(rig.links.size()) +
+                         " links; set each link's port in the rig file");
+  for (std::size_t i = 0; i < rig.links.size(); ++i) {
+    const Protocol& protocol = protocol_of(rig.links[i]);
+    auto entry = std::make_unique<Entry>();
+    entry->link_index = i;
+    std::string port = selection.port.value_or(rig.links[i].port);
+    entry->simulated = selection.simulate_all || port == "sim";
+    DriverTuning tuning;
+    if (entry->simulated) {
+      entry->device = protocol.make_simulated(rig, i);
+      if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
+      entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, sim::PtyDeviceHost::Clock::stepped);
+      port = entry->host->slave_path();
+      // A simulated device answers from a thread of this process, which a busy machine may keep
+      // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
+      // saturated 2-core machine under the sanitizers): give it a second (it answers at once
+      // when it runs, so only a lost reply would ever wait this long).
+      tuning.min_reply_timeout_ms = 1000;
+    }
+    entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
+    entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+    if (selection.threaded_rate_hz > 0) {
+      const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
+      entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
+    }
+    entries_.push_back(std::move(entry));
+  }
+}
+
+FigureLinks::~FigureLinks() {
+  // Close the serial side before the simulated devices behind it go away.
+  for (auto& e : entries_) {
+    e->threaded.reset();
+    e->link.reset();
+    e->transport.reset();
+  }
+}
+
+std::vector<firmware_iface::ActuatorLink*> FigureLinks::links() const {
+  std::vector<firmware_iface::ActuatorLink*> out;
+  for (const auto& e : entries_) out.push_back(e->outer());
+  return out;
+}
+
+bool FigureLinks::any_simulated() const {
+  return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->simulated; });
+}
+
+bool FigureLinks::all_simulated() const {
+  return std::all_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->simulated; });
+}
+
+std::string FigureLinks::describe(std::size_t link) const {
+  const Entry& e = *entries_[link];
+  return (e.simulated ? "simulated " : "") + e.link->describe();
+}
+
+firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
+
+bool FigureLinks::reports_telemetry(std::size_t link) const {
+  return protocol_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
+}
+
+void FigureLinks::advance(double dt_s) {
+  for (const auto& e : entries_) {
+    if (!e->simulated) continue;
+    // Everything sent this tick must have reached the device before its time moves on, so
+    // a run on the stepped clock is deterministic.
+    e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
+    e->host->with_device([&](sim::ByteDevice& device) {
+      device.advance(dt_s);
+      for (const rig::ActuatorSpec& a : rig_.actuators) {
+        if (a.link != e->link_index) continue;
+        truth_[a.channel] = e->device.true_position(a);
+        truth_known_[a.channel] = 1;
+      }
+    });
+  }
+}
+
+void FigureLinks::measure(std::span<double> measured, std::span<bool> known) const noexcept {
+  for (std::size_t c = 0; c < truth_.size() && c < measured.size(); ++c) {
+    if (!truth_known_[c]) continue;
+    measured[c] = truth_[c];
+    known[c] = true;
+  }
+}
+
+std::uint64_t FigureLinks::bytes_sent() const {
+  std::uint64_t total = 0;
+  for (const auto& e : entries_) total += e->transport->bytes_written();
+  return total;
+}
+
+}  // namespace avar::assembly
