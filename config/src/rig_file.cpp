@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <set>
 
-#include "avar/config/rig_kinematics.hpp"
-#include "avar/config/yaml_support.hpp"
+#include "rig_kinematics.hpp"
+#include "yaml_support.hpp"
 #include "avar/assembly/protocol.hpp"
 
 namespace avar::config {

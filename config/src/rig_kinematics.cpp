@@ -1,4 +1,4 @@
-#include "avar/config/rig_kinematics.hpp"
+#include "rig_kinematics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // Reading the clips and layers of a show file (playback/timeline.hpp). Internal to config/.
 // Load time: allocates, throws InputError naming file, line and column.
 
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 #include "avar/playback/show.hpp"
 
 namespace avar::config::detail {

@@ -6,7 +6,7 @@
 #include <tuple>
 #include <utility>
 
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
 #include "show_tracks.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 #include "avar/playback/show.hpp"
 
 namespace avar::config::detail {

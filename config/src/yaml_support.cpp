@@ -1,4 +1,4 @@
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 
 namespace avar::config {
 

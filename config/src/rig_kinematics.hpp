@@ -5,7 +5,7 @@
 // without a channel, channels without a known unit and no scale, are InputErrors naming file,
 // line and what was expected. Load time only.
 
-#include "avar/config/yaml_support.hpp"
+#include "yaml_support.hpp"
 #include "avar/rig/rig.hpp"
 
 namespace avar::config {
