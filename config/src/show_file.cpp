@@ -17,6 +17,7 @@ namespace {
 
 using detail::constant_curve;
 using detail::read_name;
+using detail::read_key_time;
 using detail::read_track;
 
 /// Three curves of a target from `names` (x, y, z or roll, pitch, yaw), or a static `vector`.
@@ -195,10 +196,7 @@ playback::OrientationKeyTrack read_orientation_keys(const YamlRef& node, double 
     k.expect_only_keys({"time", "quaternion", "euler"}, kwhat);
     playback::OrientationKeySpec key;
     key.where = k.where();
-    const YamlRef time = k.at("time", kwhat);
-    key.time = time.as_double("the key time (seconds)");
-    if (key.time < 0 || key.time > duration)
-      time.fail("key time " + format_number(key.time) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+    key.time = read_key_time(k, kwhat, duration);
     if (k.has("quaternion") == k.has("euler"))
       k.fail("expected " + kwhat + " to have either quaternion or euler, not " + (k.has("euler") ? "both" : "neither"));
     if (auto q = k.find("quaternion")) {

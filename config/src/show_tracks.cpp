@@ -42,10 +42,7 @@ playback::RawKey read_key(const YamlRef& node, double duration, const std::strin
                         what);
   playback::RawKey key;
   key.where = node.where();
-  const YamlRef time = node.at("time", what);
-  key.time = time.as_double("the key time (seconds)");
-  if (key.time < 0 || key.time > duration)
-    time.fail("key time " + format_number(key.time) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+  key.time = read_key_time(node, what, duration);
   key.value = node.at("value", what).as_double("the key value");
   if (auto interp = node.find("interpolation"))
     key.interpolation = read_name(*interp, "interpolation", playback::interpolation_from_name, playback::interpolation_names());
@@ -89,6 +86,14 @@ playback::Cycles read_cycles(const YamlRef& node, const std::string& channel) {
 }
 
 }  // namespace
+
+double read_key_time(const YamlRef& key, std::string_view what, double duration) {
+  const YamlRef time = key.at("time", what);
+  const double t = time.as_double("the key time (seconds)");
+  if (t < 0 || t > duration)
+    time.fail("key time " + format_number(t) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
+  return t;
+}
 
 playback::Track read_track(const YamlRef& name, const YamlRef& body, double duration) {
   const std::string channel = name.as_string("a channel name");

@@ -24,6 +24,9 @@ auto read_name(const YamlRef& node, std::string_view what, Parse parse, std::str
 /// cycles, auto_smoothing, keys}; key times must lie in [0, duration] seconds.
 playback::Track read_track(const YamlRef& name, const YamlRef& body, double duration);
 
+/// The `time` of a key map (`what` names the key), seconds within [0, duration].
+double read_key_time(const YamlRef& key, std::string_view what, double duration);
+
 /// A constant one-key curve of `value`, for a static quantity; `raw` receives its keys.
 playback::Curve constant_curve(double value, const SourceLocation& where, playback::RawCurve& raw);
 
