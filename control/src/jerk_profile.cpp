@@ -5,18 +5,20 @@
 #include <cmath>
 #include <limits>
 
+#include "jerk_bounds.hpp"
+#include "jerk_reach.hpp"
+#include "jerk_stop.hpp"
+#include "jerk_taylor.hpp"
+#include "jerk_velocity_change.hpp"
+
 namespace avar::control {
 namespace {
 
-/// The acceleration and jerk limits with their reciprocals (the solve evaluates D several times
-/// per plan; multiplications are much cheaper than divisions).
-struct Bounds {
-  double A, J, inv_A, inv_J;
-  explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
-  /// With the reciprocals already known.
-  Bounds(const JerkLimits& l, double inverse_a, double inverse_j) : A(l.acceleration), J(l.jerk), inv_A(inverse_a), inv_J(inverse_j) {}
-};
-constexpr double kSixth = 1.0 / 6;
+using jerk::Bounds;
+using jerk::Reach;
+using jerk::SecondOrderStep;
+using jerk::VelocityChange;
+
 /// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
 constexpr double kShiftable = 64;
 /// A plan taken on a predicted Newton step must end this close to the goal (in tolerances).
@@ -26,177 +28,6 @@ constexpr int kMaxRefinements = 64;
 /// Bound of the warm-started Newton steps from the hint.
 constexpr int kMaxWarmSteps = 6;
 static_assert(JerkProfile::kMaxEvaluations == 2 * kMaxWarmSteps + 3 + kMaxRefinements);
-
-/// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
-/// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
-/// (No member initialisers here and in Reach: the solve keeps one of each per plan and zeroing
-/// them each time was a measurable part of a plan's cost; `{}` value-initialises.)
-struct VelocityChange {
-  double s;          ///< +1 raises the velocity past its natural value v0 + a0|a0|/(2J), -1 lowers it
-  double peak;       ///< |peak acceleration|, <= A
-  double rise;       ///< s (duration of the first jerk piece)
-  double hold;       ///< s
-  double fall;       ///< s
-  double distance;   ///< units
-  double magnitude;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
-};
-
-// (Inlined into the solve's evaluation, as reach() is: 5% off a plan in interleaved replays of
-// the bench's costliest tick.)
-[[gnu::always_inline]] inline VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k) {
-  const double A = k.A, J = k.J;
-  VelocityChange c;
-  c.s = v1 >= v0 + 0.5 * a0 * std::abs(a0) * k.inv_J ? 1.0 : -1.0;
-  // In the frame where the change raises the velocity: w = s v, b = s a.
-  const double b0 = c.s * a0;
-  const double w0 = c.s * v0;
-  const double dw = c.s * (v1 - v0);
-  // Velocity gained: (peak² - b0²)/(2J) rising, peak·hold, peak²/(2J) falling.
-  const double peak_squared = std::max(0.0, J * dw + 0.5 * b0 * b0);
-  if (peak_squared <= A * A) {
-    c.peak = std::sqrt(peak_squared);
-    c.hold = 0;
-  } else {
-    c.peak = A;
-    c.hold = std::max(0.0, (dw - 0.5 * (2 * A * A - b0 * b0) * k.inv_J) * k.inv_A);
-  }
-  // peak >= b0 but for rounding, which would leave the change ending with a != 0.
-  c.peak = std::max(c.peak, b0);
-  c.rise = (c.peak - b0) * k.inv_J;
-  c.fall = c.peak * k.inv_J;
-  const double t1 = c.rise, t2 = c.hold, t3 = c.fall, m = c.peak;
-  double w = w0;
-  double x = t1 * (w + t1 * (0.5 * b0 + kSixth * J * t1));
-  w += t1 * (b0 + 0.5 * J * t1);
-  x += t2 * (w + 0.5 * m * t2);
-  w += m * t2;
-  x += t3 * (w + t3 * (0.5 * m - kSixth * J * t3));
-  c.distance = c.s * x;
-  const double t = t1 + t2 + t3;
-  c.magnitude = (std::abs(w0) + m * t) * t;
-  return c;
-}
-
-/// The peak acceleration of the time-optimal stop from (v, 0): sqrt(J|v|), at most A.
-double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * std::abs(v)), k.A); }
-
-/// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp (change_slope()
-/// plus stop_slope(), below).
-struct Reach {
-  double distance;
-  double slope;
-  double magnitude;       ///< the distance is exact to a few ulps of this
-  double duration;        ///< of the change and the stop (s): the plan's, but for a cruise
-  double stop_peak;       ///< |peak acceleration| of the stop, <= A
-  VelocityChange change;  ///< phase 1
-};
-
-/// D' of a change to vp in direction s whose peak acceleration is m > 0: for a change to v1,
-/// d distance/d v1 = s v1/m + m/(2J).
-[[gnu::always_inline]] inline double change_slope(double s, double vp, double m, const Bounds& k) {
-  return s * vp / m + 0.5 * m * k.inv_J;
-}
-/// |vp| / m for the stop from vp with peak acceleration m: |vp| / A where it reaches A, else
-/// m / J (where m = sqrt(J |vp|), no division).
-[[gnu::always_inline]] inline double stop_coast(double speed, double m, bool reaches_a, const Bounds& k) {
-  return reaches_a ? speed * k.inv_A : m * k.inv_J;
-}
-/// D' of the stop from vp: it covers vp T/2 with T = m/J + |vp|/m.
-[[gnu::always_inline]] inline double stop_slope(double coast, double m, const Bounds& k) { return coast + 0.5 * m * k.inv_J; }
-
-[[gnu::always_inline]] inline Reach reach(double v0, double a0, double vp, const Bounds& k) {
-  Reach r;  // (every member is set below)
-  r.change = velocity_change(v0, a0, vp, k);
-  const VelocityChange& c = r.change;
-  r.distance = c.distance;
-  r.magnitude = c.magnitude;
-  r.slope = c.peak > 0 ? change_slope(c.s, vp, c.peak, k) : std::numeric_limits<double>::infinity();
-  // The stop from (vp, 0): peak m = sqrt(J|vp|) <= A, where |vp|/m = m/J (no division).
-  const double speed = std::abs(vp);
-  const double root = std::sqrt(k.J * speed);
-  const bool reaches_a = root > k.A;
-  const double m = reaches_a ? k.A : root;
-  r.stop_peak = m;
-  const double coast = stop_coast(speed, m, reaches_a, k);
-  const double duration = m * k.inv_J + coast;
-  r.distance += 0.5 * vp * duration;
-  r.magnitude += speed * duration;
-  r.duration = c.rise + c.hold + c.fall + duration;
-  r.slope += stop_slope(coast, m, k);
-  return r;
-}
-
-/// D'' per phase, from the slopes in reach(). A change to vp in direction s with peak
-/// acceleration m < A (m² = J s (vp - v0) + b0²/2) has 5s/(4m) - J vp/(2m³); one that holds at A
-/// has s/A.
-double change_curvature(double s, double vp, double m, bool holds, const Bounds& k) {
-  const double inv_m = 1 / m;
-  return holds ? s * k.inv_A : (1.25 * s - 0.5 * k.J * vp * inv_m * inv_m) * inv_m;
-}
-/// A stop from vp with peak m < A has 3 sign(vp)/(4m); one that reaches A has sign(vp)/A.
-double stop_curvature(double vp, double m, const Bounds& k) {
-  const double sign = vp > 0 ? 1.0 : -1.0;
-  return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
-}
-
-/// D''' per phase, from the D'' above (dm/dvp = J s/(2m) for both peaks below A; D'' is constant
-/// where a peak is at A): a change without hold has -9J/(8m³) + 3J² s vp/(4m⁵), a stop below A
-/// has -3J/(8m³).
-double change_third(double s, double vp, double m, bool holds, const Bounds& k) {
-  if (holds) return 0;
-  const double inv_m = 1 / m, inv_m3 = inv_m * inv_m * inv_m;
-  return (-1.125 + 0.75 * k.J * s * vp * inv_m * inv_m) * k.J * inv_m3;
-}
-double stop_third(double m, const Bounds& k) { return m >= k.A ? 0.0 : -0.375 * k.J / (m * m * m); }
-
-/// Whether a step of `step` from r (at vp) stays well inside r's regimes, where D is smooth and
-/// its derivatives change by a few percent at most: each phase's peak acceleration squared moves
-/// by under 1% (J |step| of it), without reaching A or the change's start acceleration, a hold
-/// stays, the stop's velocity keeps its sign.
-bool stays_inside(const Reach& r, double vp, double step, const Bounds& k) {
-  const double jump = k.J * std::abs(step);  // how far the peaks' squares move
-  const VelocityChange& c = r.change;
-  const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
-  if (c.hold > 0) {
-    if (!(std::abs(step) < 0.5 * c.hold * k.A)) return false;
-  } else {
-    const double m2 = c.peak * c.peak;
-    // (A change that starts against its direction, b0 <= 0, rises through zero to any m > 0.)
-    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && (b0 <= 0 || 2 * jump < m2 - b0 * b0))) return false;
-  }
-  const double m = r.stop_peak, m2 = m * m;
-  if (m2 >= k.A * k.A) return 2 * jump < k.J * std::abs(vp) - k.A * k.A;
-  return jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2;
-}
-
-/// The residual a step of `step` from r (at vp) is left with, by Taylor: r + D' step + D'' step²/2.
-/// (After a Newton step in vp, D'' step²/2; a step taken in sqrt(|vp - natural|) also leaves
-/// part of the linear term.) NaN unless the step stays inside r's regimes (stays_inside).
-double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
-  if (!stays_inside(r, vp, step, k)) return std::numeric_limits<double>::quiet_NaN();
-  const VelocityChange& c = r.change;
-  const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, r.stop_peak, k);
-  return r.distance + r.slope * step + 0.5 * curvature * step * step;
-}
-
-/// A second-order step from r (at vp): the root of r + D' x + D'' x²/2 next to 0, with the
-/// residual it is left with by Taylor, D''' x³/6; NaN where the step leaves r's regimes
-/// (stays_inside) or the quadratic has no real root.
-struct SecondOrderStep {
-  double step, residual;
-};
-SecondOrderStep second_order_step(const Reach& r, double vp, const Bounds& k) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const VelocityChange& c = r.change;
-  const bool holds = c.hold > 0;
-  const double curvature = change_curvature(c.s, vp, c.peak, holds, k) + stop_curvature(vp, r.stop_peak, k);
-  const double discriminant = r.slope * r.slope - 2 * curvature * r.distance;
-  if (!(discriminant > 0)) return {nan, nan};
-  const double step = -2 * r.distance / (r.slope + std::sqrt(discriminant));
-  if (!stays_inside(r, vp, step, k)) return {nan, nan};
-  const double third = change_third(c.s, vp, c.peak, holds, k) + stop_third(r.stop_peak, k);
-  return {step, third * step * step * step / 6};
-}
 
 MotionState advance(MotionState s, double t, double jerk) {
   s.p += t * (s.v + t * (s.a / 2 + t * jerk / 6));
@@ -209,7 +40,7 @@ MotionState advance(MotionState s, double t, double jerk) {
 
 double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
   const double a = std::clamp(s.a, -limits.acceleration, limits.acceleration);
-  return s.p + velocity_change(s.v, a, 0, Bounds(limits)).distance;
+  return s.p + jerk::velocity_change(s.v, a, 0, Bounds(limits)).distance;
 }
 
 double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept {
@@ -263,7 +94,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
     if (vp == last_vp) return last;
     if (vp == earlier_vp) return earlier;
     ++evaluations_;
-    Reach r = reach(v0, a0, vp, bounds);
+    Reach r = jerk::reach(v0, a0, vp, bounds);
     r.distance -= d;
     tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
     if (last_vp == last_vp) earlier_vp = last_vp, earlier = last;  // (last is unset before the first)
@@ -409,7 +240,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
       double predicted_residual = std::numeric_limits<double>::quiet_NaN();
       if (predict && next > lo && next < hi && (k > 0 || outlasts)) {
         predicted_residual = k > 0 ? r.distance / (previous_residual * previous_residual) * r.distance * r.distance
-                                   : newton_residual(r, x, next - x, bounds);
+                                   : jerk::newton_residual(r, x, next - x, bounds);
         const double allowed = outlasts ? std::max(tolerance, slack.distance) : tolerance;
         if (std::abs(predicted_residual) <= 0.25 * allowed) {
           vp = next;
@@ -421,7 +252,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
         // Where the Newton step's D'' step²/2 is known (the step stays inside r's regimes) but not
         // small enough on the first step, a second-order step leaves D''' step³/6. (Where it is
         // not known, the second-order step measured never inside either.)
-        const SecondOrderStep second = second_order_step(r, x, bounds);
+        const SecondOrderStep second = jerk::second_order_step(r, x, bounds);
         const double to = x + second.step;
         if (to > lo && to < hi && std::abs(second.residual) <= 0.25 * std::max(tolerance, slack.distance)) {
           vp = to;
@@ -615,8 +446,8 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
 
   const bool evaluated = vp == last_vp || vp == earlier_vp;
   const Reach& ended_on = vp == last_vp ? last : earlier;
-  const VelocityChange change = evaluated ? ended_on.change : velocity_change(v0, a0, vp, bounds);
-  const double m = stop_peak(vp, bounds);
+  const VelocityChange change = evaluated ? ended_on.change : jerk::velocity_change(v0, a0, vp, bounds);
+  const double m = jerk::stop_peak(vp, bounds);
   stop_peak_ = m;
   inverse_acceleration_ = bounds.inv_A;
   inverse_jerk_ = bounds.inv_J;
@@ -661,8 +492,8 @@ PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
   const double m = holds ? k.A : k.J * (fall_end - std::max(t, fall_start));
   const double ms = stop_peak_;
   PeakSensitivity out;
-  out.slope = change_slope(s, vp, m, k) + stop_slope(stop_coast(std::abs(vp), ms, ms >= k.A, k), ms, k);
-  out.curvature = change_curvature(s, vp, m, holds, k) + stop_curvature(vp, ms, k);
+  out.slope = jerk::change_slope(s, vp, m, k) + jerk::stop_slope(jerk::stop_coast(std::abs(vp), ms, ms >= k.A, k), ms, k);
+  out.curvature = jerk::change_curvature(s, vp, m, holds, k) + jerk::stop_curvature(vp, ms, k);
   out.before_fall = t <= fall_start;
   return out;
 }
