@@ -1,202 +1,27 @@
 #include "avar/control/jerk_profile.hpp"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <limits>
+
+#include "jerk_bounds.hpp"
+#include "jerk_bracket.hpp"
+#include "jerk_branches.hpp"
+#include "jerk_reach.hpp"
+#include "jerk_refine.hpp"
+#include "jerk_residuals.hpp"
+#include "jerk_stop.hpp"
+#include "jerk_velocity_change.hpp"
+#include "jerk_warm_start.hpp"
 
 namespace avar::control {
 namespace {
 
-/// The acceleration and jerk limits with their reciprocals (the solve evaluates D several times
-/// per plan; multiplications are much cheaper than divisions).
-struct Bounds {
-  double A, J, inv_A, inv_J;
-  explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
-  /// With the reciprocals already known.
-  Bounds(const JerkLimits& l, double inverse_a, double inverse_j) : A(l.acceleration), J(l.jerk), inv_A(inverse_a), inv_J(inverse_j) {}
-};
-constexpr double kSixth = 1.0 / 6;
-/// A plan whose end misses the goal by at most this many rounding tolerances is shifted onto it.
-constexpr double kShiftable = 64;
+using jerk::Bounds;
+
 /// A plan taken on a predicted Newton step must end this close to the goal (in tolerances).
 constexpr double kCertified = 4;
-/// Bound of the bracketed refinement (each one evaluation of D).
-constexpr int kMaxRefinements = 64;
-/// Bound of the warm-started Newton steps from the hint.
-constexpr int kMaxWarmSteps = 6;
-static_assert(JerkProfile::kMaxEvaluations == 2 * kMaxWarmSteps + 3 + kMaxRefinements);
-
-/// The time-optimal change from (v0, a0) to (v1, 0) with |a| <= A: jerk s·J until the
-/// acceleration reaches s·peak, a hold there (only at peak = A), jerk -s·J back to zero.
-/// (No member initialisers here and in Reach: the solve keeps one of each per plan and zeroing
-/// them each time was a measurable part of a plan's cost; `{}` value-initialises.)
-struct VelocityChange {
-  double s;          ///< +1 raises the velocity past its natural value v0 + a0|a0|/(2J), -1 lowers it
-  double peak;       ///< |peak acceleration|, <= A
-  double rise;       ///< s (duration of the first jerk piece)
-  double hold;       ///< s
-  double fall;       ///< s
-  double distance;   ///< units
-  double magnitude;  ///< sum of the distance's terms' magnitudes: its rounding is a few ulps of this
-};
-
-// (Inlined into the solve's evaluation, as reach() is: 5% off a plan in interleaved replays of
-// the bench's costliest tick.)
-[[gnu::always_inline]] inline VelocityChange velocity_change(double v0, double a0, double v1, const Bounds& k) {
-  const double A = k.A, J = k.J;
-  VelocityChange c;
-  c.s = v1 >= v0 + 0.5 * a0 * std::abs(a0) * k.inv_J ? 1.0 : -1.0;
-  // In the frame where the change raises the velocity: w = s v, b = s a.
-  const double b0 = c.s * a0;
-  const double w0 = c.s * v0;
-  const double dw = c.s * (v1 - v0);
-  // Velocity gained: (peak² - b0²)/(2J) rising, peak·hold, peak²/(2J) falling.
-  const double peak_squared = std::max(0.0, J * dw + 0.5 * b0 * b0);
-  if (peak_squared <= A * A) {
-    c.peak = std::sqrt(peak_squared);
-    c.hold = 0;
-  } else {
-    c.peak = A;
-    c.hold = std::max(0.0, (dw - 0.5 * (2 * A * A - b0 * b0) * k.inv_J) * k.inv_A);
-  }
-  // peak >= b0 but for rounding, which would leave the change ending with a != 0.
-  c.peak = std::max(c.peak, b0);
-  c.rise = (c.peak - b0) * k.inv_J;
-  c.fall = c.peak * k.inv_J;
-  const double t1 = c.rise, t2 = c.hold, t3 = c.fall, m = c.peak;
-  double w = w0;
-  double x = t1 * (w + t1 * (0.5 * b0 + kSixth * J * t1));
-  w += t1 * (b0 + 0.5 * J * t1);
-  x += t2 * (w + 0.5 * m * t2);
-  w += m * t2;
-  x += t3 * (w + t3 * (0.5 * m - kSixth * J * t3));
-  c.distance = c.s * x;
-  const double t = t1 + t2 + t3;
-  c.magnitude = (std::abs(w0) + m * t) * t;
-  return c;
-}
-
-/// The peak acceleration of the time-optimal stop from (v, 0): sqrt(J|v|), at most A.
-double stop_peak(double v, const Bounds& k) { return std::min(std::sqrt(k.J * std::abs(v)), k.A); }
-
-/// Distance of phase 1 (to vp) plus the stop from (vp, 0), and its slope d/dvp (change_slope()
-/// plus stop_slope(), below).
-struct Reach {
-  double distance;
-  double slope;
-  double magnitude;       ///< the distance is exact to a few ulps of this
-  double duration;        ///< of the change and the stop (s): the plan's, but for a cruise
-  double stop_peak;       ///< |peak acceleration| of the stop, <= A
-  VelocityChange change;  ///< phase 1
-};
-
-/// D' of a change to vp in direction s whose peak acceleration is m > 0: for a change to v1,
-/// d distance/d v1 = s v1/m + m/(2J).
-[[gnu::always_inline]] inline double change_slope(double s, double vp, double m, const Bounds& k) {
-  return s * vp / m + 0.5 * m * k.inv_J;
-}
-/// |vp| / m for the stop from vp with peak acceleration m: |vp| / A where it reaches A, else
-/// m / J (where m = sqrt(J |vp|), no division).
-[[gnu::always_inline]] inline double stop_coast(double speed, double m, bool reaches_a, const Bounds& k) {
-  return reaches_a ? speed * k.inv_A : m * k.inv_J;
-}
-/// D' of the stop from vp: it covers vp T/2 with T = m/J + |vp|/m.
-[[gnu::always_inline]] inline double stop_slope(double coast, double m, const Bounds& k) { return coast + 0.5 * m * k.inv_J; }
-
-[[gnu::always_inline]] inline Reach reach(double v0, double a0, double vp, const Bounds& k) {
-  Reach r;  // (every member is set below)
-  r.change = velocity_change(v0, a0, vp, k);
-  const VelocityChange& c = r.change;
-  r.distance = c.distance;
-  r.magnitude = c.magnitude;
-  r.slope = c.peak > 0 ? change_slope(c.s, vp, c.peak, k) : std::numeric_limits<double>::infinity();
-  // The stop from (vp, 0): peak m = sqrt(J|vp|) <= A, where |vp|/m = m/J (no division).
-  const double speed = std::abs(vp);
-  const double root = std::sqrt(k.J * speed);
-  const bool reaches_a = root > k.A;
-  const double m = reaches_a ? k.A : root;
-  r.stop_peak = m;
-  const double coast = stop_coast(speed, m, reaches_a, k);
-  const double duration = m * k.inv_J + coast;
-  r.distance += 0.5 * vp * duration;
-  r.magnitude += speed * duration;
-  r.duration = c.rise + c.hold + c.fall + duration;
-  r.slope += stop_slope(coast, m, k);
-  return r;
-}
-
-/// D'' per phase, from the slopes in reach(). A change to vp in direction s with peak
-/// acceleration m < A (m² = J s (vp - v0) + b0²/2) has 5s/(4m) - J vp/(2m³); one that holds at A
-/// has s/A.
-double change_curvature(double s, double vp, double m, bool holds, const Bounds& k) {
-  const double inv_m = 1 / m;
-  return holds ? s * k.inv_A : (1.25 * s - 0.5 * k.J * vp * inv_m * inv_m) * inv_m;
-}
-/// A stop from vp with peak m < A has 3 sign(vp)/(4m); one that reaches A has sign(vp)/A.
-double stop_curvature(double vp, double m, const Bounds& k) {
-  const double sign = vp > 0 ? 1.0 : -1.0;
-  return m >= k.A ? sign * k.inv_A : 0.75 * sign / m;
-}
-
-/// D''' per phase, from the D'' above (dm/dvp = J s/(2m) for both peaks below A; D'' is constant
-/// where a peak is at A): a change without hold has -9J/(8m³) + 3J² s vp/(4m⁵), a stop below A
-/// has -3J/(8m³).
-double change_third(double s, double vp, double m, bool holds, const Bounds& k) {
-  if (holds) return 0;
-  const double inv_m = 1 / m, inv_m3 = inv_m * inv_m * inv_m;
-  return (-1.125 + 0.75 * k.J * s * vp * inv_m * inv_m) * k.J * inv_m3;
-}
-double stop_third(double m, const Bounds& k) { return m >= k.A ? 0.0 : -0.375 * k.J / (m * m * m); }
-
-/// Whether a step of `step` from r (at vp) stays well inside r's regimes, where D is smooth and
-/// its derivatives change by a few percent at most: each phase's peak acceleration squared moves
-/// by under 1% (J |step| of it), without reaching A or the change's start acceleration, a hold
-/// stays, the stop's velocity keeps its sign.
-bool stays_inside(const Reach& r, double vp, double step, const Bounds& k) {
-  const double jump = k.J * std::abs(step);  // how far the peaks' squares move
-  const VelocityChange& c = r.change;
-  const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
-  if (c.hold > 0) {
-    if (!(std::abs(step) < 0.5 * c.hold * k.A)) return false;
-  } else {
-    const double m2 = c.peak * c.peak;
-    // (A change that starts against its direction, b0 <= 0, rises through zero to any m > 0.)
-    if (!(jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2 && (b0 <= 0 || 2 * jump < m2 - b0 * b0))) return false;
-  }
-  const double m = r.stop_peak, m2 = m * m;
-  if (m2 >= k.A * k.A) return 2 * jump < k.J * std::abs(vp) - k.A * k.A;
-  return jump <= 0.01 * m2 && 2 * jump < k.A * k.A - m2;
-}
-
-/// The residual a step of `step` from r (at vp) is left with, by Taylor: r + D' step + D'' step²/2.
-/// (After a Newton step in vp, D'' step²/2; a step taken in sqrt(|vp - natural|) also leaves
-/// part of the linear term.) NaN unless the step stays inside r's regimes (stays_inside).
-double newton_residual(const Reach& r, double vp, double step, const Bounds& k) {
-  if (!stays_inside(r, vp, step, k)) return std::numeric_limits<double>::quiet_NaN();
-  const VelocityChange& c = r.change;
-  const double curvature = change_curvature(c.s, vp, c.peak, c.hold > 0, k) + stop_curvature(vp, r.stop_peak, k);
-  return r.distance + r.slope * step + 0.5 * curvature * step * step;
-}
-
-/// A second-order step from r (at vp): the root of r + D' x + D'' x²/2 next to 0, with the
-/// residual it is left with by Taylor, D''' x³/6; NaN where the step leaves r's regimes
-/// (stays_inside) or the quadratic has no real root.
-struct SecondOrderStep {
-  double step, residual;
-};
-SecondOrderStep second_order_step(const Reach& r, double vp, const Bounds& k) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const VelocityChange& c = r.change;
-  const bool holds = c.hold > 0;
-  const double curvature = change_curvature(c.s, vp, c.peak, holds, k) + stop_curvature(vp, r.stop_peak, k);
-  const double discriminant = r.slope * r.slope - 2 * curvature * r.distance;
-  if (!(discriminant > 0)) return {nan, nan};
-  const double step = -2 * r.distance / (r.slope + std::sqrt(discriminant));
-  if (!stays_inside(r, vp, step, k)) return {nan, nan};
-  const double third = change_third(c.s, vp, c.peak, holds, k) + stop_third(r.stop_peak, k);
-  return {step, third * step * step * step / 6};
-}
+static_assert(JerkProfile::kMaxEvaluations == 2 * jerk::kMaxWarmSteps + 3 + jerk::kMaxRefinements);
 
 MotionState advance(MotionState s, double t, double jerk) {
   s.p += t * (s.v + t * (s.a / 2 + t * jerk / 6));
@@ -209,7 +34,7 @@ MotionState advance(MotionState s, double t, double jerk) {
 
 double stopping_point(const MotionState& s, const JerkLimits& limits) noexcept {
   const double a = std::clamp(s.a, -limits.acceleration, limits.acceleration);
-  return s.p + velocity_change(s.v, a, 0, Bounds(limits)).distance;
+  return s.p + jerk::velocity_change(s.v, a, 0, Bounds(limits)).distance;
 }
 
 double rest_to_rest_peak(double distance, const JerkLimits& limits) noexcept {
@@ -240,383 +65,30 @@ void JerkProfile::plan(const MotionState& from, double goal, const JerkLimits& l
 
 bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimits& limits, double hint, bool predict,
                             const PlanSlack& slack) noexcept {
-  loose_ = false;
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   const Bounds bounds(limits);
   start_ = {from.p, from.v, std::clamp(from.a, -A, A)};
   goal_ = goal;
   limits_ = limits;
   const double v0 = start_.v, a0 = start_.a;
-  const double d = goal - from.p;
-  // Reached to rounding: the last bits of the distance are what the plan's end may miss by (and
-  // the plan is shifted by that onto the goal, below).
-  double tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal)) + DBL_MIN;
-  // The last two evaluations: the solve comes back to branch ends and bracket ends it has
-  // evaluated, and ends on one of them (whose change the plan keeps).
-  double last_vp = std::numeric_limits<double>::quiet_NaN(), earlier_vp = last_vp;
-  Reach last, earlier;
-  // A residual within rounding, or within the slack for a plan that lasts beyond its horizon.
-  const auto close_enough = [&](const Reach& r) {
-    return std::abs(r.distance) <= tolerance || (std::abs(r.distance) <= slack.distance && r.duration > slack.after);
-  };
-  const auto residual = [&](double vp) {
-    if (vp == last_vp) return last;
-    if (vp == earlier_vp) return earlier;
-    ++evaluations_;
-    Reach r = reach(v0, a0, vp, bounds);
-    r.distance -= d;
-    tolerance = 4 * DBL_EPSILON * (std::abs(from.p) + std::abs(goal) + r.magnitude) + DBL_MIN;
-    if (last_vp == last_vp) earlier_vp = last_vp, earlier = last;  // (last is unset before the first)
-    last_vp = vp;
-    last = r;
-    return r;
-  };
-
-  // D is increasing for vp beyond both the natural velocity (reached by releasing the
-  // acceleration; computed exactly as velocity_change computes it) and 0; between them (a change
-  // and a stop in the same direction) it may not be.
-  // A natural velocity that is zero to rounding (a state braking onto rest) is zero: the two
-  // branch ends coincide, and the solve next to them runs in u (below) rather than creeping up on
-  // a |vp|^(3/2) root in vp.
-  const double release = 0.5 * a0 * std::abs(a0) * bounds.inv_J;
-  const double unsnapped = std::clamp(v0 + release, -V, V);
-  const double natural = std::abs(unsnapped) <= 8 * DBL_EPSILON * std::abs(v0) ? 0.0 : unsnapped;
-  const double low = std::min(natural, 0.0), high = std::max(natural, 0.0);
-  // Beyond the natural velocity, away from 0, where reaching vp means reversing the
-  // acceleration (the side where D has its square-root corner), D is smooth in
-  // u = sqrt(|vp - natural|) with slope corner_slope at u = 0: there vp = natural ± (r/slope)².
-  const double corner_slope = 2 * natural * std::sqrt(bounds.inv_J);
-  const bool corner_beyond = natural != 0 && (natural > 0 ? a0 <= 0 : a0 >= 0);
-  // Where the root lies by a model, from a branch end `end` (0 or the natural velocity) with
-  // residual r there; `beyond`: the root lies on the far side of `end` from 0 (the corner model
-  // above, when it applies). From the natural velocity (release the acceleration), or from 0
-  // when the start is at rest, the rest of the distance is a move from rest: rest_to_rest_peak,
-  // exact from rest. From 0 otherwise (brake to rest first), the braking change's distance is smooth
-  // in vp there (slope r.slope, the change's peak acceleration staying well away from 0) and
-  // the stop from vp adds vp sqrt(|vp|/J): with vp = -sign(r) y², y solves
-  // sqrt(1/J) y³ + slope y² = |r|, by Newton from above (convex: monotone, 3 steps suffice for
-  // a start).
-  // The braking model alone: NaN where it does not apply (r not at 0, a start at rest, a root
-  // beyond its range).
-  const auto braking_model = [&](const Reach& r) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (natural == 0 || !(r.slope > 0) || !std::isfinite(r.slope)) return nan;
-    const double target = std::abs(r.distance), k = std::sqrt(bounds.inv_J);
-    // The change is linear only while J |vp| stays small next to its peak acceleration squared:
-    // y up to y_valid. A root beyond that is left to the move from rest.
-    const double y_valid = 0.5 * r.change.peak * k;
-    if (y_valid * y_valid * (k * y_valid + r.slope) < target) return nan;
-    // y_valid and the quadratic term alone both bound y from above.
-    double y = std::min(y_valid, std::sqrt(target / r.slope));
-    for (int i = 0; i < 3 && y > 0; ++i) y -= (y * y * (k * y + r.slope) - target) / (y * (3 * k * y + 2 * r.slope));
-    return r.distance > 0 ? -y * y : y * y;
-  };
-  const auto model_from = [&](double end, const Reach& r, bool beyond) {
-    if (end == natural && beyond && corner_beyond) {
-      const double u = -r.distance / corner_slope;
-      if (u > 0) return natural + (natural > 0 ? u * u : -u * u);
-    }
-    const double braking = end == 0 ? braking_model(r) : std::numeric_limits<double>::quiet_NaN();
-    return braking == braking ? braking : end + rest_to_rest_peak(-r.distance, limits);
-  };
-
-  double vp = std::numeric_limits<double>::quiet_NaN();
-  double cruise = 0;
-  // Ends the solve on x when its residual r is close enough.
-  const auto accept = [&](double x, const Reach& r) {
-    if (!close_enough(r)) return false;
-    vp = x;
-    loose_ = std::abs(r.distance) > tolerance;
-    return true;
-  };
-  // A re-plan toward the same goal from a state on the last plan has the same peak: try it
-  // first, with a few Newton steps kept on its branch (so that a target that moves a little
-  // each tick costs a few evaluations).
-  bool predicted = false;
-  // What the warm start learnt, for the bracketed solve should it not converge: on a branch
-  // where D increases (beyond both 0 and the natural velocity), evaluated points below and above
-  // the root bracket it; the last Newton iterate is the best start.
-  double below = std::numeric_limits<double>::quiet_NaN(), f_below = 0;
-  double above = std::numeric_limits<double>::quiet_NaN(), f_above = 0;
-  double resume = hint;
-  // Where the warm start's last Newton step (in vp) pointed when that was past both 0 and the
-  // natural velocity from a branch beyond them (the goal turned back; NaN otherwise): the
-  // bracketed solve then evaluates first the branch end on that side.
-  double pointed = std::numeric_limits<double>::quiet_NaN();
-  if (std::isfinite(hint)) {
-    double previous_residual = 0;
-    const double lo = hint >= high ? high : hint <= low ? -V : low;
-    const double hi = hint >= high ? V : hint <= low ? low : high;
-    // On a branch that starts at the natural velocity, D grows like sqrt(|vp - natural|) there
-    // (a state on the stopping part of a plan has its root right at that corner): Newton runs in
-    // u = sqrt(|vp - natural|), where D is smooth, as in the bracketed refinement below; at the
-    // corner itself (u = 0) with corner_slope.
-    const bool mapped = (lo == natural && a0 <= 0) || (hi == natural && a0 >= 0);
-    // At the natural velocity itself on a smooth branch, take the branch's side of it (the
-    // distance's slope there is that side's).
-    double x = std::clamp(hint, lo, hi);
-    if (x == natural && !mapped) x = std::nextafter(x, hint >= high ? V : -V);
-    const double dir = lo == natural ? 1.0 : -1.0;
-    const double u_end = mapped ? std::sqrt(hi - lo) : 0.0;
-    double u = mapped ? std::sqrt(std::abs(x - natural)) : 0.0;
-    const bool monotone = lo >= high || hi <= low;
-    const auto points_past_both = [&](double newton) { return (lo == high && newton < low) || (hi == low && newton > high); };
-    for (int k = 0; k < kMaxWarmSteps; ++k) {
-      const Reach r = residual(x);
-      if (monotone && r.distance < 0 && !(x <= below)) below = x, f_below = r.distance;
-      if (monotone && r.distance > 0 && !(x >= above)) above = x, f_above = r.distance;
-      if (std::abs(x) == V && r.distance * x <= 0) {
-        vp = x;
-        cruise = -r.distance / x;
-        break;
-      }
-      if (accept(x, r)) break;
-      double next = 0;
-      if (mapped) {
-        const double slope_u = u > 0 ? r.slope * 2 * u * dir : corner_slope;
-        const double u_next = std::clamp(u - r.distance / slope_u, 0.0, u_end);
-        if (!(u_next > 0)) {
-          // At the corner itself: the bracketed refinement takes over, told where a step in vp
-          // points (when it points across the corner).
-          const double newton = x - r.distance / r.slope;
-          if (u > 0 && r.slope > 0 && points_past_both(newton)) pointed = newton;
-          break;
-        }
-        // (At the branch's far end exactly that end, which the bracketed solve may evaluate.)
-        next = u_next == u_end ? (dir > 0 ? hi : lo) : std::clamp(natural + dir * u_next * u_next, lo, hi);
-        u = u_next;
-      } else {
-        // A step that points past both 0 and the natural velocity: the root is likely on the
-        // far side, whose end the bracketed solve then evaluates first. (A step that ends
-        // between them is clamped to the near end, as any other: evaluating that end brackets a
-        // root next to it.)
-        const double newton = x - r.distance / r.slope;
-        if (points_past_both(newton)) {
-          pointed = newton;
-          break;
-        }
-        next = std::clamp(newton, lo, hi);
-      }
-      if (!(next != x)) break;
-      // Newton converges quadratically: r_next ~ K r² with K = r / r_previous² from the last
-      // step. When that predicts a residual well within tolerance, take the step without
-      // evaluating it; the plan's end certifies it below (else the solve runs again in full).
-      // On the first step (no previous residual yet) of a plan that outlasts the slack's
-      // horizon, the Taylor estimate from D'' stands in for K where it applies
-      // (newton_residual). (Plans that end sooner must end on the goal to rounding, which no
-      // estimate predicts reliably: a miss would cost a second solve.)
-      const bool outlasts = r.duration > slack.after;
-      double predicted_residual = std::numeric_limits<double>::quiet_NaN();
-      if (predict && next > lo && next < hi && (k > 0 || outlasts)) {
-        predicted_residual = k > 0 ? r.distance / (previous_residual * previous_residual) * r.distance * r.distance
-                                   : newton_residual(r, x, next - x, bounds);
-        const double allowed = outlasts ? std::max(tolerance, slack.distance) : tolerance;
-        if (std::abs(predicted_residual) <= 0.25 * allowed) {
-          vp = next;
-          predicted = true;
-          break;
-        }
-      }
-      if (predict && k == 0 && outlasts && predicted_residual == predicted_residual) {
-        // Where the Newton step's D'' step²/2 is known (the step stays inside r's regimes) but not
-        // small enough on the first step, a second-order step leaves D''' step³/6. (Where it is
-        // not known, the second-order step measured never inside either.)
-        const SecondOrderStep second = second_order_step(r, x, bounds);
-        const double to = x + second.step;
-        if (to > lo && to < hi && std::abs(second.residual) <= 0.25 * std::max(tolerance, slack.distance)) {
-          vp = to;
-          predicted = true;
-          break;
-        }
-      }
-      previous_residual = r.distance;
-      x = next;
-      resume = next;
-    }
+  jerk::Residuals residual(start_, goal, bounds, slack, evaluations_);
+  const jerk::Branches branches(v0, a0, V, bounds);
+  jerk::Solution solution;
+  const jerk::WarmStart warm = jerk::warm_start(hint, predict, slack, V, branches, bounds, residual, solution);
+  if (!solution.found()) {
+    const jerk::Bracket bracket = jerk::bracket_root(warm, V, limits, branches, bounds, residual, solution);
+    jerk::refine(bracket, warm.resume, 1e-9 * (V / A + A / J), branches, residual, solution);
   }
-  if (!(vp == vp)) {
-    // The branch that holds the root, bracketed as f(lo) <= 0 <= f(hi).
-    double lo = 0, hi = 0, f_lo = 0, f_hi = 0;
-    // The slope at a bracket end next to the root's side of 0 or the natural velocity, where
-    // the residual is often far smaller than at ±V: a Newton step from there starts the solve.
-    double slope_lo = 0, slope_hi = 0;
-    // Between 0 and the natural velocity: where model_from puts the root, from the end nearer it.
-    double model = std::numeric_limits<double>::quiet_NaN();
-    // A probe that falls short of the goal on the way to `end` (V or -V): one Newton step from it
-    // (it usually lands close) before `end` is evaluated. True when the step ends the solve or
-    // brackets the root with the probe; otherwise a step still short becomes short_x, at_short.
-    const auto step_from_probe = [&](double probe, const Reach& at_probe, double end, double& short_x, Reach& at_short) {
-      const double step = at_probe.slope > 0 ? probe - at_probe.distance / at_probe.slope : probe;
-      if (!((step - probe) * (step - end) < 0)) return false;
-      const Reach at_step = residual(step);
-      if (accept(step, at_step)) return true;
-      if ((at_step.distance >= 0) != (end > 0)) {
-        short_x = step, at_short = at_step;
-        return false;
-      }
-      const bool up = step > probe;
-      const Reach& r_lo = up ? at_probe : at_step;
-      const Reach& r_hi = up ? at_step : at_probe;
-      lo = up ? probe : step, f_lo = r_lo.distance, slope_lo = r_lo.slope;
-      hi = up ? step : probe, f_hi = r_hi.distance, slope_hi = r_hi.slope;
-      return true;
-    };
-    const bool warm_bracket = below == below && above == above;
-    // high is evaluated first, unless the warm start pointed below low: then low is, and high
-    // only if the root is not below low after all.
-    const bool low_first = !warm_bracket && low != high && pointed < low;
-    const bool root_below_low = low_first && residual(low).distance >= 0;
-    const Reach at_high = warm_bracket || root_below_low ? Reach{} : residual(high);
-    if (warm_bracket) {
-      lo = below, f_lo = f_below, hi = above, f_hi = f_above;
-    } else if (!root_below_low && at_high.distance <= 0) {
-      // The root is in [high, V]. First the model: brake (or release) to `high`, then the rest
-      // of the distance as a move from rest; it usually brackets the root with `high` and spares
-      // the evaluation at V.
-      const double probe = model_from(high, at_high, true);
-      const bool probed = probe > high && probe < V;
-      const Reach at_probe = probed ? residual(probe) : at_high;
-      if (probed && accept(probe, at_probe)) {
-        // (the probe is on the root)
-      } else if (probed && at_probe.distance >= 0) {
-        lo = high, f_lo = at_high.distance, slope_lo = at_high.slope;
-        hi = probe, f_hi = at_probe.distance, slope_hi = at_probe.slope;
-      } else {
-        double short_x = probed ? probe : high;
-        Reach at_short = at_probe;
-        if (!(probed && step_from_probe(probe, at_probe, V, short_x, at_short))) {
-          const Reach at_v = residual(V);
-          if (at_v.distance <= 0) {
-            vp = V;
-            cruise = -at_v.distance / V;
-          }
-          lo = short_x, f_lo = at_short.distance, slope_lo = at_short.slope;
-          hi = V, f_hi = at_v.distance;
-        }
-      }
-    } else {
-      const Reach at_low = low == high ? at_high : residual(low);
-      if (at_low.distance >= 0) {
-        // The root is in [-V, low]: as above, mirrored.
-        const double probe = model_from(low, at_low, true);
-        const bool probed = probe < low && probe > -V;
-        const Reach at_probe = probed ? residual(probe) : at_low;
-        if (probed && accept(probe, at_probe)) {
-          // (the probe is on the root)
-        } else if (probed && at_probe.distance <= 0) {
-          lo = probe, f_lo = at_probe.distance, slope_lo = at_probe.slope;
-          hi = low, f_hi = at_low.distance, slope_hi = at_low.slope;
-        } else {
-          double short_x = probed ? probe : low;
-          Reach at_short = at_probe;
-          if (!(probed && step_from_probe(probe, at_probe, -V, short_x, at_short))) {
-            const Reach at_minus_v = residual(-V);
-            if (at_minus_v.distance >= 0) {
-              vp = -V;
-              cruise = at_minus_v.distance / V;
-            }
-            lo = -V, f_lo = at_minus_v.distance;
-            hi = short_x, f_hi = at_short.distance, slope_hi = at_short.slope;
-          }
-        }
-      } else {
-        lo = low, f_lo = at_low.distance, slope_lo = at_low.slope;
-        hi = high, f_hi = at_high.distance, slope_hi = at_high.slope;
-        // D need not be monotone here, so the end with the smaller residual need not be the
-        // nearer one: the braking model, where it applies, first (it checks its own range).
-        model = braking_model(low == 0 ? at_low : at_high);
-        if (!(model == model))
-          model = std::abs(at_low.distance) <= std::abs(at_high.distance) ? model_from(low, at_low, false) : model_from(high, at_high, false);
-      }
-    }
-    // Safeguarded Newton: a step that leaves the bracket becomes a regula falsi or bisection.
-    // Near vp = natural the distance grows like a square root of vp, so the bracket may close
-    // before the residual does: an end of the bracket that falls short of the goal in the
-    // direction it moves is finished exactly by a short cruise at its velocity (time-optimal but
-    // for that cruise, which is accepted once negligible).
-    const double negligible_s = 1e-9 * (V / A + A / J);
-    const auto finish_short = [&](double x, double f) {
-      if (x == 0 || -f / x < 0 || -f / x > negligible_s) return false;
-      vp = x;
-      cruise = -f / x;
-      return true;
-    };
-    if (!(vp == vp) && std::abs(f_lo) <= tolerance) vp = lo;
-    if (!(vp == vp) && std::abs(f_hi) <= tolerance) vp = hi;
-    if (!(vp == vp) && !finish_short(lo, f_lo) && !finish_short(hi, f_hi)) {
-      // Next to the natural velocity D grows like the square root of |vp - natural|: there the
-      // iteration runs in u = sqrt(|vp - natural|), in which D is smooth.
-      const bool mapped = !warm_bracket && ((lo == natural && a0 <= 0) || (hi == natural && a0 >= 0));
-      const double dir = lo == natural ? 1.0 : -1.0;
-      const auto to_vp = [&](double u) { return mapped ? natural + dir * u * u : u; };
-      const auto to_u = [&](double x) { return mapped ? std::sqrt(std::abs(x - natural)) : x; };
-      double u_lo = to_u(lo), u_hi = to_u(hi);
-      const auto inside = [&](double u) { return (u - u_lo) * (u - u_hi) < 0; };
-      const auto secant = [&] { return u_lo - f_lo * (u_hi - u_lo) / (f_hi - f_lo); };
-      // The warm start's last iterate; else, between 0 and the natural velocity, the model; else
-      // a Newton step from an end; else the secant.
-      const bool resume_inside = (resume - lo) * (resume - hi) < 0;
-      const bool model_inside = (model - lo) * (model - hi) < 0;
-      double u = resume_inside ? to_u(resume) : model_inside ? to_u(model) : secant();
-      if (!resume_inside && !model_inside) {
-        // A Newton step from the end with the smaller residual (in u where mapped).
-        const auto newton_from = [&](double x, double f, double slope) {
-          const double ux = to_u(x);
-          if (!(slope > 0) || !std::isfinite(slope) || (mapped && !(ux > 0))) return std::numeric_limits<double>::quiet_NaN();
-          return ux - f / (mapped ? slope * 2 * ux * dir : slope);
-        };
-        const double start = std::abs(f_lo) <= std::abs(f_hi) ? newton_from(lo, f_lo, slope_lo) : newton_from(hi, f_hi, slope_hi);
-        if (inside(start)) u = start;
-      }
-      if (!inside(u)) u = 0.5 * (u_lo + u_hi);
-      bool bisect = false;
-      double previous_x = std::numeric_limits<double>::quiet_NaN();
-      for (int k = 0; k < kMaxRefinements; ++k) {
-        const double x = to_vp(u);
-        const Reach r = residual(x);
-        if (accept(x, r)) break;
-        // In u, steps can go on shrinking the bracket's far side while vp = natural ± u² no
-        // longer changes at all (its last bit is reached): the residual is then as small as vp's
-        // resolution allows. Accept it when the end shift below may absorb it; otherwise stop
-        // (the fallback after the loop keeps the plan exact). Without this the loop ran to its
-        // bound on the same vp (issue: 64 evaluations a tick on some moving-target states).
-        if (x == previous_x) {
-          if (std::abs(r.distance) <= kShiftable * tolerance) vp = x;
-          break;
-        }
-        previous_x = x;
-        if (r.distance < 0) {
-          lo = x, u_lo = u, f_lo = r.distance;
-        } else {
-          hi = x, u_hi = u, f_hi = r.distance;
-        }
-        if (finish_short(x, r.distance)) break;
-        if (std::abs(u_hi - u_lo) <= 2 * DBL_EPSILON * std::max(std::abs(u_lo), std::abs(u_hi))) break;
-        double next = u - r.distance / (mapped ? r.slope * 2 * u * dir : r.slope);
-        if (!inside(next) || next == u) {
-          next = bisect ? 0.5 * (u_lo + u_hi) : secant();
-          if (!inside(next)) next = 0.5 * (u_lo + u_hi);
-          bisect = !bisect;
-        }
-        u = next;
-      }
-      if (!(vp == vp) && lo > 0) {
-        vp = lo;
-        cruise = -f_lo / lo;
-      } else if (!(vp == vp) && hi < 0) {
-        vp = hi;
-        cruise = -f_hi / hi;
-      } else if (!(vp == vp)) {
-        vp = 0.5 * (lo + hi);
-      }
-    }
-  }
+  const double vp = solution.vp, cruise = solution.cruise;
+  const bool predicted = solution.predicted;
+  loose_ = solution.loose;
+  const double tolerance = residual.tolerance();
   peak_ = vp;
 
-  const bool evaluated = vp == last_vp || vp == earlier_vp;
-  const Reach& ended_on = vp == last_vp ? last : earlier;
-  const VelocityChange change = evaluated ? ended_on.change : velocity_change(v0, a0, vp, bounds);
-  const double m = stop_peak(vp, bounds);
+  const bool evaluated = residual.remembers(vp);
+  const jerk::Reach& ended_on = residual.remembered(vp);
+  const jerk::VelocityChange change = evaluated ? ended_on.change : jerk::velocity_change(v0, a0, vp, bounds);
+  const double m = jerk::stop_peak(vp, bounds);
   stop_peak_ = m;
   inverse_acceleration_ = bounds.inv_A;
   inverse_jerk_ = bounds.inv_J;
@@ -644,7 +116,7 @@ bool JerkProfile::plan_once(const MotionState& from, double goal, const JerkLimi
   if (predicted && !(std::abs(miss) <= kCertified * tolerance)) return false;
   // (A plan that ends within its slack is not shifted: shifts that come and go from tick to
   // tick would add their size to the commands' third differences.)
-  offset_ = !loose_ && std::abs(miss) <= kShiftable * tolerance ? miss : 0.0;
+  offset_ = !loose_ && std::abs(miss) <= jerk::kShiftable * tolerance ? miss : 0.0;
   return true;
 }
 
@@ -661,8 +133,8 @@ PeakSensitivity JerkProfile::peak_sensitivity(double t) const noexcept {
   const double m = holds ? k.A : k.J * (fall_end - std::max(t, fall_start));
   const double ms = stop_peak_;
   PeakSensitivity out;
-  out.slope = change_slope(s, vp, m, k) + stop_slope(stop_coast(std::abs(vp), ms, ms >= k.A, k), ms, k);
-  out.curvature = change_curvature(s, vp, m, holds, k) + stop_curvature(vp, ms, k);
+  out.slope = jerk::change_slope(s, vp, m, k) + jerk::stop_slope(jerk::stop_coast(std::abs(vp), ms, ms >= k.A, k), ms, k);
+  out.curvature = jerk::change_curvature(s, vp, m, holds, k) + jerk::stop_curvature(vp, ms, k);
   out.before_fall = t <= fall_start;
   return out;
 }
