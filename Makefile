@@ -28,12 +28,12 @@ demo: build
 	  --plot $(BUILD)/hello-head.svg --trace $(BUILD)/hello-head.csv
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer, then the suites whose code runs
-# threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link) under
-# ThreadSanitizer; the limiter's tests are left out there (it runs on the caller's thread only,
-# and its property family is the suite's longest test). `make test-fast` runs every test on the
+# threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link, a figure's
+# assembled links) under ThreadSanitizer; the limiter's tests are left out there (it runs on the
+# caller's thread only, and its property family is the suite's longest test). `make test-fast` runs every test on the
 # optimised build instead. The sanitizer builds use -O1, as the sanitizers' authors advise: at
 # -O0 the Eigen-heavy tests ran 5x slower.
-TSAN_SUITES = control sim firmware_iface
+TSAN_SUITES = control sim firmware_iface assembly
 TSAN_EXCLUDE = ^Limiter\.
 test: test-sanitize test-tsan
 
