@@ -111,7 +111,7 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
   // Channels on smart buses also get what their devices report; smart buses, their wire counters.
   std::vector<char> reported(rig.channels.size(), 0);
   for (const rig::ActuatorSpec& a : rig.actuators)
-    if (figure.reports_telemetry(a.link)) reported[a.channel] = 1;
+    if (figure.reports_telemetry(a.link.value)) reported[a.channel.value] = 1;
   std::vector<std::size_t> counted_links;
   for (std::size_t l = 0; l < rig.links.size(); ++l)
     if (figure.reports_telemetry(l)) counted_links.push_back(l);

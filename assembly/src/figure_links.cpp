@@ -99,10 +99,9 @@ void FigureLinks::advance(double dt_s) {
     e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
     e->host->with_device([&](sim::ByteDevice& device) {
       device.advance(dt_s);
-      for (const rig::ActuatorSpec& a : rig_.actuators) {
-        if (a.link != e->link_index) continue;
-        truth_[a.channel] = e->device.true_position(a);
-        truth_known_[a.channel] = 1;
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        truth_[a.channel.value] = e->device.true_position(a);
+        truth_known_[a.channel.value] = 1;
       }
     });
   }

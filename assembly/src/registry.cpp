@@ -48,9 +48,9 @@ int checked_baud(const Protocol& p, const ScalarValue& written, std::string_view
 
 std::size_t index_on_link(const rig::Rig& rig, const rig::ActuatorSpec& wanted) {
   std::size_t i = 0;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
+  for (const rig::ActuatorSpec& a : rig.actuators_on(wanted.link)) {
     if (&a == &wanted) return i;
-    if (a.link == wanted.link) ++i;
+    ++i;
   }
   return i;
 }

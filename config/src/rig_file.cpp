@@ -128,8 +128,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   const std::string channel_name = channel.as_string("the channel of " + what);
   const auto ci = rig.find_channel(channel_name);
   if (!ci) channel.fail("unknown channel '" + channel_name + "'; expected one of the rig's channels: " + rig.channel_names());
-  a.channel = *ci;
-  const ChannelSpec& ch = rig.channels[a.channel];
+  a.channel = rig::ChannelIndex{*ci};
+  const ChannelSpec& ch = rig.channel(a.channel);
 
   const YamlRef link = node.at("link", what);
   const std::string link_name = link.as_string("the link of " + what);
@@ -139,8 +139,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     for (const LinkSpec& l : rig.links) names += (names.empty() ? "" : ", ") + l.name;
     link.fail("unknown link '" + link_name + "'; expected one of the rig's links: " + names);
   }
-  a.link = *li;
-  const LinkSpec& spec = rig.links[a.link];
+  a.link = rig::LinkIndex{*li};
+  const LinkSpec& spec = rig.link(a.link);
   const assembly::Protocol& link_protocol = assembly::protocol_of(spec);
   const std::string& protocol_name = spec.protocol;
   if (auto protocol = node.find("protocol")) {
@@ -249,11 +249,11 @@ rig::Rig load_rig_file(const std::string& path) {
   for (std::size_t i = 0; i < actuators.size(); ++i) {
     const YamlRef node = actuators[i];
     ActuatorSpec a = read_actuator(rig, node, i);
-    const LinkSpec& link = rig.links[a.link];
+    const LinkSpec& link = rig.link(a.link);
     const assembly::AddressRule rule = assembly::protocol_of(link).address_rule(link, a.fine);
     // A 16-bit DMX channel takes two slots.
     for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
-      if (!used.insert({a.link, slot}).second)
+      if (!used.insert({a.link.value, slot}).second)
         node.at(rule.key, "").fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + link.protocol +
                                    " link '" + link.name + "' is used by two actuators");
     rig.actuators.push_back(std::move(a));

@@ -99,9 +99,10 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
   // A channel eases to rest on a fault unless none of its actuators asks for that.
   std::vector<char> has_actuator(rig.channels.size(), 0);
   for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (!has_actuator[a.channel]) channel_rests_[a.channel] = 0;
-    has_actuator[a.channel] = 1;
-    if (a.failsafe == rig::Failsafe::rest) channel_rests_[a.channel] = 1;
+    const std::size_t c = a.channel.value;
+    if (!has_actuator[c]) channel_rests_[c] = 0;
+    has_actuator[c] = 1;
+    if (a.failsafe == rig::Failsafe::rest) channel_rests_[c] = 1;
   }
   if (!show.targets.empty()) {
     if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
@@ -182,7 +183,8 @@ void Controller::fault(FaultCause cause, std::size_t index, double value, double
   phase_ = Phase::faulted;
   if (!drive_in_fault_) return;
   for (const rig::ActuatorSpec& a : rig_.actuators)
-    if (a.failsafe == rig::Failsafe::release && a.link < links_.size()) links_[a.link]->release_channel(a.channel);
+    if (a.failsafe == rig::Failsafe::release && a.link.value < links_.size())
+      links_[a.link.value]->release_channel(a.channel.value);
   for (std::size_t c = 0; c < failsafe_goal_.size(); ++c) failsafe_goal_[c] = channel_rests_[c] ? rest_[c] : limiter_.heading(c);
   ease_to(failsafe_goal_, now_s);
 }

@@ -42,7 +42,7 @@ TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
   EXPECT_TRUE(rig.links[0].simulated());
   EXPECT_EQ(assembly::maestro_options(rig.links[0]).channel_count, 12);
   ASSERT_EQ(rig.actuators.size(), 2u);
-  EXPECT_EQ(rig.actuators[1].channel, 1u);
+  EXPECT_EQ(rig.actuators[1].channel, rig::ChannelIndex{1});
   EXPECT_EQ(rig.actuators[1].device_channel, 3);
   EXPECT_TRUE(rig.actuators[1].calibration.reverse);
   EXPECT_DOUBLE_EQ(rig.actuators[1].calibration.trim, 12);

@@ -177,7 +177,7 @@ struct HotBus {
     r.links.emplace_back().name = "bus";
     for (std::size_t c = 0; c < 2; ++c) {
       ActuatorSpec a;
-      a.channel = c;
+      a.channel = rig::ChannelIndex{c};
       a.device_channel = static_cast<int>(c + 1);
       a.failsafe = c == 0 ? Failsafe::rest : Failsafe::release;
       r.actuators.push_back(a);

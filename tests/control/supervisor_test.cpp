@@ -28,7 +28,7 @@ Rig rig() {
   const Failsafe actions[] = {Failsafe::hold, Failsafe::rest, Failsafe::release};
   for (std::size_t c = 0; c < 3; ++c) {
     ActuatorSpec a;
-    a.channel = c;
+    a.channel = rig::ChannelIndex{c};
     a.device_channel = static_cast<int>(c);
     a.failsafe = actions[c];
     r.actuators.push_back(a);

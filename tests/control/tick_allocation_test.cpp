@@ -56,7 +56,7 @@ Scene scene() {
     const int device_channel = i < 4 ? i : i + 2;
     link_config.actuators.push_back({static_cast<std::size_t>(i), device_channel, {-45, 45, 1000, 2000, i % 2 == 1, 5}, {}, {}});
     ActuatorSpec spec;
-    spec.channel = static_cast<std::size_t>(i);
+    spec.channel = rig::ChannelIndex{static_cast<std::size_t>(i)};
     spec.failsafe = i % 3 == 0 ? Failsafe::release : (i % 3 == 1 ? Failsafe::hold : Failsafe::rest);
     rig.actuators.push_back(spec);
   }

@@ -10,8 +10,7 @@ namespace {
 SimulatedDevice simulated_dmx(const rig::Rig& rig, std::size_t link) {
   sim::SimDmxConfig config;
   config.baud = rig.links[link].baud;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     sim::SimDmxFixture fixture;
     fixture.address = a.device_channel;
     fixture.fine = a.fine;
@@ -27,10 +26,9 @@ SimulatedDevice simulated_dmx(const rig::Rig& rig, std::size_t link) {
 
 firmware_iface::DmxLinkConfig dmx_config(const rig::Rig& rig, std::size_t link) {
   firmware_iface::DmxLinkConfig config;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     firmware_iface::DmxActuator d;
-    d.channel = a.channel;
+    d.channel = a.channel.value;
     d.address = a.device_channel;
     d.fine = a.fine;
     d.calibration = a.calibration;

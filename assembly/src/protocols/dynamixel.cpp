@@ -20,11 +20,10 @@ firmware_iface::DynamixelReadback dynamixel_readback(Readback r) {
 /// Simulated DYNAMIXEL servos with the rig's IDs, each parked at its rest pose.
 SimulatedDevice simulated_dynamixel(const rig::Rig& rig, std::size_t link) {
   sim::SimDynamixelConfig config;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     sim::SimDynamixelServo servo;
     servo.id = static_cast<std::uint8_t>(a.device_channel);
-    servo.initial_position = static_cast<std::int32_t>(std::lround(a.calibration.to_device(rig.channels[a.channel].rest)));
+    servo.initial_position = static_cast<std::int32_t>(std::lround(a.calibration.to_device(rig.channel(a.channel).rest)));
     config.servos.push_back(servo);
   }
   auto device = std::make_unique<sim::SimDynamixel>(config);
@@ -43,10 +42,9 @@ firmware_iface::DynamixelLinkConfig dynamixel_config(const rig::Rig& rig, std::s
   config.retries = static_cast<std::uint32_t>(bus.retries);
   // The watchdog decides when silence is a fault: a servo may miss that many exchanges.
   config.silent_exchanges = silent_exchanges(rig, link);
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     firmware_iface::DynamixelActuator d;
-    d.channel = a.channel;
+    d.channel = a.channel.value;
     d.id = static_cast<std::uint8_t>(a.device_channel);
     d.calibration = a.calibration;
     d.speed_limit = a.speed_limit;

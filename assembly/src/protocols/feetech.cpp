@@ -24,11 +24,10 @@ SimulatedDevice simulated_feetech(const rig::Rig& rig, std::size_t link) {
   sim::SimFeetechConfig config;
   config.series = feetech_series(rig.links[link]);
   config.baud = rig.links[link].baud;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     sim::SimFeetechServo servo;
     servo.id = static_cast<std::uint8_t>(a.device_channel);
-    servo.initial_position = std::round(a.calibration.to_device(rig.channels[a.channel].rest));
+    servo.initial_position = std::round(a.calibration.to_device(rig.channel(a.channel).rest));
     config.servos.push_back(servo);
   }
   auto device = std::make_unique<sim::SimFeetech>(config);
@@ -56,10 +55,9 @@ firmware_iface::FeetechLinkConfig feetech_config(const rig::Rig& rig, std::size_
   config.baud = spec.baud;
   config.readback = feetech_readback(bus.readback);
   config.reply_timeout = std::chrono::milliseconds(bus.reply_timeout_ms);
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     firmware_iface::FeetechActuator f;
-    f.channel = a.channel;
+    f.channel = a.channel.value;
     f.id = static_cast<std::uint8_t>(a.device_channel);
     f.calibration = a.calibration;
     // Device-side limits are given in channel units; the servo counts in position steps.

@@ -30,12 +30,11 @@ SimulatedDevice simulated_maestro(const rig::Rig& rig, std::size_t link) {
   config.device_number = options.device_number;
   config.crc = options.crc;
   config.baud_detect = options.baud_detect;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     auto& ch = config.channels[static_cast<std::size_t>(a.device_channel)];
     ch.min_us = a.calibration.device_low();
     ch.max_us = a.calibration.device_high();
-    ch.initial_position_us = a.calibration.to_device(rig.channels[a.channel].rest);
+    ch.initial_position_us = a.calibration.to_device(rig.channel(a.channel).rest);
   }
   auto device = std::make_unique<sim::SimMaestro>(config);
   sim::SimMaestro* d = device.get();
@@ -68,9 +67,8 @@ firmware_iface::MaestroLinkConfig maestro_config(const rig::Rig& rig, std::size_
   config.framing.crc = options.crc;
   config.channel_count = options.channel_count;
   config.baud_detect = options.baud_detect;
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
-    firmware_iface::MaestroActuator m{a.channel, a.device_channel, a.calibration, {}, {}};
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
+    firmware_iface::MaestroActuator m{a.channel.value, a.device_channel, a.calibration, {}, {}};
     // Device-side limits are given in channel units; the Maestro counts in pulse width.
     if (a.speed_limit) m.speed_us_per_s = *a.speed_limit * a.calibration.device_per_unit();
     if (a.acceleration_limit) m.acceleration_us_per_s2 = *a.acceleration_limit * a.calibration.device_per_unit();

@@ -23,10 +23,9 @@ firmware_iface::Ssc32LinkConfig ssc32_config(const rig::Rig& rig, std::size_t li
   config.baud = rig.links[link].baud;
   // Each group move lasts one tick, so the servos glide between the ticks' positions.
   config.move_time = std::chrono::milliseconds(static_cast<long>(std::lround(1000.0 / rig.rate_hz)));
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    if (a.link != link) continue;
+  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     firmware_iface::Ssc32Actuator s;
-    s.channel = a.channel;
+    s.channel = a.channel.value;
     s.device_channel = a.device_channel;
     s.calibration = a.calibration;
     if (a.speed_limit) s.speed_us_per_s = *a.speed_limit * a.calibration.device_per_unit();

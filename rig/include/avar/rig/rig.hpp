@@ -7,17 +7,24 @@
 #include <cstddef>
 #include <initializer_list>
 #include <optional>
+#include <ranges>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "avar/core/index.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/core/scalar_value.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/kinematics/model.hpp"
 
 namespace avar::rig {
+
+/// Index into Rig::channels.
+using ChannelIndex = Index<struct ChannelTag>;
+/// Index into Rig::links.
+using LinkIndex = Index<struct LinkTag>;
 
 /// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
 struct ChannelSpec {
@@ -84,8 +91,8 @@ const char* to_string(Failsafe f) noexcept;
 
 /// One motor or servo, driving one channel, on one link.
 struct ActuatorSpec {
-  std::size_t channel = 0;  ///< index into Rig::channels
-  std::size_t link = 0;     ///< index into Rig::links
+  ChannelIndex channel;
+  LinkIndex link;
   /// Where the actuator is on its link: Maestro / SSC-32 channel, servo ID, or DMX start address.
   int device_channel = 0;
   bool fine = false;        ///< DMX: 16-bit (coarse at the address, fine at the next slot)
@@ -129,6 +136,13 @@ struct Rig {
 
   std::optional<std::size_t> find_channel(std::string_view wanted) const;
   std::optional<std::size_t> find_link(std::string_view wanted) const;
+  const ChannelSpec& channel(ChannelIndex c) const { return channels[c.value]; }
+  const LinkSpec& link(LinkIndex l) const { return links[l.value]; }
+  /// The actuators on one link, in file order (the order drivers and simulated devices list
+  /// them in). A view: no copy.
+  auto actuators_on(LinkIndex l) const {
+    return actuators | std::views::filter([l](const ActuatorSpec& a) { return a.link == l; });
+  }
   /// The channels' rest poses, as a frame.
   std::vector<double> rest_frame() const;
   /// Comma-separated channel names, for error messages.
