@@ -24,6 +24,7 @@ class DiscardTransport final : public avar::firmware_iface::ByteTransport {
     return avar::Status::ok;
   }
   avar::Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return avar::Status::timeout; }
+  std::chrono::nanoseconds now() const noexcept override { return {}; }
   void discard_input() noexcept override {}
   avar::Status reopen() noexcept override { return avar::Status::ok; }
   std::uint64_t bytes_written() const noexcept override { return written_; }

@@ -7,7 +7,7 @@
 
 namespace avar::firmware_iface {
 
-DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config) : transport_(transport), config_(std::move(config)) {
+DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config) : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   if (config_.actuators.empty()) throw std::invalid_argument("a DMX link needs at least one actuator");
   std::array<bool, dmx::kUniverseSize + 1> used{};
   std::size_t highest = 0;
@@ -26,7 +26,6 @@ DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config) : transport_(tr
     throw std::invalid_argument("DMX slot count " + std::to_string(config_.slot_count) + " must cover slot " +
                                 std::to_string(highest) + " and stay within 512");
   slots_.assign(std::max(config_.slot_count == 0 ? highest : config_.slot_count, dmx::kMinSlots), 0);
-  released_ = std::make_unique<std::atomic<bool>[]>(config_.actuators.size());
   packet_.resize(dmx::send_dmx_size(slots_.size()));
   description_ = "DMX USB Pro (" + std::to_string(slots_.size()) + " slots) on " + transport_.name();
 }
@@ -53,11 +52,7 @@ Status DmxLink::send(std::span<const double> frame) noexcept {
   for (std::size_t i = 0; i < config_.actuators.size(); ++i) {
     const DmxActuator& a = config_.actuators[i];
     long level = 0;
-    if (!released_[i].load(std::memory_order_relaxed)) {
-      bool clamped = false;
-      level = std::clamp(std::lround(a.calibration.to_device(frame[a.channel], &clamped)), 0L, a.fine ? 65535L : 255L);
-      if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
-    }
+    if (!table_.released(i)) level = std::clamp(std::lround(table_.to_device(i, frame)), 0L, a.fine ? 65535L : 255L);
     const auto at = static_cast<std::size_t>(a.address - 1);
     if (a.fine) {
       slots_[at] = static_cast<std::uint8_t>(level >> 8);
@@ -82,9 +77,6 @@ Status DmxLink::release() noexcept {
   return write_frame();
 }
 
-void DmxLink::release_channel(std::size_t channel) noexcept {
-  for (std::size_t i = 0; i < config_.actuators.size(); ++i)
-    if (config_.actuators[i].channel == channel) released_[i].store(true, std::memory_order_relaxed);
-}
+void DmxLink::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }
 
 }  // namespace avar::firmware_iface

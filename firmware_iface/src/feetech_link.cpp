@@ -1,14 +1,13 @@
 #include "avar/firmware_iface/feetech_link.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
 namespace avar::firmware_iface {
 namespace ft = feetech;
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::uint32_t faults_from_error(std::uint8_t error) noexcept {
   std::uint32_t f = 0;
@@ -20,34 +19,42 @@ std::uint32_t faults_from_error(std::uint8_t error) noexcept {
   return f;
 }
 
+/// Checks the configuration before anything is sized; returns the IDs by actuator.
+std::vector<std::uint32_t> feetech_ids(const FeetechLinkConfig& config) {
+  const std::size_t n = config.actuators.size();
+  if (n == 0) throw std::invalid_argument("a Feetech bus needs at least one servo");
+  if (n > FeetechLink::kMaxServos)
+    throw std::invalid_argument("a Feetech bus drives at most " + std::to_string(FeetechLink::kMaxServos) +
+                                " servos per sync write, not " + std::to_string(n));
+  std::vector<std::uint32_t> ids;
+  for (const FeetechActuator& a : config.actuators) {
+    if (a.id > ft::kMaxId) throw std::invalid_argument("Feetech ID " + std::to_string(a.id) + " is above 253");
+    if (std::find(ids.begin(), ids.end(), a.id) != ids.end())
+      throw std::invalid_argument("Feetech ID " + std::to_string(a.id) + " is used twice");
+    ids.push_back(a.id);
+  }
+  return ids;
+}
+
+BusExchangeConfig feetech_exchange(const FeetechLinkConfig& c) {
+  return {c.reply_timeout, c.retries, c.silent_exchanges, c.reconnect_every, 2 * ft::kMaxPacketSize};
+}
+
 }  // namespace
 
 FeetechLink::FeetechLink(ByteTransport& transport, FeetechLinkConfig config)
-    : transport_(transport), config_(std::move(config)), reconnector_(config_.reconnect_every) {
+    : transport_(transport), config_(std::move(config)), table_(config_.actuators),
+      bus_(transport_, codec_, feetech_ids(config_), feetech_exchange(config_)) {
   const std::size_t n = config_.actuators.size();
-  if (n == 0) throw std::invalid_argument("a Feetech bus needs at least one servo");
-  if (n > kMaxServos)
-    throw std::invalid_argument("a Feetech bus drives at most " + std::to_string(kMaxServos) + " servos per sync write, not " +
-                                std::to_string(n));
   std::string ids;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t id = config_.actuators[i].id;
-    if (id > ft::kMaxId) throw std::invalid_argument("Feetech ID " + std::to_string(id) + " is above 253");
-    for (std::size_t j = 0; j < i; ++j)
-      if (config_.actuators[j].id == id) throw std::invalid_argument("Feetech ID " + std::to_string(id) + " is used twice");
-    ids += (ids.empty() ? "" : ",") + std::to_string(id);
-  }
-  released_ = std::make_unique<std::atomic<bool>[]>(n);
-  torque_off_sent_.assign(n, false);
+  for (const FeetechActuator& a : config_.actuators) ids += (ids.empty() ? "" : ",") + std::to_string(a.id);
   ids_.resize(n);
   goals_.resize(n);
   torque_off_.assign(n, 0);
   all_slots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) all_slots_[i] = i;
-  answered_.assign(n, false);
-  missed_.assign(n, 0);
-  telemetry_.resize(n);
   packet_.resize(2 * ft::sync_write_size(2, n) + ft::sync_read_size(n));
+  codec_.set_retry_read(ft::kPresentPosition, readback_length());
   description_ = std::string("Feetech ") + (config_.series == ft::Series::sts ? "STS" : "SCS") + " bus (IDs " + ids + ", " +
                  std::to_string(config_.baud) + " baud) on " + transport_.name();
 }
@@ -65,74 +72,16 @@ std::size_t FeetechLink::reply_bytes_per_tick() const noexcept {
   return config_.readback == FeetechReadback::none ? 0 : config_.actuators.size() * ft::status_size(readback_length());
 }
 
-template <class Take>
-Status FeetechLink::collect(std::span<const std::size_t> slots, std::size_t data_length, Take&& take) noexcept {
-  for (std::size_t s : slots) answered_[s] = false;
-  const Clock::time_point deadline = Clock::now() + config_.reply_timeout;
-  const std::size_t reply_size = ft::status_size(data_length);
-  const std::size_t expected = slots.size() * reply_size;
-  std::size_t have = 0, taken = 0, bytes_read = 0;
-  bool corrupt = false;
-  while (taken < slots.size()) {
-    ft::Packet packet;
-    std::size_t used = 0;
-    const ft::DecodeResult r = ft::decode_packet(std::span(rx_.data(), have), &packet, &used);
-    if (r == ft::DecodeResult::need_more) {
-      // Ask for the rest of the packet under way, or for one whole reply.
-      const std::size_t want = have >= ft::kHeaderSize ? ft::kHeaderSize + rx_[3] - have : reply_size - have;
-      // Past the deadline, only what has already arrived is taken (reads of 0 ms), and no more
-      // than the replies asked for: a late thread still collects them, a babbling line cannot
-      // hold the tick.
-      const auto left = std::max(std::chrono::milliseconds(0),
-                                 std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
-      if ((left.count() == 0 && bytes_read > expected) || have + want > rx_.size()) break;
-      if (transport_.read_exact(std::span(rx_.data() + have, want), left) != Status::ok) break;
-      AtomicLinkCounters::add(counters_.bytes_received, want);
-      have += want;
-      bytes_read += want;
-      continue;
-    }
-    if (r == ft::DecodeResult::bad_checksum) {
-      AtomicLinkCounters::add(counters_.crc_errors);
-      corrupt = true;
-    } else if (r == ft::DecodeResult::bad_framing) {
-      AtomicLinkCounters::add(counters_.framing_errors, used);
-      corrupt = true;
-    } else {
-      // A reply of the right size from a servo still awaited; anything else is a stray.
-      for (std::size_t s : slots) {
-        if (answered_[s] || config_.actuators[s].id != packet.id || packet.params.size() != data_length) continue;
-        answered_[s] = true;
-        ++taken;
-        AtomicLinkCounters::add(counters_.replies);
-        if (packet.code != 0) AtomicLinkCounters::add(counters_.device_errors);
-        take(s, packet);
-        break;
-      }
-    }
-    std::copy(rx_.begin() + static_cast<long>(used), rx_.begin() + static_cast<long>(have), rx_.begin());
-    have -= used;
-  }
-  if (taken < slots.size()) {
-    AtomicLinkCounters::add(counters_.timeouts, slots.size() - taken);
-    return Status::timeout;
-  }
-  return corrupt ? Status::bad_data : Status::ok;
-}
-
 Status FeetechLink::query(std::size_t slot, std::span<const std::uint8_t> request, std::size_t data_length,
-                          ft::Packet* reply) noexcept {
-  transport_.discard_input();
-  if (const Status s = transport_.write(request); s != Status::ok) return s;
-  AtomicLinkCounters::add(counters_.exchanges);
-  AtomicLinkCounters::add(counters_.bytes_sent, request.size());
-  const std::size_t one[1] = {slot};
+                          std::span<std::uint8_t> params) noexcept {
   std::uint8_t error = 0;
-  const Status s = collect(one, data_length, [&](std::size_t, const ft::Packet& p) {
-    error = p.code;
-    if (reply) *reply = p;
-  });
-  if (s != Status::ok) return s;
+  auto take = [&](std::size_t, const BusReply& r) noexcept {
+    if (r.params.size() != data_length) return false;
+    error = r.error;
+    std::copy_n(r.params.begin(), std::min(params.size(), r.params.size()), params.begin());
+    return true;
+  };
+  if (const Status s = bus_.query(slot, request, ft::status_size(data_length), take); s != Status::ok) return s;
   // A processing error (checksum, range, instruction) means the servo refused the request.
   return error & (ft::kErrorChecksum | ft::kErrorInstruction) ? Status::bad_data : Status::ok;
 }
@@ -140,12 +89,7 @@ Status FeetechLink::query(std::size_t slot, std::span<const std::uint8_t> reques
 Status FeetechLink::write_register(std::size_t slot, std::uint8_t address, std::span<const std::uint8_t> data) {
   std::array<std::uint8_t, ft::kMaxPacketSize> request{};
   const std::size_t len = ft::encode_write(request, config_.actuators[slot].id, address, data);
-  if (!config_.replies_to_writes) {
-    transport_.discard_input();
-    AtomicLinkCounters::add(counters_.exchanges);
-    AtomicLinkCounters::add(counters_.bytes_sent, len);
-    return transport_.write(std::span(request.data(), len));
-  }
+  if (!config_.replies_to_writes) return bus_.write(std::span(request.data(), len));
   return query(slot, std::span(request.data(), len), 0);
 }
 
@@ -167,12 +111,12 @@ Status FeetechLink::start() {
     if (const Status s = write_register(i, ft::kAcceleration, acc_byte); s != Status::ok) return s;
     // Hold where the servo is when torque comes on.
     const std::size_t len = ft::encode_read(request, a.id, ft::kPresentPosition, 2);
-    ft::Packet reply;
-    if (const Status s = query(i, std::span(request.data(), len), 2, &reply); s != Status::ok) return s;
-    if (const Status s = write_register(i, ft::kGoalPosition, reply.params); s != Status::ok) return s;
+    std::array<std::uint8_t, 2> present{};
+    if (const Status s = query(i, std::span(request.data(), len), 2, present); s != Status::ok) return s;
+    if (const Status s = write_register(i, ft::kGoalPosition, present); s != Status::ok) return s;
     const std::uint8_t on[1] = {1};
     if (const Status s = write_register(i, ft::kTorqueEnable, on); s != Status::ok) return s;
-    torque_off_sent_[i] = false;
+    table_.set_release_told(i, false);
   }
   return Status::ok;
 }
@@ -181,33 +125,29 @@ Status FeetechLink::read_positions(std::span<double> frame, std::span<bool> know
   std::array<std::uint8_t, ft::kMaxPacketSize> request{};
   for (std::size_t i = 0; i < ids_.size(); ++i) ids_[i] = config_.actuators[i].id;
   const std::size_t len = ft::encode_sync_read(request, ft::kPresentPosition, 2, ids_);
-  transport_.discard_input();
-  if (const Status s = transport_.write(std::span(request.data(), len)); s != Status::ok) return s;
-  AtomicLinkCounters::add(counters_.exchanges);
-  AtomicLinkCounters::add(counters_.bytes_sent, len);
-  return collect(all_slots_, 2, [&](std::size_t slot, const ft::Packet& p) {
-    const FeetechActuator& a = config_.actuators[slot];
-    frame[a.channel] = a.calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
-    known[a.channel] = true;
-  });
+  if (const Status s = bus_.write(std::span(request.data(), len)); s != Status::ok) return s;
+  auto take = [&](std::size_t slot, const BusReply& r) noexcept {
+    if (r.params.size() != 2) return false;
+    frame[table_.channel(slot)] =
+        table_.to_channel(slot, ft::position_from_word(config_.series, ft::get_word(config_.series, r.params)));
+    known[table_.channel(slot)] = true;
+    return true;
+  };
+  return bus_.collect(all_slots_, ft::status_size(2), take);
 }
 
 Status FeetechLink::send(std::span<const double> frame) noexcept {
   bool reopened = false;  // nothing to restore: the servos kept their power and torque
-  if (reconnector_.ask(transport_, &reopened) != Status::ok) return Status::io_error;
+  if (bus_.begin(&reopened) != Status::ok) return Status::io_error;
   const std::size_t n = config_.actuators.size();
   std::size_t driven = 0, newly_released = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const FeetechActuator& a = config_.actuators[i];
-    if (released_[i].load(std::memory_order_relaxed)) {
-      if (!torque_off_sent_[i]) newly_released++;
+    if (table_.released(i)) {
+      if (table_.release_pending(i)) newly_released++;
       continue;
     }
-    bool clamped = false;
-    const double steps = a.calibration.to_device(frame[a.channel], &clamped);
-    if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
-    ids_[driven] = a.id;
-    goals_[driven++] = ft::position_word(config_.series, std::lround(steps));
+    ids_[driven] = config_.actuators[i].id;
+    goals_[driven++] = ft::position_word(config_.series, std::lround(table_.to_device(i, frame)));
   }
   const std::span<std::uint8_t> out(packet_);
   std::size_t size = 0;
@@ -217,9 +157,9 @@ Status FeetechLink::send(std::span<const double> frame) noexcept {
   if (newly_released > 0) {
     std::size_t k = 0;
     for (std::size_t i = 0; i < n; ++i)
-      if (released_[i].load(std::memory_order_relaxed) && !torque_off_sent_[i]) {
+      if (table_.release_pending(i)) {
         ids_[k++] = config_.actuators[i].id;
-        torque_off_sent_[i] = true;
+        table_.set_release_told(i);
       }
     size += ft::encode_sync_write(out.subspan(size), ft::kTorqueEnable, 1, std::span(ids_.data(), k),
                                   std::span(torque_off_.data(), k));
@@ -231,58 +171,27 @@ Status FeetechLink::send(std::span<const double> frame) noexcept {
   }
   last_send_size_ = size;
   if (size == 0) return Status::ok;
-  transport_.discard_input();  // late replies of an earlier tick
-  if (const Status s = transport_.write(out.first(size)); s != Status::ok) {
-    if (s == Status::io_error) reconnector_.lost();
-    return s;
-  }
-  AtomicLinkCounters::add(counters_.exchanges);
-  AtomicLinkCounters::add(counters_.bytes_sent, size);
+  if (const Status s = bus_.write(out.first(size)); s != Status::ok) return s;
   if (length == 0) return Status::ok;
-  const auto take = [&](std::size_t slot, const ft::Packet& p) { take_telemetry(slot, p, length); };
-  if (collect(all_slots_, length, take) == Status::io_error) {
-    reconnector_.lost();
-    return Status::io_error;
-  }
-  // Bounded retries, each a plain Read of a servo whose reply was lost or corrupt; a servo silent
-  // for silent_exchanges sends in a row is a timeout (the controller's watchdog fault).
-  std::uint32_t retries = config_.retries;
-  bool silent = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!answered_[i] && retries > 0 && !released_[i].load(std::memory_order_relaxed)) {
-      --retries;
-      AtomicLinkCounters::add(counters_.retries);
-      std::array<std::uint8_t, ft::kMaxPacketSize> request{};
-      const std::size_t len = ft::encode_read(request, config_.actuators[i].id, ft::kPresentPosition, length);
-      ft::Packet reply;
-      const Status r = query(i, std::span(request.data(), len), length, &reply);
-      if (r == Status::io_error) {
-        reconnector_.lost();
-        return r;
-      }
-      if (r == Status::ok) take_telemetry(i, reply, length);
-    }
-    if (answered_[i]) {
-      missed_[i] = 0;
-    } else {
-      // Stale feedback is absent, not old.
-      telemetry_[i].position = ChannelTelemetry::kUnknown;
-      telemetry_[i].load = ChannelTelemetry::kUnknown;
-      telemetry_[i].temperature_c = ChannelTelemetry::kUnknown;
-      silent = silent || ++missed_[i] >= config_.silent_exchanges;
-    }
-  }
-  return silent ? Status::timeout : Status::ok;
+  auto take = [&](std::size_t slot, const BusReply& r) noexcept {
+    if (r.params.size() != length) return false;
+    take_telemetry(slot, r, length);
+    return true;
+  };
+  if (bus_.collect(all_slots_, ft::status_size(length), take) == Status::io_error) return Status::io_error;
+  if (bus_.retry(all_slots_, ft::status_size(length), take) == Status::io_error) return Status::io_error;
+  return bus_.settle(all_slots_, table_);
 }
 
-void FeetechLink::take_telemetry(std::size_t slot, const ft::Packet& p, std::uint8_t length) noexcept {
-  ChannelTelemetry& t = telemetry_[slot];
-  t.position = config_.actuators[slot].calibration.to_channel(ft::position_from_word(config_.series, ft::get_word(config_.series, p.params)));
+void FeetechLink::take_telemetry(std::size_t slot, const BusReply& reply, std::uint8_t length) noexcept {
+  ChannelTelemetry& t = table_.telemetry(slot);
+  const std::span<const std::uint8_t> p = reply.params;
+  t.position = table_.to_channel(slot, ft::position_from_word(config_.series, ft::get_word(config_.series, p)));
   if (length >= 8) {
-    t.load = ft::from_sign_magnitude(ft::get_word(config_.series, p.params.subspan(4, 2)), ft::kLoadSignBit) / 1000.0;
-    t.temperature_c = p.params[7];
+    t.load = ft::from_sign_magnitude(ft::get_word(config_.series, p.subspan(4, 2)), ft::kLoadSignBit) / 1000.0;
+    t.temperature_c = p[7];
   }
-  t.faults = faults_from_error(p.code);
+  t.faults = faults_from_error(reply.error);
   ++t.updates;
 }
 
@@ -290,18 +199,11 @@ Status FeetechLink::release() noexcept {
   std::array<std::uint8_t, ft::kMinPacketSize + 2> packet{};
   const std::uint8_t off[1] = {0};
   const std::size_t len = ft::encode_write(packet, ft::kBroadcastId, ft::kTorqueEnable, off);
-  AtomicLinkCounters::add(counters_.exchanges);
-  AtomicLinkCounters::add(counters_.bytes_sent, len);
-  return transport_.write(std::span(packet.data(), len));
+  return bus_.write(std::span(packet.data(), len));
 }
 
-void FeetechLink::release_channel(std::size_t channel) noexcept {
-  for (std::size_t i = 0; i < config_.actuators.size(); ++i)
-    if (config_.actuators[i].channel == channel) released_[i].store(true, std::memory_order_relaxed);
-}
+void FeetechLink::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }
 
-void FeetechLink::read_telemetry(std::span<ChannelTelemetry> out) const noexcept {
-  for (std::size_t i = 0; i < config_.actuators.size(); ++i) out[config_.actuators[i].channel] = telemetry_[i];
-}
+void FeetechLink::read_telemetry(std::span<ChannelTelemetry> out) const noexcept { table_.read_telemetry(out); }
 
 }  // namespace avar::firmware_iface

@@ -8,7 +8,7 @@
 namespace avar::firmware_iface {
 
 MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
-    : transport_(transport), config_(std::move(config)) {
+    : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   const std::size_t n = config_.actuators.size();
   std::vector<bool> used(static_cast<std::size_t>(config_.channel_count), false);
   for (const MaestroActuator& a : config_.actuators) {
@@ -35,7 +35,6 @@ MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
       runs_.push_back({static_cast<std::uint8_t>(ch), s, 1});
   }
   targets_.resize(n);
-  released_ = std::make_unique<std::atomic<bool>[]>(n);
   packet_.resize(runs_.size() * maestro::kMaxPacketSize);
   description_ = "Maestro (" + std::to_string(config_.channel_count) + " channels) on " + transport_.name();
 }
@@ -93,12 +92,9 @@ Status MaestroLink::read_positions(std::span<double> frame, std::span<bool> know
 
 Status MaestroLink::send(std::span<const double> frame) noexcept {
   for (std::size_t s = 0; s < slots_.size(); ++s) {
-    const MaestroActuator& a = config_.actuators[slots_[s]];
-    bool clamped = false;
-    const double us = a.calibration.to_device(frame[a.channel], &clamped);
-    if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
+    const std::size_t i = slots_[s];
     // Target 0 stops the pulses of a released actuator.
-    targets_[s] = released_[s].load(std::memory_order_relaxed) ? std::uint16_t{0} : maestro::quarter_us_from_us(us);
+    targets_[s] = table_.released(i) ? std::uint16_t{0} : maestro::quarter_us_from_us(table_.to_device(i, frame));
   }
   return write_targets();
 }
@@ -119,10 +115,7 @@ Status MaestroLink::write_targets() noexcept {
   return reconnector_.write(transport_, out.first(size));
 }
 
-void MaestroLink::release_channel(std::size_t channel) noexcept {
-  for (std::size_t s = 0; s < slots_.size(); ++s)
-    if (config_.actuators[slots_[s]].channel == channel) released_[s].store(true, std::memory_order_relaxed);
-}
+void MaestroLink::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }
 
 Status MaestroLink::release() noexcept {
   // Target 0 stops the pulses: a hobby servo without pulses holds no position.

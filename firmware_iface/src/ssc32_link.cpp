@@ -7,7 +7,7 @@
 
 namespace avar::firmware_iface {
 
-Ssc32Link::Ssc32Link(ByteTransport& transport, Ssc32LinkConfig config) : transport_(transport), config_(std::move(config)) {
+Ssc32Link::Ssc32Link(ByteTransport& transport, Ssc32LinkConfig config) : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   const std::size_t n = config_.actuators.size();
   if (n == 0) throw std::invalid_argument("an SSC-32 link needs at least one actuator");
   std::array<bool, ssc32::kChannels> used{};
@@ -18,8 +18,6 @@ Ssc32Link::Ssc32Link(ByteTransport& transport, Ssc32LinkConfig config) : transpo
       throw std::invalid_argument("SSC-32 channel " + std::to_string(a.device_channel) + " is used twice");
     used[static_cast<std::size_t>(a.device_channel)] = true;
   }
-  released_ = std::make_unique<std::atomic<bool>[]>(n);
-  low_sent_.assign(n, false);
   moves_.resize(n);
   channels_.resize(n);
   packet_.resize(2 * ssc32::kMaxLineSize);
@@ -65,17 +63,15 @@ Status Ssc32Link::send(std::span<const double> frame) noexcept {
   const std::size_t n = config_.actuators.size();
   std::size_t size = 0, driven = 0, newly_low = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (released_[i].load(std::memory_order_relaxed) && !low_sent_[i]) {
+    if (table_.release_pending(i)) {
       channels_[newly_low++] = static_cast<std::uint8_t>(config_.actuators[i].device_channel);
-      low_sent_[i] = true;
+      table_.set_release_told(i);
     }
   if (newly_low > 0) size += ssc32::encode_outputs_low(packet_, std::span(channels_.data(), newly_low));
   for (std::size_t i = 0; i < n; ++i) {
-    if (released_[i].load(std::memory_order_relaxed)) continue;
+    if (table_.released(i)) continue;
     const Ssc32Actuator& a = config_.actuators[i];
-    bool clamped = false;
-    const double us = a.calibration.to_device(frame[a.channel], &clamped);
-    if (clamped) saturated_.fetch_add(1, std::memory_order_relaxed);
+    const double us = table_.to_device(i, frame);
     const double speed = a.speed_us_per_s ? std::clamp(*a.speed_us_per_s, 1.0, 65535.0) : 0;
     moves_[driven++] = {static_cast<std::uint8_t>(a.device_channel),
                         static_cast<std::uint16_t>(std::clamp(std::lround(us), 500L, 2500L)),
@@ -96,9 +92,6 @@ Status Ssc32Link::release() noexcept {
   return transport_.write(std::span(packet_.data(), size));
 }
 
-void Ssc32Link::release_channel(std::size_t channel) noexcept {
-  for (std::size_t i = 0; i < config_.actuators.size(); ++i)
-    if (config_.actuators[i].channel == channel) released_[i].store(true, std::memory_order_relaxed);
-}
+void Ssc32Link::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }
 
 }  // namespace avar::firmware_iface

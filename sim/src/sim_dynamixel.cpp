@@ -37,8 +37,9 @@ SimDynamixel::SimDynamixel(SimDynamixelConfig config) : config_(std::move(config
   for (const SimDynamixelServo& spec : config_.servos) {
     Servo s;
     s.spec = spec;
-    s.position = spec.initial_position;
-    s.temperature = spec.ambient_c;
+    s.model = SmartServoModel({spec.max_speed_pulses_per_s, spec.max_acceleration_pulses_per_s2, spec.time_constant_s, 0,
+                               spec.ambient_c, spec.heating_c_per_s_at_full_load, spec.cooling_per_s},
+                              spec.initial_position);
     write_u16(s, dxl::kModelNumber, spec.model_number);
     s.table[6] = spec.firmware;
     s.table[dxl::kId] = spec.id;
@@ -229,28 +230,16 @@ std::size_t SimDynamixel::take_replies(std::span<std::uint8_t> out) {
 void SimDynamixel::advance(double dt_s) {
   for (std::size_t i = 0; i < servos_.size(); ++i) {
     Servo& s = servos_[i];
-    double load = 0;  // fraction of full load
-    if (s.table[dxl::kTorqueEnable]) {
-      const double goal = read_i32(i, dxl::kGoalPosition);
-      const std::int32_t profile = read_i32(i, dxl::kProfileVelocity);  // 0.229 rev/min per unit
-      const double profile_speed = profile > 0 ? profile * 0.229 / 60.0 * 4096.0 : s.spec.max_speed_pulses_per_s;
-      const double cap = std::min(profile_speed, s.spec.max_speed_pulses_per_s) * dt_s;
-      const double step = std::clamp((goal - s.position) * (1.0 - std::exp(-dt_s / s.spec.time_constant_s)), -cap, cap);
-      const double velocity = step / dt_s;
-      load = std::min(1.0, std::abs(velocity - s.velocity) / (s.spec.max_speed_pulses_per_s * 0.05 + 1e-9) * 0.1 +
-                               std::abs(velocity) / s.spec.max_speed_pulses_per_s * 0.3);
-      s.velocity = velocity;
-      s.position += step;
-    } else {
-      s.velocity = 0;
-    }
-    s.temperature += (s.spec.heating_c_per_s_at_full_load * load - s.spec.cooling_per_s * (s.temperature - s.spec.ambient_c)) * dt_s;
-    write_i32(s, dxl::kPresentPosition, static_cast<std::int32_t>(std::lround(s.position)));
-    write_i32(s, kPresentVelocity, static_cast<std::int32_t>(std::lround(s.velocity / 4096.0 * 60.0 / 0.229)));
-    write_u16(s, dxl::kPresentLoad, static_cast<std::uint16_t>(static_cast<std::int16_t>(std::lround(load * 1000.0))));
-    s.table[kMoving] = std::abs(s.velocity) > 1 ? 1 : 0;
-    s.table[dxl::kPresentTemperature] = static_cast<std::uint8_t>(std::clamp(std::lround(s.temperature), 0L, 255L));
-    if (s.temperature > s.table[kTemperatureLimit]) {
+    const std::int32_t profile = read_i32(i, dxl::kProfileVelocity);  // 0.229 rev/min per unit
+    s.model.advance(dt_s, s.table[dxl::kTorqueEnable] != 0, read_i32(i, dxl::kGoalPosition), profile * 0.229 / 60.0 * 4096.0);
+    const double velocity = s.model.velocity();
+    write_i32(s, dxl::kPresentPosition, static_cast<std::int32_t>(std::lround(s.model.position())));
+    write_i32(s, kPresentVelocity, static_cast<std::int32_t>(std::lround(velocity / 4096.0 * 60.0 / 0.229)));
+    write_u16(s, dxl::kPresentLoad, static_cast<std::uint16_t>(static_cast<std::int16_t>(std::lround(s.model.load() * 1000.0))));
+    s.table[kMoving] = std::abs(velocity) > 1 ? 1 : 0;
+    const double temperature = s.model.temperature_c();
+    s.table[dxl::kPresentTemperature] = static_cast<std::uint8_t>(std::clamp(std::lround(temperature), 0L, 255L));
+    if (temperature > s.table[kTemperatureLimit]) {
       s.table[dxl::kHardwareErrorStatus] |= kOverheating;
       if (s.table[kShutdown] & kOverheating) s.table[dxl::kTorqueEnable] = 0;  // shutdown: torque off
     }

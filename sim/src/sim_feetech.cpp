@@ -16,10 +16,6 @@ constexpr std::uint8_t kMaxTorque = 16;
 constexpr std::uint8_t kLedAlarmCondition = 20;
 constexpr std::uint8_t kTorqueLimitSts = 48;
 constexpr std::uint8_t kRecentre = 128;  // Torque Enable value: "here is the centre"
-/// ServoModel treats a pulse <= 0 as "no pulses"; positions run through it shifted by this so
-/// that a goal of step 0 is still a goal.
-constexpr double kModelBias = 100000;
-constexpr double kMaxStep_s = 0.001;
 constexpr int kBaudTable[] = {1000000, 500000, 250000, 128000, 115200, 76800, 57600, 38400, 19200, 14400, 9600, 4800};
 
 bool read_only(std::size_t address) { return address < ft::kId || address >= ft::kPresentPosition; }
@@ -44,8 +40,10 @@ SimFeetech::SimFeetech(SimFeetechConfig config) : config_(std::move(config)) {
     Servo s;
     s.spec = spec;
     const double initial = spec.initial_position < 0 ? resolution / 2 : spec.initial_position;
-    s.model = ServoModel({spec.max_speed_steps_per_s, spec.time_constant_s, spec.deadband_steps}, initial + kModelBias);
-    s.temperature = spec.ambient_c;
+    s.model = SmartServoModel({spec.max_speed_steps_per_s, spec.max_acceleration_steps_per_s2, spec.time_constant_s,
+                               spec.deadband_steps, spec.ambient_c, spec.heating_c_per_s_at_full_load, spec.cooling_per_s},
+                              initial);
+    s.model.set_external_load(spec.external_load);
     s.table[0] = 3, s.table[1] = 10;  // firmware 3.10
     put_word(s, ft::kModelNumber, sts ? 777 : 1284);  // STS3215 / SCS0009
     s.table[ft::kId] = spec.id;
@@ -67,7 +65,7 @@ SimFeetech::SimFeetech(SimFeetechConfig config) : config_(std::move(config)) {
   input_.reserve(1024);
 }
 
-double SimFeetech::position(std::size_t servo) const { return servos_[servo].model.position_us() - kModelBias; }
+double SimFeetech::position(std::size_t servo) const { return servos_[servo].model.position(); }
 
 double SimFeetech::wire_time(std::size_t bytes) const { return firmware_iface::wire_seconds(bytes, config_.baud); }
 
@@ -117,7 +115,7 @@ std::uint8_t SimFeetech::write(Servo& s, std::uint8_t address, std::span<const s
     // The present position becomes the centre; torque stays as it was.
     s.table[ft::kTorqueEnable] = previous_torque;
     const double centre = ft::position_resolution(config_.series) / 2;
-    s.model = ServoModel(s.model.params(), centre + kModelBias);
+    s.model.set_position(centre);
     put_word(s, ft::kGoalPosition, static_cast<std::uint16_t>(centre));
     step(s, 0);
   }
@@ -230,55 +228,34 @@ std::size_t SimFeetech::take_replies(std::span<std::uint8_t> out) {
 
 void SimFeetech::advance(double dt_s) {
   if (!(dt_s > 0)) return;
-  const int steps = static_cast<int>(std::ceil(dt_s / kMaxStep_s));
+  // Protection acts within a step of the model.
+  const int steps = static_cast<int>(std::ceil(dt_s / SmartServoModel::kMaxStep_s));
   for (Servo& s : servos_)
     for (int i = 0; i < steps; ++i) step(s, dt_s / steps);
 }
 
 void SimFeetech::step(Servo& s, double dt_s) {
-  const SimFeetechServo& spec = s.spec;
-  const double before = s.model.position_us() - kModelBias;
-  if (dt_s > 0 && s.table[ft::kTorqueEnable] == 1) {
-    const double goal = ft::position_from_word(config_.series, read_word(static_cast<std::size_t>(&s - servos_.data()), ft::kGoalPosition));
-    const int speed_reg = std::abs(ft::from_sign_magnitude(read_word(static_cast<std::size_t>(&s - servos_.data()), ft::kGoalSpeed),
-                                                           ft::kSpeedSignBit));
-    const double top = speed_reg > 0 ? std::min<double>(speed_reg, spec.max_speed_steps_per_s) : spec.max_speed_steps_per_s;
-    ServoModel free_run({top, spec.time_constant_s, spec.deadband_steps}, s.model.position_us());
-    free_run.step(dt_s, goal + kModelBias);
-    double velocity = (free_run.position_us() - s.model.position_us()) / dt_s;
-    if (const std::uint8_t acc = s.table[ft::kAcceleration]; acc > 0) {
-      const double dv = acc * 100.0 * dt_s;
-      velocity = std::clamp(velocity, s.velocity - dv, s.velocity + dv);
-    }
-    const double motor_dv = spec.max_acceleration_steps_per_s2 * dt_s;
-    velocity = std::clamp(velocity, s.velocity - motor_dv, s.velocity + motor_dv);
-    const double acceleration = (velocity - s.velocity) / dt_s;
-    s.velocity = velocity;
-    s.model = ServoModel({top, spec.time_constant_s, spec.deadband_steps}, s.model.position_us() + velocity * dt_s);
-    // Load: holding the external load, plus accelerating and moving the horn.
-    s.load = std::clamp(spec.external_load + 0.3 * acceleration / spec.max_acceleration_steps_per_s2 +
-                            0.2 * velocity / spec.max_speed_steps_per_s,
-                        -1.0, 1.0);
-  } else if (dt_s > 0) {
-    s.velocity = 0;
-    s.load = 0;
-  }
-  s.temperature += (spec.heating_c_per_s_at_full_load * std::abs(s.load) - spec.cooling_per_s * (s.temperature - spec.ambient_c)) * dt_s;
+  const std::size_t i = static_cast<std::size_t>(&s - servos_.data());
+  const double before = s.model.position();
+  const double goal = ft::position_from_word(config_.series, read_word(i, ft::kGoalPosition));
+  const int speed_reg = std::abs(ft::from_sign_magnitude(read_word(i, ft::kGoalSpeed), ft::kSpeedSignBit));
+  s.model.advance(dt_s, s.table[ft::kTorqueEnable] == 1, goal, speed_reg, s.table[ft::kAcceleration] * 100.0);
+  const double temperature = s.model.temperature_c();
   // Overheat holds until the servo has cooled 5 °C below its limit.
   std::uint8_t status = s.table[ft::kStatus] & ft::kErrorOverheat;
-  if (s.temperature > s.table[ft::kMaxTemperature]) status |= ft::kErrorOverheat;
-  if (s.temperature < s.table[ft::kMaxTemperature] - 5.0) status &= static_cast<std::uint8_t>(~ft::kErrorOverheat);
-  if (std::abs(s.load) >= 0.99) status |= ft::kErrorOverload;
+  if (temperature > s.table[ft::kMaxTemperature]) status |= ft::kErrorOverheat;
+  if (temperature < s.table[ft::kMaxTemperature] - 5.0) status &= static_cast<std::uint8_t>(~ft::kErrorOverheat);
+  if (std::abs(s.model.load()) >= 0.99) status |= ft::kErrorOverload;
   s.table[ft::kStatus] = status;
   if (status & s.table[ft::kUnloadingCondition]) s.table[ft::kTorqueEnable] = 0;  // protection: torque off
-  const double position = s.model.position_us() - kModelBias;
+  const double position = s.model.position();
   const long steps = std::lround(position);
   put_word(s, ft::kPresentPosition, ft::position_word(config_.series, steps));
-  put_word(s, ft::kPresentSpeed, ft::to_sign_magnitude(static_cast<int>(std::lround(s.velocity)), ft::kSpeedSignBit));
-  put_word(s, ft::kPresentLoad, ft::to_sign_magnitude(static_cast<int>(std::lround(s.load * 1000)), ft::kLoadSignBit));
-  s.table[ft::kPresentVoltage] = spec.voltage_decivolts;
-  s.table[ft::kPresentTemperature] = static_cast<std::uint8_t>(std::clamp(std::lround(s.temperature), 0L, 255L));
-  s.table[ft::kMoving] = std::abs(position - before) > 0 && std::abs(s.velocity) > 1 ? 1 : 0;
+  put_word(s, ft::kPresentSpeed, ft::to_sign_magnitude(static_cast<int>(std::lround(s.model.velocity())), ft::kSpeedSignBit));
+  put_word(s, ft::kPresentLoad, ft::to_sign_magnitude(static_cast<int>(std::lround(s.model.load() * 1000)), ft::kLoadSignBit));
+  s.table[ft::kPresentVoltage] = s.spec.voltage_decivolts;
+  s.table[ft::kPresentTemperature] = static_cast<std::uint8_t>(std::clamp(std::lround(temperature), 0L, 255L));
+  s.table[ft::kMoving] = std::abs(position - before) > 0 && std::abs(s.model.velocity()) > 1 ? 1 : 0;
 }
 
 }  // namespace avar::sim

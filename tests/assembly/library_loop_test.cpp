@@ -28,11 +28,13 @@ TEST(LibraryLoop, DynamixelExampleOnTheSimulatorFaultsWhenAServoOverheats) {
   ASSERT_TRUE(config::check_show_against_rig(show, rig).ok());
   const std::size_t shoulder = *rig.find_channel("shoulder");
 
-  // The shoulder's servo (the second on the bus) comes up past its 80 °C limit: only the
-  // simulated servo knows, and says so in its replies.
+  // The shoulder's servo (the second on the bus) comes up warm and holds a heavy prop: the
+  // show's work takes it past its 80 °C limit, and only the simulated servo knows it.
   assembly::LinkSelection selection;
   selection.prepare_simulated = [](std::size_t, sim::ByteDevice& device) {
-    dynamic_cast<sim::SimDynamixel&>(device).set_temperature_c(1, 85);
+    auto& bus = dynamic_cast<sim::SimDynamixel&>(device);
+    bus.set_temperature_c(1, 76);
+    bus.set_external_load(1, 0.9);
   };
   assembly::FigureLinks figure(rig, selection);
   for (firmware_iface::ActuatorLink* link : figure.links()) ASSERT_EQ(link->start(), Status::ok);
@@ -53,7 +55,7 @@ TEST(LibraryLoop, DynamixelExampleOnTheSimulatorFaultsWhenAServoOverheats) {
   EXPECT_EQ(fault.cause, control::FaultCause::device_overheat);
   EXPECT_EQ(fault.index, shoulder);
   EXPECT_GT(fault.value, 80);  // the temperature the servo reported, °C
-  EXPECT_EQ(fault.from, control::Phase::homing);
+  EXPECT_EQ(fault.from, control::Phase::running);  // mid-show, not at start
   EXPECT_FALSE(controller.active());
 }
 

@@ -26,6 +26,7 @@ class CountingTransport final : public firmware_iface::ByteTransport {
     return Status::ok;
   }
   Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return Status::timeout; }
+  std::chrono::nanoseconds now() const noexcept override { return {}; }
   void discard_input() noexcept override {}
   Status reopen() noexcept override { return Status::ok; }
   std::uint64_t bytes_written() const noexcept override { return written_.load(std::memory_order_relaxed); }

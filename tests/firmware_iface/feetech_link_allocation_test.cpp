@@ -28,6 +28,7 @@ class ScriptedTransport final : public ByteTransport {
     }
     return Status::ok;
   }
+  std::chrono::nanoseconds now() const noexcept override { return {}; }
   void discard_input() noexcept override {}
   Status reopen() noexcept override { return Status::ok; }
   std::uint64_t bytes_written() const noexcept override { return written_; }

@@ -22,6 +22,12 @@ class ByteTransport {
   /// bytes arrived (what did arrive is discarded). Real-time safe: no allocation, no exception.
   virtual Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept = 0;
 
+  /// Now on the transport's own clock, for reply deadlines: the monotonic clock for a real port,
+  /// simulated time for a simulated wire (a transport without time may return a constant, and
+  /// read timeouts alone then bound a wait). Drivers take every deadline from here and read no
+  /// clock themselves. Real-time safe.
+  virtual std::chrono::nanoseconds now() const noexcept = 0;
+
   /// Drops whatever has been received and not yet read (stale replies).
   virtual void discard_input() noexcept = 0;
 

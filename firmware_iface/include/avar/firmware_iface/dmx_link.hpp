@@ -3,14 +3,13 @@
 // 16-bit (coarse slot at `address`, fine slot at address + 1) actuators, the whole frame sent
 // every tick as one Output Only Send DMX message in one write. DMX is one-way: no read-back.
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/dmx_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
@@ -50,7 +49,7 @@ class DmxLink final : public ActuatorLink {
   Status release() noexcept override;
   /// From the next send on, the channel's slots go to level 0.
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   /// Only reconnects: the device does not answer every tick.
   LinkCounters counters() const noexcept override { return reconnector_.counters(); }
@@ -66,11 +65,10 @@ class DmxLink final : public ActuatorLink {
   ByteTransport& transport_;
   DmxLinkConfig config_;
   std::string description_;
-  std::unique_ptr<std::atomic<bool>[]> released_;
+  ActuatorTable table_;
   std::vector<std::uint8_t> slots_;   ///< the universe, slot 1 at index 0
   std::vector<std::uint8_t> packet_;
   dmx::WidgetParameters parameters_;
-  std::atomic<std::uint64_t> saturated_{0};
   std::size_t last_send_size_ = 0;
   Reconnector reconnector_;  ///< reopens the port after an I/O error
 };

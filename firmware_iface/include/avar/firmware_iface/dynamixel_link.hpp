@@ -5,27 +5,28 @@
 // Alert bit makes the next exchange read Hardware Error Status, whose bits become DeviceFault
 // flags (overheat, overload...). Bad CRCs and stray bytes are counted and skipped without losing
 // sync; a missing reply costs at most one reply timeout per exchange and is retried a bounded
-// number of times; a servo that misses `silent_exchanges` exchanges in a row makes send() report
-// a timeout (the controller's watchdog fault). An I/O error (port gone) makes send() report
+// number of times (BusExchange); a servo whose reply is still missing has its position, load and
+// temperature unknown until it answers again (stale feedback is absent); a servo that misses
+// `silent_exchanges` exchanges in a row makes send() report a timeout (the controller's watchdog
+// fault). An I/O error (port gone) makes send() report
 // io_error and try to reopen the port on later sends, re-enabling torque once it is back.
 //
 // Threads: send() and read_telemetry() run on one thread (the link's I/O thread); counters() may
 // be read from any. send() allocates nothing and throws nothing; it waits for replies, bounded
 // by the reply timeout, so it belongs on an I/O thread (control::ThreadedLink), never the tick.
 
-#include <atomic>
 #include <chrono>
-#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
-#include "avar/firmware_iface/atomic_link_counters.hpp"
+#include "avar/firmware_iface/actuator_table.hpp"
+#include "avar/firmware_iface/bus_exchange.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/dynamixel_bus_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
-#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -75,53 +76,44 @@ class DynamixelLink final : public ActuatorLink {
   Status release() noexcept override;
   /// The servo stops being driven: torque off on the next send, and no more goal positions.
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   void read_telemetry(std::span<ChannelTelemetry> out) const noexcept override;
   LinkCounters counters() const noexcept override;
 
   /// Bytes written and read by the last send(), for link-budget reports.
-  std::size_t last_exchange_bytes() const noexcept { return last_exchange_bytes_; }
+  std::size_t last_exchange_bytes() const noexcept { return bus_.exchange_bytes(); }
 
  private:
   struct Servo {
     std::uint8_t id = 0;
     std::size_t actuator = 0;
-    std::uint32_t missed = 0;        ///< exchanges in a row without a reply
-    bool answered = false;           ///< this exchange
     bool read_hardware_error = false;  ///< an Alert was seen: read address 70 next exchange
-    bool torque_off_sent = false;
     std::uint8_t status_return_level = 2;  ///< 0: Ping only, 1: + Read, 2: every instruction
   };
-  /// Sends a request and reads the status packet of servo `id` (its parameters in status_params_).
-  Status query(std::span<const std::uint8_t> request, std::uint8_t id, std::uint8_t* error) noexcept;
-  /// Reads the next status packet (any ID); counts framing and CRC errors on the way.
-  Status read_status(std::uint8_t* id, std::uint8_t* error, std::chrono::milliseconds timeout) noexcept;
-  void take_reply(Servo& servo, std::uint8_t error) noexcept;
-  Status write_counted(std::span<const std::uint8_t> bytes) noexcept;
+  /// Sends a request and waits for the status packet of `servo` with at least `params`
+  /// parameter bytes; *value gets the first one (params 1) or four (params 4) of them.
+  Status query(const Servo& servo, std::span<const std::uint8_t> request, std::size_t params,
+               std::int32_t* value = nullptr) noexcept;
+  /// A write that the servo answers when its Status Return Level says so.
+  Status write_to(const Servo& servo, std::span<const std::uint8_t> request) noexcept;
+  void take_reply(Servo& servo, const BusReply& reply) noexcept;
   Status enable_torque() noexcept;
   Status exchange_telemetry() noexcept;
 
   ByteTransport& transport_;
   DynamixelLinkConfig config_;
-  std::vector<Servo> servos_;
-  std::vector<ChannelTelemetry> telemetry_;   ///< by actuator
-  std::unique_ptr<std::atomic<bool>[]> released_;  ///< by actuator
+  ActuatorTable table_;
+  DynamixelBusCodec codec_;
+  BusExchange bus_;
+  std::vector<Servo> servos_;                 ///< sorted by ID
   std::vector<std::uint8_t> ids_;             ///< scratch: IDs of one instruction
   std::vector<std::int32_t> values_;          ///< scratch: values of one Sync Write
+  std::vector<std::size_t> asked_;            ///< scratch: actuators of one Sync Read
   std::vector<std::uint8_t> packet_;          ///< outgoing bytes
-  std::vector<std::uint8_t> rx_;              ///< incoming bytes not yet decoded
-  std::size_t rx_size_ = 0;
-  std::vector<std::uint8_t> scratch_;         ///< unstuffed parameters of the last status
-  std::span<const std::uint8_t> status_params_;
-  std::chrono::milliseconds timeout_{};
   std::uint16_t read_address_ = 0, read_length_ = 0;
-  Reconnector reconnector_;
-  std::size_t last_exchange_bytes_ = 0;
   std::string description_;
   std::string start_problem_;
-  std::atomic<std::uint64_t> saturated_{0};
-  AtomicLinkCounters counters_;
 };
 
 }  // namespace avar::firmware_iface

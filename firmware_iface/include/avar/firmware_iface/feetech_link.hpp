@@ -6,21 +6,19 @@
 // bad checksums, stray bytes and silent servos are counted in counters() and the decoder
 // resynchronises on the next header, so one bad tick never shifts the next.
 
-#include <array>
-#include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
-#include "avar/firmware_iface/atomic_link_counters.hpp"
+#include "avar/firmware_iface/actuator_table.hpp"
+#include "avar/firmware_iface/bus_exchange.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/feetech_bus_codec.hpp"
 #include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
-#include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
 
@@ -86,14 +84,10 @@ class FeetechLink final : public ActuatorLink {
   /// Broadcast torque off (no reply). Real-time safe.
   Status release() noexcept override;
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   void read_telemetry(std::span<ChannelTelemetry> out) const noexcept override;
-  LinkCounters counters() const noexcept override {
-    LinkCounters k = counters_.snapshot();
-    k.reconnects = reconnector_.reconnects();
-    return k;
-  }
+  LinkCounters counters() const noexcept override { return bus_.counters(); }
 
   /// Bytes of the last send()'s write, for link-budget reports.
   std::size_t last_send_size() const noexcept { return last_send_size_; }
@@ -101,36 +95,26 @@ class FeetechLink final : public ActuatorLink {
   std::size_t reply_bytes_per_tick() const noexcept;
 
  private:
-  /// Reads one status reply of data_length bytes from each of ids (in any order), until all
-  /// came or the timeout passed, calling take(slot, packet) for each. Counts errors; returns
-  /// ok, timeout (someone silent) or bad_data (something corrupt, everyone else answered).
-  template <class Take>
-  Status collect(std::span<const std::size_t> slots, std::size_t data_length, Take&& take) noexcept;
-  /// Writes a request and waits for the one reply of the servo in `slot`.
+  /// Writes a request and waits for the one reply of `data_length` bytes of the servo in
+  /// `slot`; copies up to two of its bytes into `params`. bad_data when the servo refused it.
   Status query(std::size_t slot, std::span<const std::uint8_t> request, std::size_t data_length,
-               feetech::Packet* reply = nullptr) noexcept;
+               std::span<std::uint8_t> params = {}) noexcept;
   /// Takes one status reply of `length` data bytes into the slot's telemetry.
-  void take_telemetry(std::size_t slot, const feetech::Packet& p, std::uint8_t length) noexcept;
+  void take_telemetry(std::size_t slot, const BusReply& reply, std::uint8_t length) noexcept;
   Status write_register(std::size_t slot, std::uint8_t address, std::span<const std::uint8_t> data);
   std::uint8_t readback_length() const noexcept;
 
   ByteTransport& transport_;
   FeetechLinkConfig config_;
   std::string description_;
-  std::unique_ptr<std::atomic<bool>[]> released_;  ///< per actuator
-  std::vector<bool> torque_off_sent_;              ///< per actuator, sending thread only
+  ActuatorTable table_;
+  FeetechBusCodec codec_;
+  BusExchange bus_;
   std::vector<std::uint8_t> ids_;                  ///< scratch: IDs of one packet
   std::vector<std::uint16_t> goals_;               ///< scratch: goal words of one packet
   std::vector<std::uint8_t> torque_off_;           ///< scratch: zeros for the torque-off packet
   std::vector<std::size_t> all_slots_;             ///< 0..n-1
-  std::vector<bool> answered_;                     ///< per actuator, one collect()
-  std::vector<std::uint32_t> missed_;              ///< per actuator: sends in a row without a reply
-  Reconnector reconnector_;
   std::vector<std::uint8_t> packet_;               ///< the whole tick's bytes
-  std::array<std::uint8_t, 2 * feetech::kMaxPacketSize> rx_{};
-  std::vector<ChannelTelemetry> telemetry_;        ///< per actuator
-  AtomicLinkCounters counters_;
-  std::atomic<std::uint64_t> saturated_{0};
   std::size_t last_send_size_ = 0;
 };
 

@@ -3,15 +3,14 @@
 // one "Set Multiple Targets" packet per run of consecutive device channels (one "Set Target" per
 // channel on a Micro Maestro, which lacks that command), all in a single write.
 
-#include <atomic>
 #include <chrono>
-#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/maestro_codec.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
@@ -51,7 +50,7 @@ class MaestroLink final : public ActuatorLink {
   Status send(std::span<const double> frame) noexcept override;
   Status release() noexcept override;
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   /// Only reconnects: the device does not answer every tick.
   LinkCounters counters() const noexcept override { return reconnector_.counters(); }
@@ -75,10 +74,9 @@ class MaestroLink final : public ActuatorLink {
   MaestroLinkConfig config_;
   std::vector<std::size_t> slots_;        ///< actuator indices sorted by device channel
   std::vector<Run> runs_;
+  ActuatorTable table_;
   std::vector<std::uint16_t> targets_;    ///< quarter-µs per slot, rebuilt each send
-  std::unique_ptr<std::atomic<bool>[]> released_;  ///< per slot: send no pulses
   std::vector<std::uint8_t> packet_;      ///< the whole tick's bytes
-  std::atomic<std::uint64_t> saturated_{0};  ///< counted on the sending thread, read anywhere
   std::size_t last_send_size_ = 0;
   std::string description_;
   Reconnector reconnector_;  ///< reopens the port after an I/O error

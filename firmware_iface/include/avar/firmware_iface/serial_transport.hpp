@@ -27,6 +27,8 @@ class SerialTransport final : public ByteTransport {
 
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
+  /// The monotonic clock (steady_clock): a port lives in real time.
+  std::chrono::nanoseconds now() const noexcept override;
   void discard_input() noexcept override;
   /// Opens the same path again (a udev symlink such as /dev/serial/by-id/... follows the device
   /// to its new node), with the same settings and lock.

@@ -4,15 +4,14 @@
 // servo smoothly to its new pulse in exactly one tick (and a line holding newly released
 // channels low, ahead of it, when there are any). read_positions() asks QP for every channel.
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
+#include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/firmware_iface/reconnector.hpp"
@@ -50,7 +49,7 @@ class Ssc32Link final : public ActuatorLink {
   /// Holds every actuator's output low (no pulses). Real-time safe.
   Status release() noexcept override;
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return saturated_.load(std::memory_order_relaxed); }
+  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   /// Only reconnects: the device does not answer every tick.
   LinkCounters counters() const noexcept override { return reconnector_.counters(); }
@@ -63,12 +62,10 @@ class Ssc32Link final : public ActuatorLink {
   ByteTransport& transport_;
   Ssc32LinkConfig config_;
   std::string description_;
-  std::unique_ptr<std::atomic<bool>[]> released_;
-  std::vector<bool> low_sent_;
+  ActuatorTable table_;
   std::vector<ssc32::ServoMove> moves_;
   std::vector<std::uint8_t> channels_;
   std::vector<std::uint8_t> packet_;
-  std::atomic<std::uint64_t> saturated_{0};
   std::size_t last_send_size_ = 0;
   Reconnector reconnector_;  ///< reopens the port after an I/O error
 };

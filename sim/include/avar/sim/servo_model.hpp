@@ -7,6 +7,12 @@
 
 namespace avar::sim {
 
+/// How far a position loop with a first-order lag moves toward a goal `error` away in dt_s: the
+/// exact response over dt for a constant goal, capped at max_speed * dt_s, 0 while |error| is
+/// within the deadband; it never passes the goal (time_constant_s 0: only the cap). Units are
+/// the caller's (µs of pulse, position steps). dt_s > 0, max_speed > 0.
+double lag_step(double error, double dt_s, double time_constant_s, double max_speed, double deadband) noexcept;
+
 struct ServoParams {
   /// Top speed of the horn in µs of pulse width per second. 2200 µs/s is a standard servo's
   /// 60° in 0.15 s (400°/s) where 1000 µs of pulse spans about 180° of travel (5.6 µs/°).

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "avar/sim/byte_device.hpp"
+#include "avar/sim/smart_servo_model.hpp"
 
 namespace avar::sim {
 
@@ -21,6 +22,7 @@ struct SimDynamixelServo {
   std::uint8_t firmware = 45;
   std::int32_t initial_position = 2048;  ///< pulses (0.088° each)
   double max_speed_pulses_per_s = 3000;  ///< no-load speed (~46 rev/min)
+  double max_acceleration_pulses_per_s2 = 60'000;  ///< the motor's own limit (top speed in 50 ms)
   double time_constant_s = 0.02;
   double ambient_c = 25;
   double heating_c_per_s_at_full_load = 2;  ///< temperature rise rate at 100 % load
@@ -51,11 +53,13 @@ class SimDynamixel final : public ByteDevice {
   /// Control-table access for tests and the simulator's own reports (servo by index).
   std::uint8_t read_u8(std::size_t servo, std::uint16_t address) const { return servos_[servo].table[address]; }
   std::int32_t read_i32(std::size_t servo, std::uint16_t address) const;
-  double temperature_c(std::size_t servo) const { return servos_[servo].temperature; }
-  /// Sets a servo's temperature (a test warming it); it heats and cools from there.
-  void set_temperature_c(std::size_t servo, double celsius) { servos_[servo].temperature = celsius; }
+  double temperature_c(std::size_t servo) const { return servos_[servo].model.temperature_c(); }
+  /// A test warming a servo: sets its temperature; it heats and cools from there.
+  void set_temperature_c(std::size_t servo, double celsius) { servos_[servo].model.set_temperature_c(celsius); }
+  /// Sets the load a servo's horn holds (a heavy prop), fraction of rated torque.
+  void set_external_load(std::size_t servo, double load) { servos_[servo].model.set_external_load(load); }
   /// Present position in pulses (the model's exact value; the table holds it rounded).
-  double position(std::size_t servo) const { return servos_[servo].position; }
+  double position(std::size_t servo) const { return servos_[servo].model.position(); }
   std::uint64_t crc_errors() const { return crc_errors_; }
   const std::deque<DynamixelCommand>& log() const { return log_; }
 
@@ -64,9 +68,7 @@ class SimDynamixel final : public ByteDevice {
   struct Servo {
     SimDynamixelServo spec;
     std::array<std::uint8_t, kTableSize> table{};
-    double position = 0;
-    double velocity = 0;  ///< pulses/s
-    double temperature = 25;
+    SmartServoModel model;
   };
 
   void handle(std::uint8_t id, std::uint8_t instruction, std::span<const std::uint8_t> params);

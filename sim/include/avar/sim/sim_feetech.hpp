@@ -4,7 +4,7 @@
 // non-broadcast instruction (Response Level 1) or only to Read and Ping (level 0), none to a
 // broadcast; each servo of a Sync Read answers in the order listed. Keeps a control table per
 // servo in the series' byte order, and moves each servo toward its goal position (goal speed and
-// acceleration limits, a first-order lag and a deadband via ServoModel) with a load that rises
+// acceleration limits, a first-order lag and a deadband: SmartServoModel) with a load that rises
 // with acceleration, speed and an external load, and a temperature that rises with load until
 // the overheat protection turns the torque off (the Status bit holds until 5 °C below the limit).
 //
@@ -27,7 +27,7 @@
 
 #include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/sim/byte_device.hpp"
-#include "avar/sim/servo_model.hpp"
+#include "avar/sim/smart_servo_model.hpp"
 
 namespace avar::sim {
 
@@ -84,10 +84,10 @@ class SimFeetech final : public ByteDevice {
   std::uint16_t read_word(std::size_t servo, std::uint8_t address) const;
   /// Where the horn is, steps (the model's exact value; the table holds it rounded).
   double position(std::size_t servo) const;
-  double temperature_c(std::size_t servo) const { return servos_[servo].temperature; }
-  double load(std::size_t servo) const { return servos_[servo].load; }
+  double temperature_c(std::size_t servo) const { return servos_[servo].model.temperature_c(); }
+  double load(std::size_t servo) const { return servos_[servo].model.load(); }
   /// Sets the load the horn holds (a test pressing on the arm), fraction of rated torque.
-  void set_external_load(std::size_t servo, double load) { servos_[servo].spec.external_load = load; }
+  void set_external_load(std::size_t servo, double load) { servos_[servo].model.set_external_load(load); }
   /// Seconds a servo waits before answering (Return Delay register, 2 µs per unit).
   double reply_delay_s(std::size_t servo) const { return servos_[servo].table[firmware_iface::feetech::kReturnDelay] * 2e-6; }
   /// Seconds `bytes` take on this bus at its baud rate (8N1).
@@ -100,10 +100,7 @@ class SimFeetech final : public ByteDevice {
   struct Servo {
     SimFeetechServo spec;
     std::array<std::uint8_t, kTableSize> table{};
-    ServoModel model;
-    double velocity = 0;  ///< steps/s
-    double load = 0;      ///< signed fraction of rated torque
-    double temperature = 25;
+    SmartServoModel model;
     bool pending = false;  ///< a Reg Write waits for Action
     std::uint8_t pending_address = 0;
     std::vector<std::uint8_t> pending_data;

@@ -25,6 +25,10 @@ class SimWire final : public firmware_iface::ByteTransport {
 
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
+  /// The simulated clock (now_s()).
+  std::chrono::nanoseconds now() const noexcept override {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(now_s_));
+  }
   void discard_input() noexcept override;
   Status reopen() noexcept override;
   std::uint64_t bytes_written() const noexcept override { return bytes_written_; }
