@@ -19,7 +19,7 @@
 #include <random>
 #include <vector>
 
-#include "avar/playback/curve.hpp"
+#include "avar/playback/runtime/curve.hpp"
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/playback/curve_fit.hpp"
-#include "avar/playback/smoothing.hpp"
+#include "avar/playback/offline/curve_fit.hpp"
+#include "avar/playback/offline/smoothing.hpp"
 
 namespace avar::app {
 namespace {

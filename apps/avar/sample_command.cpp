@@ -13,7 +13,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
-#include "avar/playback/sampler.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
-#include "avar/playback/sampler.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 
 namespace avar::config {
 namespace {

@@ -3,7 +3,7 @@
 // Load time: allocates, throws InputError naming file, line and column.
 
 #include "yaml_support.hpp"
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::config::detail {
 

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "yaml_support.hpp"
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::config::detail {
 

@@ -15,7 +15,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/playback/sampler.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 
 namespace avar::app {
 namespace {

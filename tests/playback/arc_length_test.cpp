@@ -1,6 +1,6 @@
 // Arc length by adaptive quadrature, its inverse and the real-time table: known lengths, round
 // trips within the bound over seeded random curves, monotone lookups.
-#include "avar/playback/arc_length.hpp"
+#include "avar/playback/runtime/arc_length.hpp"
 
 #include <gtest/gtest.h>
 

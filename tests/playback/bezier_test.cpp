@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "avar/playback/bezier_time_solve.hpp"
-#include "avar/playback/curve.hpp"
+#include "avar/playback/runtime/bezier_time_solve.hpp"
+#include "avar/playback/runtime/curve.hpp"
 #include "keys.hpp"
 
 namespace avar::playback {

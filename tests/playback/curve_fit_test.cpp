@@ -1,7 +1,7 @@
 // Fitting samples with Bezier keys: the built curve stays within the tolerance at every sample
 // on seeded random smooth and noisy data, with far fewer keys than samples; handles keep time
 // monotone; steps and corners are kept as keys with broken tangents.
-#include "avar/playback/curve_fit.hpp"
+#include "avar/playback/offline/curve_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "avar/playback/curve.hpp"
+#include "avar/playback/runtime/curve.hpp"
 #include "keys.hpp"
 
 namespace avar::playback {

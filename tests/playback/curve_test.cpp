@@ -1,6 +1,6 @@
 // Curve values at and between keys for each interpolation, extrapolation, and the errors of
 // Curve::build with their locations.
-#include "avar/playback/curve.hpp"
+#include "avar/playback/runtime/curve.hpp"
 
 #include <gtest/gtest.h>
 

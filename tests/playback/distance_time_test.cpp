@@ -1,13 +1,13 @@
 // Distance-time functions: ends, monotone, continuity of distance and speed, speed as the
 // derivative, and constant-speed traversal of a 3-D curve measured by arc length.
-#include "avar/playback/distance_time.hpp"
+#include "avar/playback/runtime/distance_time.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-#include "avar/playback/arc_length.hpp"
+#include "avar/playback/runtime/arc_length.hpp"
 #include "parametric_curves.hpp"
 
 namespace avar::playback {

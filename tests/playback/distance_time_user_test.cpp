@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "avar/playback/distance_time.hpp"
+#include "avar/playback/runtime/distance_time.hpp"
 #include "keys.hpp"
 
 namespace avar::playback {

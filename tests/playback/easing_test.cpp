@@ -1,6 +1,6 @@
 // Blender's easing equations: every family and easing starts and ends on its keys, known values
 // of Penner's equations, Blender's AUTO choice and its elastic defaults.
-#include "avar/playback/easing.hpp"
+#include "avar/playback/runtime/easing.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Blender's handle rules on small hand-checked curves (the golden test checks them against
 // Blender itself on many more).
-#include "avar/playback/handles.hpp"
+#include "avar/playback/offline/handles.hpp"
 
 #include <gtest/gtest.h>
 

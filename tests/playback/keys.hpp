@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "avar/playback/curve.hpp"
-#include "avar/playback/track.hpp"
+#include "avar/playback/runtime/curve.hpp"
+#include "avar/playback/runtime/track.hpp"
 
 namespace avar::playback::testing {
 

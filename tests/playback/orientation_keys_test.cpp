@@ -1,6 +1,6 @@
 // Orientation keys as a show gives them: quaternion and Euler keys mixed in one track, unit
 // length and the short way between keys, and bad keys rejected at their location.
-#include "avar/playback/orientation_keys.hpp"
+#include "avar/playback/runtime/orientation_keys.hpp"
 
 #include <gtest/gtest.h>
 

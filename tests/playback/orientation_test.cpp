@@ -1,7 +1,7 @@
 // Orientation: Euler <-> quaternion <-> matrix round trips in every order, the stated Euler
 // convention, quaternion tracks that stay unit length, take the short way, and (squad) turn with
 // continuous angular velocity through keys.
-#include "avar/playback/orientation.hpp"
+#include "avar/playback/runtime/orientation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "avar/playback/arc_length.hpp"
+#include "avar/playback/runtime/arc_length.hpp"
 
 namespace avar::playback::testing {
 

@@ -2,7 +2,7 @@
 // measured constant within the arc-length bound, user distance-time curves are honoured, the ends
 // hold outside [from, to], Frenet frames stay orthonormal and finite across straight pieces, and
 // bad paths are rejected at their location.
-#include "avar/playback/path_track.hpp"
+#include "avar/playback/runtime/path_track.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "avar/playback/sampler.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 
 #include <gtest/gtest.h>
 

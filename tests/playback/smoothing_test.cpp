@@ -1,6 +1,6 @@
 // Smoothing filters: known responses (constants, sines well below and above the cutoff), zero
 // phase (a peak stays where it was), and noise actually reduced.
-#include "avar/playback/smoothing.hpp"
+#include "avar/playback/offline/smoothing.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Clips, layers and time: clip modes, time warps, crossfade weights and continuity, override and
 // additive blending, and masks, through the sampler that plays them.
-#include "avar/playback/timeline.hpp"
+#include "avar/playback/runtime/timeline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "avar/playback/sampler.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 #include "keys.hpp"
 
 namespace avar::playback {

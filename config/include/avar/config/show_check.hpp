@@ -6,7 +6,7 @@
 
 #include "avar/rig/rig.hpp"
 #include "avar/core/input_error.hpp"
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::config {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::config {
 

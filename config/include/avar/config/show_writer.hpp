@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::config {
 

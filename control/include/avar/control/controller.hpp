@@ -31,8 +31,8 @@
 #include "avar/rig/rig.hpp"
 #include "avar/core/status.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
-#include "avar/playback/sampler.hpp"
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/sampler.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::control {
 

@@ -17,7 +17,7 @@
 #include "avar/kinematics/ik_goal.hpp"
 #include "avar/kinematics/ik_result.hpp"
 #include "avar/kinematics/ik_workspace.hpp"
-#include "avar/playback/show.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::control {
 
