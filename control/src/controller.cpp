@@ -27,33 +27,6 @@ std::vector<ChannelLimits> limits_of(const rig::Rig& rig) {
 
 }  // namespace
 
-const char* to_string(Phase p) noexcept {
-  switch (p) {
-    case Phase::disabled: return "disabled";
-    case Phase::homing: return "homing";
-    case Phase::running: return "running";
-    case Phase::stopping: return "stopping";
-    case Phase::faulted: return "faulted";
-  }
-  return "unknown";
-}
-
-const char* to_string(FaultCause c) noexcept {
-  switch (c) {
-    case FaultCause::none: return "none";
-    case FaultCause::estop: return "e-stop";
-    case FaultCause::link_watchdog: return "link watchdog";
-    case FaultCause::link_failure: return "link failure";
-    case FaultCause::tracking_error: return "tracking error";
-    case FaultCause::non_finite: return "non-finite command";
-    case FaultCause::device_overheat: return "device over-temperature";
-    case FaultCause::device_overload: return "device overload";
-    case FaultCause::device_error: return "device hardware error";
-    case FaultCause::deadline_budget: return "deadline misses over budget";
-  }
-  return "unknown";
-}
-
 const char* to_string(Stage s) noexcept {
   switch (s) {
     case Stage::sample: return "sample";
@@ -80,8 +53,8 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       limiter_(limits_of(rig), options.tick_period_s),
       ramp_(rig.channels.size()),
       rest_(rig.rest_frame()),
+      supervisor_(rig, links_.size()),
       failsafe_goal_(rig.channels.size()),
-      channel_rests_(rig.channels.size(), 1),
       ramp_velocity_(rig.channels.size()),
       first_frame_(rig.channels.size()),
       target_(rig.channels.size()),
@@ -93,17 +66,8 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       telemetry_(rig.channels.size()),
       link_telemetry_seen_(rig.channels.size(), 0),
       source_measured_(rig.channels.size(), 0.0),
-      source_known_(new bool[rig.channels.size()]()),
-      link_dead_(links_.size(), 0) {
+      source_known_(new bool[rig.channels.size()]()) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
-  // A channel eases to rest on a fault unless none of its actuators asks for that.
-  std::vector<char> has_actuator(rig.channels.size(), 0);
-  for (const rig::ActuatorSpec& a : rig.actuators) {
-    const std::size_t c = a.channel.value;
-    if (!has_actuator[c]) channel_rests_[c] = 0;
-    has_actuator[c] = 1;
-    if (a.failsafe == rig::Failsafe::rest) channel_rests_[c] = 1;
-  }
   if (!show.targets.empty()) {
     if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
     ik_.emplace(*rig.kinematics, show, rest_);
@@ -126,7 +90,7 @@ void Controller::lap(Stage s, std::int64_t& mark) noexcept {
 }
 
 void Controller::begin(double now_s, std::span<const double> start_pose) noexcept {
-  if (phase_ != Phase::disabled) return;
+  if (supervisor_.phase() != Phase::disabled) return;
   limiter_.reset(start_pose);
   if (ik_) {
     // Solve the first frame from where the figure is, so that homing heads for the solution
@@ -142,7 +106,7 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
   homing_duration_ = limiter_.glide_duration(first_frame_, ramp_velocity_, options_.min_ramp_s);
   limiter_.glide_to(first_frame_, homing_duration_);
   limiter_.warm(first_frame_);
-  phase_ = Phase::homing;
+  supervisor_.enter(Phase::homing);
   phase_start_ = now_s;
   last_now_ = now_s;
   begun_ = true;
@@ -169,23 +133,16 @@ bool Controller::ramp_done(double now_s) const noexcept {
 
 void Controller::request_stop(double now_s) noexcept {
   stop_requested_ = true;
-  if (phase_ != Phase::homing && phase_ != Phase::running) return;
+  if (supervisor_.phase() != Phase::homing && supervisor_.phase() != Phase::running) return;
   ease_to(rest_, now_s);
-  phase_ = Phase::stopping;
+  supervisor_.enter(Phase::stopping);
 }
 
 void Controller::fault(FaultCause cause, std::size_t index, double value, double now_s, Status status) noexcept {
-  ++faults_seen_;
-  if (fault_.cause != FaultCause::none) return;  // the first fault stays latched
-  fault_ = {cause, status, index, value, now_s, phase_};
-  // Nothing was moving: latch, but do not start driving anything.
-  drive_in_fault_ = phase_ != Phase::disabled;
-  phase_ = Phase::faulted;
-  if (!drive_in_fault_) return;
-  for (const rig::ActuatorSpec& a : rig_.actuators)
-    if (a.failsafe == rig::Failsafe::release && a.link.value < links_.size())
-      links_[a.link.value]->release_channel(a.channel.value);
-  for (std::size_t c = 0; c < failsafe_goal_.size(); ++c) failsafe_goal_[c] = channel_rests_[c] ? rest_[c] : limiter_.heading(c);
+  if (!supervisor_.latch(cause, index, value, now_s, status)) return;
+  supervisor_.release_failsafe(links_);
+  for (std::size_t c = 0; c < heading_.size(); ++c) heading_[c] = limiter_.heading(c);
+  supervisor_.failsafe_goal(rest_, heading_, failsafe_goal_);
   ease_to(failsafe_goal_, now_s);
 }
 
@@ -233,31 +190,24 @@ void Controller::read_feedback() noexcept {
 }
 
 bool Controller::active() const noexcept {
-  switch (phase_) {
+  switch (supervisor_.phase()) {
     case Phase::homing:
     case Phase::running:
     case Phase::stopping: return true;
-    case Phase::faulted: {
-      bool alive = false;
-      for (char dead : link_dead_) alive = alive || !dead;
-      return drive_in_fault_ && alive && !ramp_done(last_now_);
-    }
+    case Phase::faulted: return supervisor_.driving_failsafe() && supervisor_.any_link_alive() && !ramp_done(last_now_);
     case Phase::disabled: return false;
   }
   return false;
 }
 
 bool Controller::reset() noexcept {
-  if (phase_ != Phase::faulted || active()) return false;
-  fault_ = {};
-  std::fill(link_dead_.begin(), link_dead_.end(), 0);
-  phase_ = Phase::disabled;
-  return true;
+  if (supervisor_.phase() != Phase::faulted || active()) return false;
+  return supervisor_.clear();
 }
 
 void Controller::release_now() noexcept {
   for (firmware_iface::ActuatorLink* link : links_) (void)link->release();
-  phase_ = Phase::disabled;
+  supervisor_.enter(Phase::disabled);
 }
 
 Status Controller::tick(double now_s) noexcept {
@@ -265,7 +215,7 @@ Status Controller::tick(double now_s) noexcept {
   // Before the clock moves on: what the devices reported came with the last tick's exchange.
   read_feedback();
   last_now_ = now_s;
-  if (phase_ == Phase::disabled || (phase_ == Phase::faulted && !drive_in_fault_)) return Status::ok;
+  if (!supervisor_.drives()) return Status::ok;
 
   // Feedback from the last tick against the command it answered.
   for (std::size_t c = 0; c < measured_known_.size(); ++c) {
@@ -277,10 +227,10 @@ Status Controller::tick(double now_s) noexcept {
   }
 
   bool sampled_show = false;
-  switch (phase_) {
+  switch (supervisor_.phase()) {
     case Phase::homing:
       if (now_s - phase_start_ >= homing_duration_ && limiter_.settled()) {
-        phase_ = Phase::running;
+        supervisor_.enter(Phase::running);
         show_start_ = now_s;
       } else {
         std::copy(first_frame_.begin(), first_frame_.end(), target_.begin());
@@ -296,7 +246,7 @@ Status Controller::tick(double now_s) noexcept {
         break;
       }
       ease_to(rest_, now_s);
-      phase_ = Phase::stopping;
+      supervisor_.enter(Phase::stopping);
       [[fallthrough]];
     case Phase::stopping:
     case Phase::faulted: ramp_.sample(now_s - phase_start_, target_); break;
@@ -315,18 +265,18 @@ Status Controller::tick(double now_s) noexcept {
 
   Status result = Status::ok;
   for (std::size_t i = 0; i < links_.size(); ++i) {
-    if (link_dead_[i]) continue;
+    if (supervisor_.link_dead(i)) continue;
     const Status s = links_[i]->send(commanded_);
     if (s == Status::ok) continue;
     // Nothing more can be sent over this link: its actuators keep their last command (or the
     // device's own fail-safe). The other links do their fail-safe actions.
-    link_dead_[i] = 1;
+    supervisor_.link_died(i);
     result = s;
     fault(s == Status::timeout ? FaultCause::link_watchdog : FaultCause::link_failure, i, 0, now_s, s);
   }
   lap(Stage::send, mark);
 
-  if (phase_ == Phase::stopping && ramp_done(now_s)) phase_ = Phase::disabled;
+  if (supervisor_.phase() == Phase::stopping && ramp_done(now_s)) supervisor_.enter(Phase::disabled);
   return result;
 }
 

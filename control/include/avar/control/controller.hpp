@@ -2,10 +2,8 @@
 // The control loop's tick and its supervisor. Every tick: read feedback (the links' device
 // telemetry and, where there is one, a position source such as the simulator's ground truth;
 // tracking, over-temperature and overload checks) -> sample the show -> inverse kinematics ->
-// limit -> finite check -> hand the frame to the links. Around it, one state machine:
-//
-//   disabled --begin--> homing --soft start done--> running --show over / stop--> stopping
-//   stopping --at rest--> disabled;  any state --fault--> faulted --reset--> disabled
+// limit -> finite check -> hand the frame to the links. Around it, the supervisor's state
+// machine (supervisor.hpp), whose fail-safe moves the controller drives.
 //
 // Homing glides from the present pose to the show's first frame (Limiter::glide_to:
 // jerk-limited, all channels arriving together at rest), and the show starts there; stopping
@@ -28,6 +26,7 @@
 #include "avar/control/limiter.hpp"
 #include "avar/control/plant.hpp"
 #include "avar/control/ramp.hpp"
+#include "avar/control/supervisor.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/core/status.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
@@ -35,33 +34,6 @@
 #include "avar/playback/runtime/show.hpp"
 
 namespace avar::control {
-
-enum class Phase { disabled, homing, running, stopping, faulted };
-const char* to_string(Phase p) noexcept;
-
-enum class FaultCause {
-  none,
-  estop,             ///< the e-stop input
-  link_watchdog,     ///< a link completed no send within its watchdog time
-  link_failure,      ///< a link reported an I/O error
-  tracking_error,    ///< measured position too far from the command (channel)
-  non_finite,        ///< a NaN or infinity reached the limiter (channel)
-  device_overheat,   ///< a device reported over-temperature (channel)
-  device_overload,   ///< a device reported overload (channel)
-  device_error,      ///< a device reported another hardware error: voltage, encoder... (channel)
-  deadline_budget,   ///< more deadline misses than allowed
-};
-const char* to_string(FaultCause c) noexcept;
-
-/// The first fault, latched until reset().
-struct Fault {
-  FaultCause cause = FaultCause::none;
-  Status status = Status::ok;
-  std::size_t index = 0;  ///< channel or link, by cause
-  double value = 0;       ///< the offending measurement where there is one (error, misses)
-  double time_s = 0;      ///< loop time at which it was detected
-  Phase from = Phase::disabled;  ///< the state the fault interrupted
-};
 
 /// The stages of a tick whose cost is measured.
 enum class Stage { sample, ik, limit, send };
@@ -142,9 +114,10 @@ class Controller {
   /// motions still under way.
   bool active() const noexcept;
 
-  Phase phase() const noexcept { return phase_; }
-  const Fault& latched_fault() const noexcept { return fault_; }
-  std::uint64_t faults_seen() const noexcept { return faults_seen_; }
+  Phase phase() const noexcept { return supervisor_.phase(); }
+  const Fault& latched_fault() const noexcept { return supervisor_.latched_fault(); }
+  std::uint64_t faults_seen() const noexcept { return supervisor_.faults_seen(); }
+  const Supervisor& supervisor() const noexcept { return supervisor_; }
   bool stop_requested() const noexcept { return stop_requested_; }
   /// Show time of the last running tick (seconds into the show, growing across loops).
   double show_time() const noexcept { return show_time_; }
@@ -184,8 +157,8 @@ class Controller {
   Limiter limiter_;
   Ramp ramp_;
   std::vector<double> rest_;
+  Supervisor supervisor_;
   std::vector<double> failsafe_goal_;  ///< per channel, filled when a fault starts
-  std::vector<char> channel_rests_;    ///< per channel: some actuator's fail-safe is "rest"
   std::vector<double> ramp_velocity_;
   std::vector<double> first_frame_;
   std::vector<double> target_;
@@ -198,13 +171,8 @@ class Controller {
   std::vector<std::uint64_t> link_telemetry_seen_;           ///< per channel: `updates` the tick took
   std::vector<double> source_measured_;                      ///< per channel, from options.positions
   std::unique_ptr<bool[]> source_known_;
-  std::vector<char> link_dead_;
   std::array<StageTime, kStageCount> stage_times_{};
-  Phase phase_ = Phase::disabled;
-  Fault fault_;
-  std::uint64_t faults_seen_ = 0;
   bool begun_ = false;
-  bool drive_in_fault_ = false;  ///< the fault interrupted motion: fail-safe actions run
   double last_now_ = 0;
   bool stop_requested_ = false;
   double phase_start_ = 0;
