@@ -61,7 +61,7 @@ tidy_state="tidy ok (${#tidy_files[@]} files)"
 if [ ${#tidy_files[@]} -gt 0 ]; then
   tidy_out=$(git diff -U0 --no-color "$base" -- "${tidy_files[@]}" |
              clang-tidy-diff-14.py -p1 -path "$build" -j 2 -quiet -clang-tidy-binary clang-tidy-14 2>&1 |
-             grep -v -e '^[0-9]* warnings\? generated\.$' -e '^No relevant changes found\.$' || true)
+             grep -v -e '^$' -e '^[0-9]* warnings\? generated\.$' -e '^No relevant changes found\.$' || true)
   if grep -qE '^[^ ]+:[0-9]+:[0-9]+: (warning|error):' <<<"$tidy_out"; then
     failed=1
     tidy_state="tidy FAILED"
