@@ -3,6 +3,7 @@
 BUILD ?= build
 SANITIZE_BUILD ?= build-sanitize
 TSAN_BUILD ?= build-tsan
+LINT_BUILD ?= build-lint
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 BENCH ?= OFF
@@ -10,7 +11,7 @@ AVAR = $(BUILD)/apps/avar
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: all deps configure build demo test test-fast test-sanitize test-tsan bench clean
+.PHONY: all deps configure build demo lint test test-fast test-sanitize test-tsan bench clean
 
 all: build
 
@@ -35,7 +36,15 @@ demo: build
 # -O0 the Eigen-heavy tests ran 5x slower.
 TSAN_SUITES = control sim firmware_iface assembly
 TSAN_EXCLUDE = ^Limiter\.
-test: test-sanitize test-tsan
+test: lint test-sanitize test-tsan
+
+# clang-format and clang-tidy on what changed since .ci/lint-base (or LINT_BASE=<commit>). clang-tidy
+# reads the compile database of a configured-only tree: the sanitizer trees compile eight files to
+# a unit, so their databases name no source file.
+lint: deps
+	@cmake -S . -B $(LINT_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_UNITY_BUILD=OFF -DAVAR_BUILD_TESTS=OFF \
+	  -DAVAR_BUILD_BENCH=ON >/dev/null
+	@LINT_BUILD=$(LINT_BUILD) scripts/lint-changed.sh $(LINT_BASE)
 
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -59,4 +68,4 @@ bench: build
 	@set -e; for b in $(BUILD)/bench/avar-bench-*; do echo "== $$b"; $$b; done
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD)

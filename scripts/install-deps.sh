@@ -7,7 +7,8 @@ set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config make
           libserial-dev libyaml-cpp-dev libcli11-dev libeigen3-dev
           liburdfdom-dev libtinyxml-dev
-          libgtest-dev libgmock-dev libbenchmark-dev "$@")
+          libgtest-dev libgmock-dev libbenchmark-dev
+          clang-format clang-tidy "$@")
 
 missing=()
 for p in "${packages[@]}"; do
