@@ -45,8 +45,9 @@ std::optional<Loaded> load_and_check(const std::string& show_path, const std::st
   }
 }
 
-void print_summary(std::ostream& out, const Loaded& loaded, const assembly::FigureLinks& figure, const control::Controller& controller,
-                   const PlayRecorder& recorder, const control::RunResult& run, bool realtime, double rate_hz) {
+void print_summary(std::ostream& out, const Loaded& loaded, const assembly::FigureLinks& figure,
+                   const control::Controller& controller, const PlayRecorder& recorder, const control::RunResult& run,
+                   bool realtime, double rate_hz) {
   const rig::Rig& rig = loaded.rig;
   out << "\nplayed '" << loaded.show.name << "' on rig '" << rig.name << "' at " << rate_hz << " Hz, "
       << (realtime ? "real time" : "simulated time") << '\n';

@@ -9,8 +9,8 @@
 
 namespace avar::app {
 
-PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
-                           std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
+PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples,
+                           std::size_t expected_ticks, std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
     : figure_(figure),
       links_(figure.links()),
       channels_(channels),

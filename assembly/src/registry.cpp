@@ -41,8 +41,8 @@ int checked_baud(const Protocol& p, const ScalarValue& written, std::string_view
     written.fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " +
                  written.describe());
   if (!p.device_accepts_baud(static_cast<int>(b)))
-    written.fail("a " + std::string(p.name) + " device cannot run at " + written.describe() + " baud; expected one of: " +
-                 p.bauds_text);
+    written.fail("a " + std::string(p.name) + " device cannot run at " + written.describe() +
+                 " baud; expected one of: " + p.bauds_text);
   return static_cast<int>(b);
 }
 

@@ -98,7 +98,8 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
     protocol = p;
   }
   if (!settings)
-    node.fail("expected " + what + " to name its protocol with a settings block, one of: " + names + " (for example `dynamixel: {}`)");
+    node.fail("expected " + what + " to name its protocol with a settings block, one of: " + names +
+              " (for example `dynamixel: {}`)");
   link.protocol = protocol->name;
   if (!settings->node.IsNull() && !settings->node.IsMap())
     settings->fail("expected the " + link.protocol + " settings of " + what + " to be a map (use {} for the defaults)");
@@ -152,7 +153,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   }
 
   if (auto fine = node.find("fine")) {
-    if (!link_protocol.has_fine_addresses) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
+    if (!link_protocol.has_fine_addresses)
+      fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
     a.fine = fine->as_bool("fine");
   }
   const assembly::AddressRule rule = link_protocol.address_rule(spec, a.fine);
@@ -180,8 +182,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     return v;
   };
   // A DMX dimmer spans its whole range by default; servos must be calibrated.
-  const auto cal_node = link_protocol.needs_calibration ? std::optional<YamlRef>(node.at("calibration", what))
-                                                       : node.find("calibration");
+  const auto cal_node =
+      link_protocol.needs_calibration ? std::optional<YamlRef>(node.at("calibration", what)) : node.find("calibration");
   if (cal_node) {
     const YamlRef& cal = *cal_node;
     cal.expect_only_keys({rule.cal_min, rule.cal_max, "reverse", rule.trim}, cwhat);
@@ -254,8 +256,9 @@ rig::Rig load_rig_file(const std::string& path) {
     // A 16-bit DMX channel takes two slots.
     for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
       if (!used.insert({a.link.value, slot}).second)
-        node.at(rule.key, "").fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + link.protocol +
-                                   " link '" + link.name + "' is used by two actuators");
+        node.at(rule.key, "")
+            .fail(std::string(rule.key) + " " + std::to_string(slot) + " of " + link.protocol + " link '" + link.name +
+                  "' is used by two actuators");
     rig.actuators.push_back(std::move(a));
   }
   if (auto kin = root.find("kinematics")) rig.kinematics = read_rig_kinematics(rig, *kin);

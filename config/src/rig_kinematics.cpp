@@ -57,8 +57,7 @@ struct PendingJoint {
 
 /// Reads how a movable joint is driven: {channel, scale, offset} from `node`, the scale from the
 /// channel's unit when not given. Returns the binding (q_index left for the caller).
-rig::JointBinding read_binding(const rig::Rig& rig, const YamlRef& node, const std::string& what,
-                                   kinematics::JointType type) {
+rig::JointBinding read_binding(const rig::Rig& rig, const YamlRef& node, const std::string& what, kinematics::JointType type) {
   rig::JointBinding binding;
   const YamlRef channel = node.at("channel", what + " (the channel that drives it)");
   const std::string channel_name = channel.as_string("the channel of " + what);
@@ -92,7 +91,7 @@ std::pair<double, double> channel_limits(const rig::Rig& rig, const rig::JointBi
 /// offset}}`; every movable joint needs a channel, and its limits become the intersection of its
 /// own and its channel's, so the solver never asks for what the channel cannot do.
 rig::RigKinematics bind_imported(const rig::Rig& rig, const kinematics::Model& imported, const YamlRef& joints,
-                                     const YamlRef& section) {
+                                 const YamlRef& section) {
   joints.expect_map("joints (a map of joint name to {channel, scale, offset})");
   std::string names;
   for (const kinematics::Joint& j : imported.joints())

@@ -16,8 +16,8 @@ namespace avar::config {
 namespace {
 
 using detail::constant_curve;
-using detail::read_name;
 using detail::read_key_time;
+using detail::read_name;
 using detail::read_track;
 
 /// Three curves of a target from `names` (x, y, z or roll, pitch, yaw), or a static `vector`.

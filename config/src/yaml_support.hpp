@@ -47,10 +47,10 @@ struct YamlRef {
   /// The node as a scalar value with its place (ScalarValue::scalar is false for maps, lists).
   ScalarValue scalar() const;
   /// Scalar conversions (ScalarValue's); each fails with what was found and what was expected.
-  double as_double(std::string_view what) const;        ///< finite number
-  long long as_integer(std::string_view what) const;    ///< whole number
-  bool as_bool(std::string_view what) const;             ///< true / false
-  std::string as_string(std::string_view what) const;    ///< non-empty scalar
+  double as_double(std::string_view what) const;       ///< finite number
+  long long as_integer(std::string_view what) const;   ///< whole number
+  bool as_bool(std::string_view what) const;           ///< true / false
+  std::string as_string(std::string_view what) const;  ///< non-empty scalar
 
   /// The found value, quoted for error messages ("'abc'", "a map", "a list").
   std::string describe() const;

@@ -11,7 +11,8 @@ struct Bounds {
   double A, J, inv_A, inv_J;
   explicit Bounds(const JerkLimits& l) : A(l.acceleration), J(l.jerk), inv_A(1 / l.acceleration), inv_J(1 / l.jerk) {}
   /// With the reciprocals already known.
-  Bounds(const JerkLimits& l, double inverse_a, double inverse_j) : A(l.acceleration), J(l.jerk), inv_A(inverse_a), inv_J(inverse_j) {}
+  Bounds(const JerkLimits& l, double inverse_a, double inverse_j)
+      : A(l.acceleration), J(l.jerk), inv_A(inverse_a), inv_J(inverse_j) {}
 };
 
 }  // namespace avar::control::jerk

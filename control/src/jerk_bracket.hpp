@@ -48,9 +48,8 @@ inline bool step_from_probe(double probe, const Reach& at_probe, double end, dou
 /// ends (high first, unless the warm start pointed below low), probing by the start models before
 /// evaluating ±V. May end the solve in `out` instead (a probe on the root, or ±V short of the goal:
 /// the cruise fills the rest).
-[[gnu::always_inline]] inline Bracket bracket_root(const WarmStart& w, double V, const JerkLimits& limits,
-                                                   const Branches& b, const Bounds& bounds, Residuals& residual,
-                                                   Solution& out) {
+[[gnu::always_inline]] inline Bracket bracket_root(const WarmStart& w, double V, const JerkLimits& limits, const Branches& b,
+                                                   const Bounds& bounds, Residuals& residual, Solution& out) {
   const double low = b.low, high = b.high;
   Bracket br;
   br.warm = w.brackets();

@@ -13,8 +13,8 @@ namespace avar::control::jerk {
 /// acceleration; computed exactly as velocity_change computes it) and 0; between them (a change
 /// and a stop in the same direction) it may not be.
 struct Branches {
-  double a0;       ///< the start's acceleration, within [-A, A]
-  double natural;  ///< v0 + a0|a0|/(2J) within [-V, V]; 0 where that is zero to rounding
+  double a0;         ///< the start's acceleration, within [-A, A]
+  double natural;    ///< v0 + a0|a0|/(2J) within [-V, V]; 0 where that is zero to rounding
   double low, high;  ///< min and max of 0 and natural
   /// Beyond the natural velocity, away from 0, where reaching vp means reversing the
   /// acceleration (the side where D has its square-root corner), D is smooth in

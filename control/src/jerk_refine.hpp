@@ -23,8 +23,8 @@ inline constexpr double kShiftable = 64;
 /// direction it moves is finished exactly by a short cruise at its velocity (time-optimal but
 /// for that cruise, which is accepted once negligible: `negligible_s`, s). Starts from the warm
 /// start's last iterate (`resume`) inside the bracket; always ends the solve in `out`.
-[[gnu::always_inline]] inline void refine(Bracket br, double resume, double negligible_s, const Branches& b,
-                                          Residuals& residual, Solution& out) {
+[[gnu::always_inline]] inline void refine(Bracket br, double resume, double negligible_s, const Branches& b, Residuals& residual,
+                                          Solution& out) {
   double lo = br.lo, hi = br.hi, f_lo = br.f_lo, f_hi = br.f_hi;
   const double natural = b.natural;
   const auto finish_short = [&](double x, double f) {
@@ -55,7 +55,8 @@ inline constexpr double kShiftable = 64;
       if (!(slope > 0) || !std::isfinite(slope) || (map.mapped && !(ux > 0))) return std::numeric_limits<double>::quiet_NaN();
       return ux - f / map.slope(slope, ux);
     };
-    const double start = std::abs(f_lo) <= std::abs(f_hi) ? newton_from(lo, f_lo, br.slope_lo) : newton_from(hi, f_hi, br.slope_hi);
+    const double start =
+        std::abs(f_lo) <= std::abs(f_hi) ? newton_from(lo, f_lo, br.slope_lo) : newton_from(hi, f_hi, br.slope_hi);
     if (inside(start)) u = start;
   }
   if (!inside(u)) u = 0.5 * (u_lo + u_hi);

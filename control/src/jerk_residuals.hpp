@@ -12,7 +12,7 @@ namespace avar::control::jerk {
 /// Where the solve ended: the peak velocity (NaN until found) and the cruise at it.
 struct Solution {
   double vp = std::numeric_limits<double>::quiet_NaN();
-  double cruise = 0;     ///< s, at vp = ±V or to finish a bracket end that falls short
+  double cruise = 0;       ///< s, at vp = ±V or to finish a bracket end that falls short
   bool predicted = false;  ///< vp was taken on a Newton step predicted to converge, unevaluated
   bool loose = false;      ///< the accepted residual is within the slack, not within rounding
   bool found() const { return vp == vp; }
@@ -24,8 +24,14 @@ struct Solution {
 class Residuals {
  public:
   Residuals(const MotionState& start, double goal, const Bounds& k, const PlanSlack& slack, int& evaluations)
-      : v0_(start.v), a0_(start.a), d_(goal - start.p), positions_(std::abs(start.p) + std::abs(goal)), k_(k),
-        slack_(slack), evaluations_(evaluations), tolerance_(4 * DBL_EPSILON * positions_ + DBL_MIN) {}
+      : v0_(start.v),
+        a0_(start.a),
+        d_(goal - start.p),
+        positions_(std::abs(start.p) + std::abs(goal)),
+        k_(k),
+        slack_(slack),
+        evaluations_(evaluations),
+        tolerance_(4 * DBL_EPSILON * positions_ + DBL_MIN) {}
 
   Reach operator()(double vp) {
     if (vp == last_vp_) return last_;

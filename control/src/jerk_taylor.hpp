@@ -15,7 +15,7 @@ namespace avar::control::jerk {
 inline bool stays_inside(const Reach& r, double vp, double step, const Bounds& k) {
   const double jump = k.J * std::abs(step);  // how far the peaks' squares move
   const VelocityChange& c = r.change;
-  const double b0 = c.peak - c.rise * k.J;    // the change's start acceleration, in its frame
+  const double b0 = c.peak - c.rise * k.J;  // the change's start acceleration, in its frame
   if (c.hold > 0) {
     if (!(std::abs(step) < 0.5 * c.hold * k.A)) return false;
   } else {

@@ -33,9 +33,8 @@ struct WarmStart {
 /// each tick costs a few evaluations). Ends the solve in `out` when a step is accepted, reaches
 /// ±V short of the goal (the cruise fills the rest) or, with `predict`, is predicted to converge.
 /// A hint that is not finite is not tried.
-[[gnu::always_inline]] inline WarmStart warm_start(double hint, bool predict, const PlanSlack& slack, double V,
-                                                   const Branches& b, const Bounds& bounds, Residuals& residual,
-                                                   Solution& out) {
+[[gnu::always_inline]] inline WarmStart warm_start(double hint, bool predict, const PlanSlack& slack, double V, const Branches& b,
+                                                   const Bounds& bounds, Residuals& residual, Solution& out) {
   WarmStart w;
   w.resume = hint;
   if (!std::isfinite(hint)) return w;

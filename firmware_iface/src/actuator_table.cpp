@@ -3,8 +3,11 @@
 namespace avar::firmware_iface {
 
 ActuatorTable::ActuatorTable(std::size_t n)
-    : channels_(n), calibrations_(n), released_(std::make_unique<std::atomic<bool>[]>(n)),
-      told_(std::make_unique<bool[]>(n)), telemetry_(n) {}
+    : channels_(n),
+      calibrations_(n),
+      released_(std::make_unique<std::atomic<bool>[]>(n)),
+      told_(std::make_unique<bool[]>(n)),
+      telemetry_(n) {}
 
 double ActuatorTable::to_device(std::size_t i, std::span<const double> frame) noexcept {
   bool clamped = false;

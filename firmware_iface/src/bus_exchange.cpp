@@ -5,11 +5,16 @@
 
 namespace avar::firmware_iface {
 
-BusExchange::BusExchange(ByteTransport& transport, BusCodec& codec, std::vector<std::uint32_t> devices,
-                         BusExchangeConfig config)
-    : transport_(transport), codec_(codec), devices_(std::move(devices)), config_(config),
-      reconnector_(config.reconnect_every), answered_(std::make_unique<bool[]>(devices_.size())),
-      awaited_(std::make_unique<bool[]>(devices_.size())), missed_(devices_.size(), 0), rx_(config.max_packet),
+BusExchange::BusExchange(ByteTransport& transport, BusCodec& codec, std::vector<std::uint32_t> devices, BusExchangeConfig config)
+    : transport_(transport),
+      codec_(codec),
+      devices_(std::move(devices)),
+      config_(config),
+      reconnector_(config.reconnect_every),
+      answered_(std::make_unique<bool[]>(devices_.size())),
+      awaited_(std::make_unique<bool[]>(devices_.size())),
+      missed_(devices_.size(), 0),
+      rx_(config.max_packet),
       request_(config.max_packet) {}
 
 Status BusExchange::begin(bool* reopened) noexcept {

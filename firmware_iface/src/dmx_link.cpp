@@ -7,7 +7,8 @@
 
 namespace avar::firmware_iface {
 
-DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config) : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
+DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config)
+    : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   if (config_.actuators.empty()) throw std::invalid_argument("a DMX link needs at least one actuator");
   std::array<bool, dmx::kUniverseSize + 1> used{};
   std::size_t highest = 0;

@@ -11,7 +11,7 @@ namespace avar::firmware_iface {
 namespace dxl = dynamixel;
 namespace {
 
-constexpr std::size_t kStatusOverhead = 11;  // header 7, instruction, error, CRC 2
+constexpr std::size_t kStatusOverhead = 11;                                               // header 7, instruction, error, CRC 2
 constexpr std::uint16_t kFullFirst = dxl::kPresentLoad;                                   // 126
 constexpr std::uint16_t kFullLength = dxl::kPresentTemperature + 1 - dxl::kPresentLoad;  // 21
 constexpr double kPulsesPerRev = 4096;
@@ -55,7 +55,9 @@ BusExchangeConfig dynamixel_exchange(const DynamixelLinkConfig& c) {
 }  // namespace
 
 DynamixelLink::DynamixelLink(ByteTransport& transport, DynamixelLinkConfig config)
-    : transport_(transport), config_(std::move(config)), table_(config_.actuators),
+    : transport_(transport),
+      config_(std::move(config)),
+      table_(config_.actuators),
       bus_(transport_, codec_, dynamixel_ids(config_), dynamixel_exchange(config_)) {
   const std::size_t n = config_.actuators.size();
   for (std::size_t i = 0; i < n; ++i) servos_.push_back({config_.actuators[i].id, i});

@@ -5,8 +5,7 @@
 namespace avar::firmware_iface {
 namespace ft = feetech;
 
-Framing FeetechBusCodec::parse(std::span<const std::uint8_t> in, BusReply* reply, std::size_t* used,
-                               std::size_t* want) noexcept {
+Framing FeetechBusCodec::parse(std::span<const std::uint8_t> in, BusReply* reply, std::size_t* used, std::size_t* want) noexcept {
   ft::Packet packet;
   switch (ft::decode_packet(in, &packet, used)) {
     case ft::DecodeResult::ok:

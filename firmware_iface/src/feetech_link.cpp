@@ -43,7 +43,9 @@ BusExchangeConfig feetech_exchange(const FeetechLinkConfig& c) {
 }  // namespace
 
 FeetechLink::FeetechLink(ByteTransport& transport, FeetechLinkConfig config)
-    : transport_(transport), config_(std::move(config)), table_(config_.actuators),
+    : transport_(transport),
+      config_(std::move(config)),
+      table_(config_.actuators),
       bus_(transport_, codec_, feetech_ids(config_), feetech_exchange(config_)) {
   const std::size_t n = config_.actuators.size();
   std::string ids;

@@ -156,9 +156,7 @@ Status SerialTransport::read_exact(std::span<std::uint8_t> out, std::chrono::mil
   }
 }
 
-std::chrono::nanoseconds SerialTransport::now() const noexcept {
-  return std::chrono::steady_clock::now().time_since_epoch();
-}
+std::chrono::nanoseconds SerialTransport::now() const noexcept { return std::chrono::steady_clock::now().time_since_epoch(); }
 
 void SerialTransport::discard_input() noexcept {
   try {

@@ -7,7 +7,8 @@
 
 namespace avar::firmware_iface {
 
-Ssc32Link::Ssc32Link(ByteTransport& transport, Ssc32LinkConfig config) : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
+Ssc32Link::Ssc32Link(ByteTransport& transport, Ssc32LinkConfig config)
+    : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   const std::size_t n = config_.actuators.size();
   if (n == 0) throw std::invalid_argument("an SSC-32 link needs at least one actuator");
   std::array<bool, ssc32::kChannels> used{};

@@ -16,7 +16,8 @@ void SmartServoModel::advance(double dt_s, bool torque, double goal, double spee
 void SmartServoModel::step(double dt_s, bool torque, double goal, double speed_limit, double acceleration_limit) noexcept {
   if (torque) {
     const double top = speed_limit > 0 ? std::min(speed_limit, params_.max_speed) : params_.max_speed;
-    const double most = acceleration_limit > 0 ? std::min(acceleration_limit, params_.max_acceleration) : params_.max_acceleration;
+    const double most =
+        acceleration_limit > 0 ? std::min(acceleration_limit, params_.max_acceleration) : params_.max_acceleration;
     const double wanted = lag_step(goal - position_, dt_s, params_.time_constant_s, top, params_.deadband) / dt_s;
     const double velocity = std::clamp(wanted, velocity_ - most * dt_s, velocity_ + most * dt_s);
     const double acceleration = (velocity - velocity_) / dt_s;
@@ -29,7 +30,9 @@ void SmartServoModel::step(double dt_s, bool torque, double goal, double speed_l
     velocity_ = 0;
     load_ = 0;
   }
-  temperature_ += (params_.heating_c_per_s_at_full_load * std::abs(load_) - params_.cooling_per_s * (temperature_ - params_.ambient_c)) * dt_s;
+  temperature_ +=
+      (params_.heating_c_per_s_at_full_load * std::abs(load_) - params_.cooling_per_s * (temperature_ - params_.ambient_c)) *
+      dt_s;
 }
 
 }  // namespace avar::sim

@@ -54,7 +54,7 @@ TEST(LibraryLoop, DynamixelExampleOnTheSimulatorFaultsWhenAServoOverheats) {
   const control::Fault& fault = controller.latched_fault();
   EXPECT_EQ(fault.cause, control::FaultCause::device_overheat);
   EXPECT_EQ(fault.index, shoulder);
-  EXPECT_GE(fault.value, 80);  // the temperature the servo reported (whole °C) at its limit
+  EXPECT_GE(fault.value, 80);                      // the temperature the servo reported (whole °C) at its limit
   EXPECT_EQ(fault.from, control::Phase::running);  // mid-show, not at start
   EXPECT_FALSE(controller.active());
 }

@@ -41,7 +41,8 @@ TEST(JerkReach, SlopeCurvatureAndThirdMatchFiniteDifferencesOfTheDistance) {
     const auto slope = [&](double x) { return reach(s.v, s.a, x, k).slope; };
     const auto curvature = [&](double x) { return reach_curvature(reach(s.v, s.a, x, k), x, k); };
     const double d2 = reach_curvature(r, vp, k), d3 = reach_third(r, vp, k);
-    ASSERT_NEAR(r.slope, testing::central_difference(distance, vp, h), 1e-6 * std::abs(r.slope) + 1e-8 * r.magnitude / h) << "n " << n;
+    ASSERT_NEAR(r.slope, testing::central_difference(distance, vp, h), 1e-6 * std::abs(r.slope) + 1e-8 * r.magnitude / h)
+        << "n " << n;
     ASSERT_NEAR(d2, testing::central_difference(slope, vp, h), 1e-5 * std::abs(d2) + 1e-8 * std::abs(r.slope) / h) << "n " << n;
     ASSERT_NEAR(d3, testing::central_difference(curvature, vp, h), 1e-4 * std::abs(d3) + 1e-8 * std::abs(d2) / h) << "n " << n;
   }

@@ -57,8 +57,8 @@ TEST(JerkSolveStages, TheBracketHoldsTheRootAndTheRefinementEndsOnIt) {
       ASSERT_EQ(br.f_lo, reach(s.v, s.a, br.lo, k).distance - d) << "n " << n;
       ASSERT_EQ(br.f_hi, reach(s.v, s.a, br.hi, k).distance - d) << "n " << n;
     }
-    refine(br, solve.warm.resume, 1e-9 * (l.velocity / l.acceleration + l.acceleration / l.jerk), solve.branches,
-           solve.residual, solve.solution);
+    refine(br, solve.warm.resume, 1e-9 * (l.velocity / l.acceleration + l.acceleration / l.jerk), solve.branches, solve.residual,
+           solve.solution);
     const Solution& out = solve.solution;
     ASSERT_TRUE(out.found()) << "n " << n;
     ASSERT_GE(out.cruise, 0) << "n " << n;

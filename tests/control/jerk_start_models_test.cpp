@@ -42,7 +42,8 @@ TEST(JerkStartModels, BrakingAndCornerModelsLandNearerTheRootThanTheirBranchEnd)
     // D' u² (D' ~ |vp|/A + A/J): u up to 1% of where they are equal.
     const double end = family.uniform(0, 1) < 0.5 ? 0.0 : b.natural;
     const double away = end == 0 ? family.sign() : (b.natural > 0 ? 1.0 : -1.0);
-    const double u = 1e-2 * family.log_uniform(1e-3, 1) * std::abs(b.corner_slope) / (std::abs(b.natural) / l.acceleration + l.acceleration / l.jerk);
+    const double u = 1e-2 * family.log_uniform(1e-3, 1) * std::abs(b.corner_slope) /
+                     (std::abs(b.natural) / l.acceleration + l.acceleration / l.jerk);
     const double offset = end == 0 ? family.log_uniform(1e-6, 1e-2) * l.velocity : u * u;
     const double root = std::clamp(end + away * offset, -l.velocity, l.velocity);
     const double d = reach(s.v, s.a, root, k).distance;

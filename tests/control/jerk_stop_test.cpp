@@ -40,7 +40,8 @@ TEST(JerkStop, BrakingFromAnyStateReachesRestAtTheStoppingPoint) {
     const JerkLimits l = family.limits();
     const MotionState s = family.start(l);
     const VelocityChange brake = velocity_change(s.v, s.a, 0, Bounds(l));
-    const MotionState end = testing::run_pieces(s, {{brake.rise, brake.s * l.jerk}, {brake.hold, 0}, {brake.fall, -brake.s * l.jerk}});
+    const MotionState end =
+        testing::run_pieces(s, {{brake.rise, brake.s * l.jerk}, {brake.hold, 0}, {brake.fall, -brake.s * l.jerk}});
     ASSERT_NEAR(end.a, 0, 1e-9 * l.acceleration) << "n " << n;
     ASSERT_NEAR(end.v, 0, 1e-9 * (std::abs(s.v) + l.velocity)) << "n " << n;
     ASSERT_NEAR(end.p, stopping_point(s, l), 1e-9 * (std::abs(s.p) + brake.magnitude)) << "n " << n;
@@ -66,7 +67,8 @@ TEST(JerkStop, SlopeCurvatureAndThirdMatchFiniteDifferences) {
     const auto curvature = [&](double x) { return stop_curvature(x, stop_peak(x, k), k); };
     const auto distance = [&](double x) { return stop_distance(x, k); };
     const double d1 = slope(vp), d2 = curvature(vp), d3 = stop_third(m, k);
-    ASSERT_NEAR(d1, testing::central_difference(distance, vp, h), 1e-6 * std::abs(d1) + 1e-8 * std::abs(distance(vp)) / h) << "n " << n;
+    ASSERT_NEAR(d1, testing::central_difference(distance, vp, h), 1e-6 * std::abs(d1) + 1e-8 * std::abs(distance(vp)) / h)
+        << "n " << n;
     ASSERT_NEAR(d2, testing::central_difference(slope, vp, h), 1e-5 * std::abs(d2) + 1e-8 * std::abs(d1) / h) << "n " << n;
     ASSERT_NEAR(d3, testing::central_difference(curvature, vp, h), 1e-4 * std::abs(d3) + 1e-8 * std::abs(d2) / h) << "n " << n;
   }

@@ -15,7 +15,6 @@
 #include <memory>
 #include "../support/rig_names.hpp"
 
-
 namespace avar::control {
 namespace {
 

@@ -138,7 +138,8 @@ struct ToyActuator {
 
 /// Replies of the given devices, in that order, to a request of any kind; retries ('R' DEV)
 /// are answered by the device asked when it is in `retry_answers`.
-std::function<ToyBytes(const ToyBytes&)> toy_devices(std::vector<std::uint8_t> answer, std::vector<std::uint8_t> retry_answers = {}) {
+std::function<ToyBytes(const ToyBytes&)> toy_devices(std::vector<std::uint8_t> answer,
+                                                     std::vector<std::uint8_t> retry_answers = {}) {
   return [=](const ToyBytes& request) {
     ToyBytes out;
     if (request[0] == 'R') {

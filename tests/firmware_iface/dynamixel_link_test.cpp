@@ -209,8 +209,7 @@ TEST(DynamixelLink, LostDuplicatedAndLateRepliesNeverStallOrDesynchronise) {
     b.faulty.set_plan(plan);
     b.frame = {-10, -20, 10, 20};
     const double before = b.wire.now_s();
-    for (int tick = 0; tick < 300; ++tick)
-      ASSERT_EQ(b.send_and_check_telemetry(), Status::ok) << fault << " tick " << tick;
+    for (int tick = 0; tick < 300; ++tick) ASSERT_EQ(b.send_and_check_telemetry(), Status::ok) << fault << " tick " << tick;
     // Bounded: no exchange ever waits longer than one reply timeout plus retries.
     EXPECT_LT((b.wire.now_s() - before) / 300, 0.025) << fault;
     for (std::size_t c = 0; c < 4; ++c) EXPECT_NEAR(b.last_fresh[c], b.frame[c], 0.2) << fault;

@@ -51,8 +51,8 @@ const Protocol& dmx_protocol() {
       true,
       false,
       [](const rig::LinkSpec&) { return false; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport, const DriverTuning&)
-          -> std::unique_ptr<firmware_iface::ActuatorLink> {
+      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+         const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
       },
       simulated_dmx,

@@ -72,8 +72,8 @@ const Protocol& dynamixel_protocol() {
       false,
       true,
       [](const rig::LinkSpec& link) { return servo_bus_options(link).readback != Readback::none; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport, const DriverTuning& tuning)
-          -> std::unique_ptr<firmware_iface::ActuatorLink> {
+      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+         const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
         config.reply_timeout = std::max(config.reply_timeout, std::chrono::milliseconds(tuning.min_reply_timeout_ms));
         return std::make_unique<firmware_iface::DynamixelLink>(transport, config);

@@ -90,8 +90,8 @@ const Protocol& feetech_protocol() {
       false,
       true,
       [](const rig::LinkSpec& link) { return feetech_bus(link).readback != Readback::none; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport, const DriverTuning& tuning)
-          -> std::unique_ptr<firmware_iface::ActuatorLink> {
+      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+         const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
         config.reply_timeout = std::max(config.reply_timeout, std::chrono::milliseconds(tuning.min_reply_timeout_ms));
         return std::make_unique<firmware_iface::FeetechLink>(transport, config);

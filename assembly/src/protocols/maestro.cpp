@@ -38,7 +38,8 @@ SimulatedDevice simulated_maestro(const rig::Rig& rig, std::size_t link) {
   }
   auto device = std::make_unique<sim::SimMaestro>(config);
   sim::SimMaestro* d = device.get();
-  return {std::move(device), [d](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->servo_position_us(a.device_channel)); }};
+  return {std::move(device),
+          [d](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->servo_position_us(a.device_channel)); }};
 }
 
 }  // namespace
@@ -89,8 +90,8 @@ const Protocol& maestro_protocol() {
       false,
       true,
       [](const rig::LinkSpec&) { return false; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport, const DriverTuning&)
-          -> std::unique_ptr<firmware_iface::ActuatorLink> {
+      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+         const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
       },
       simulated_maestro,

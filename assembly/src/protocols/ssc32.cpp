@@ -13,7 +13,8 @@ SimulatedDevice simulated_ssc32(const rig::Rig& rig, std::size_t link) {
   config.baud = rig.links[link].baud;
   auto device = std::make_unique<sim::SimSsc32>(config);
   sim::SimSsc32* d = device.get();
-  return {std::move(device), [d](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->servo_position_us(a.device_channel)); }};
+  return {std::move(device),
+          [d](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->servo_position_us(a.device_channel)); }};
 }
 
 }  // namespace
@@ -48,8 +49,8 @@ const Protocol& ssc32_protocol() {
       false,
       true,
       [](const rig::LinkSpec&) { return false; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport, const DriverTuning&)
-          -> std::unique_ptr<firmware_iface::ActuatorLink> {
+      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+         const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
       },
       simulated_ssc32,

@@ -51,9 +51,7 @@ constexpr double kMinTableSlope = 0.1;
 // Handles at thirds of the segment in time make s(u) = u, up to rounding of the handle times
 // (~1e-13 of the segment). Within kMaxResidual of the identity on [0, 1], u = s is as close to
 // the root as the tabulated inverse guarantees (|s(u) - s| <= kMaxResidual, s'(u) ~ 1).
-bool time_is_parameter(const Cubic& s) noexcept {
-  return std::abs(s.c1 - 1.0) + std::abs(s.c2) + std::abs(s.c3) <= kMaxResidual;
-}
+bool time_is_parameter(const Cubic& s) noexcept { return std::abs(s.c1 - 1.0) + std::abs(s.c2) + std::abs(s.c3) <= kMaxResidual; }
 
 double min_slope_on_window(const Cubic& s) noexcept {
   double low = std::min(s.slope_at(kWindowLow), s.slope_at(kWindowHigh));
@@ -95,7 +93,8 @@ std::pair<double, double> bernstein_range(const std::array<double, Degree + 1>& 
   static constexpr auto weights = [] {
     std::array<std::array<double, Degree + 1>, Degree + 1> w{};
     for (int i = 0; i <= Degree; ++i)
-      for (int k = 0; k <= i; ++k) w[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = binomial(i, k) / binomial(Degree, k);
+      for (int k = 0; k <= i; ++k)
+        w[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = binomial(i, k) / binomial(Degree, k);
     return w;
   }();
   double low = std::numeric_limits<double>::infinity(), high = -low;
@@ -124,19 +123,21 @@ void validate(const RawCurve& raw) {
     if (!std::isfinite(k.time))
       throw InputError(k.where, "key time " + format_number(k.time) + " is not a number of seconds; expected a finite time");
     if (!std::isfinite(k.value))
-      throw InputError(k.where, "key value " + format_number(k.value) + " at " + seconds(k.time) + " is not finite; expected a finite value");
+      throw InputError(
+          k.where, "key value " + format_number(k.value) + " at " + seconds(k.time) + " is not finite; expected a finite value");
     if (i > 0 && !(k.time > raw.keys[i - 1].time))
-      throw InputError(k.where, "key time " + seconds(k.time) + " is not after the previous key's " + seconds(raw.keys[i - 1].time) +
-                                    "; key times must strictly increase");
+      throw InputError(k.where, "key time " + seconds(k.time) + " is not after the previous key's " +
+                                    seconds(raw.keys[i - 1].time) + "; key times must strictly increase");
     for (const auto& [handle, side] : {std::pair{&k.left, "left"}, std::pair{&k.right, "right"}})
       if (*handle && (!std::isfinite((*handle)->time) || !std::isfinite((*handle)->value)))
         throw InputError(k.where, std::string("the ") + side + " handle of the key at " + seconds(k.time) + " is [" +
                                       format_number((*handle)->time) + ", " + format_number((*handle)->value) +
                                       "]; expected a finite [time, value]");
-    for (const auto& [type, handle, side] : {std::tuple{k.left_type, k.left.has_value(), "left"}, std::tuple{k.right_type, k.right.has_value(), "right"}})
+    for (const auto& [type, handle, side] :
+         {std::tuple{k.left_type, k.left.has_value(), "left"}, std::tuple{k.right_type, k.right.has_value(), "right"}})
       if (type && (*type == HandleType::free || *type == HandleType::aligned) && !handle)
-        throw InputError(k.where, std::string("the ") + side + " handle of the key at " + seconds(k.time) + " is " + to_string(*type) +
-                                      " but not given; expected " + side + ": [time, value], or " + side +
+        throw InputError(k.where, std::string("the ") + side + " handle of the key at " + seconds(k.time) + " is " +
+                                      to_string(*type) + " but not given; expected " + side + ": [time, value], or " + side +
                                       "_type auto, auto_clamped or vector to compute it");
     require_finite(k, k.back, "back");
     require_finite(k, k.amplitude, "amplitude");
@@ -152,9 +153,11 @@ void validate(const RawCurve& raw) {
     const RawKey& next = raw.keys[i + 1];
     if (k.interpolation != Interpolation::hermite) continue;
     if (!k.out_slope)
-      throw InputError(k.where, "the key at " + seconds(k.time) + " starts a hermite segment but has no out_slope; expected out_slope: <units per second>");
+      throw InputError(k.where, "the key at " + seconds(k.time) +
+                                    " starts a hermite segment but has no out_slope; expected out_slope: <units per second>");
     if (!next.in_slope)
-      throw InputError(next.where, "the key at " + seconds(next.time) + " ends a hermite segment but has no in_slope; expected in_slope: <units per second>");
+      throw InputError(next.where, "the key at " + seconds(next.time) +
+                                       " ends a hermite segment but has no in_slope; expected in_slope: <units per second>");
   }
 }
 
@@ -278,7 +281,7 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
         }
         if (min_slope_on_window(s_of_u) >= kMinTableSlope && std::isfinite(kMaxTablePieces * s.inv_duration)) {
           s.shape = Shape::bezier_table;
-          s.extra = static_cast<std::uint32_t>(curve.inverse_.size()) + 1;  // after the table's header
+          s.extra = static_cast<std::uint32_t>(curve.inverse_.size()) + 1;                      // after the table's header
           s.inv_duration *= tabulate_inverse(s_of_u.c1, s_of_u.c2, s_of_u.c3, curve.inverse_);  // a power of two: exact
         } else {
           with_extra(Shape::bezier_closed, s_of_u.c1, s_of_u.c2, s_of_u.c3);
@@ -357,7 +360,9 @@ std::uint32_t CurveBuilder::tabulate_inverse(double k1, double k2, double k3, st
   constexpr double dx = 1.0 / finest;
   for (std::uint32_t i = 0; i <= finest; ++i) {
     // From the previous knot's Taylor step: a few Newton steps (the certification checks the result).
-    u[i] = i == 0 ? 0.0 : i == finest ? 1.0 : invert_increasing(s, i * dx, u[i - 1] + dx * (du_ds[i - 1] + 0.5 * dx * d2u_ds2[i - 1]));
+    u[i] = i == 0        ? 0.0
+           : i == finest ? 1.0
+                         : invert_increasing(s, i * dx, u[i - 1] + dx * (du_ds[i - 1] + 0.5 * dx * d2u_ds2[i - 1]));
     const double slope = s.slope_at(u[i]), bend = 2.0 * s.c2 + 6.0 * s.c3 * u[i];
     du_ds[i] = 1.0 / slope;
     d2u_ds2[i] = -bend / (slope * slope * slope);
@@ -375,7 +380,8 @@ std::uint32_t CurveBuilder::tabulate_inverse(double k1, double k2, double k3, st
     r[0] -= x0, r[1] -= h;
     const auto [r_low, r_high] = bernstein_range<15>(r);
     const auto [u_low, u_high] = bernstein_range<5>(q1);
-    return -r_low <= kMaxResidual / 2 && r_high <= kMaxResidual / 2 && u_low >= kWindowLow / 2 && u_high <= 1.0 + (kWindowHigh - 1.0) / 2;
+    return -r_low <= kMaxResidual / 2 && r_high <= kMaxResidual / 2 && u_low >= kWindowLow / 2 &&
+           u_high <= 1.0 + (kWindowHigh - 1.0) / 2;
   };
   const std::size_t header = table.size();
   for (std::uint32_t n = kMinTablePieces;; n *= 2) {

@@ -103,7 +103,8 @@ RawCurve to_raw_curve(std::span<const double> t, std::span<const double> v, cons
     key.where = where;
     // Handles a third of the neighbouring segment away in time; the end keys mirror their one
     // handle (it shapes nothing under constant extrapolation, but keeps both sides free).
-    const double before = k > 0 ? (t[i] - t[keys.sample[k - 1]]) / 3 : (t[keys.sample[std::min<std::size_t>(1, count - 1)]] - t[i]) / 3;
+    const double before =
+        k > 0 ? (t[i] - t[keys.sample[k - 1]]) / 3 : (t[keys.sample[std::min<std::size_t>(1, count - 1)]] - t[i]) / 3;
     const double after = k + 1 < count ? (t[keys.sample[k + 1]] - t[i]) / 3 : before;
     if (count > 1) {
       key.left = Handle{t[i] - before, v[i] - keys.in_slope[k] * before};
@@ -116,8 +117,8 @@ RawCurve to_raw_curve(std::span<const double> t, std::span<const double> v, cons
 
 /// For every segment whose worst |error| exceeds `limit`, the sample where it is worst.
 template <typename Evaluate>
-std::vector<std::size_t> worst_over(std::span<const double> v, const Keys& keys, double limit,
-                                    Evaluate evaluate, double& max_error) {
+std::vector<std::size_t> worst_over(std::span<const double> v, const Keys& keys, double limit, Evaluate evaluate,
+                                    double& max_error) {
   std::vector<std::size_t> splits;
   max_error = 0;
   for (std::size_t k = 0; k + 1 < keys.sample.size(); ++k) {
@@ -159,11 +160,13 @@ std::vector<std::size_t> over_tolerance(std::span<const double> t, std::span<con
   if (keys.sample.size() > 1) solve_slopes(t, v, keys);
   // Aim a hair inside the tolerance with the pieces, then check the curve that will play.
   double error = 0;
-  auto splits = worst_over(v, keys, tolerance * (1 - 1e-6), [&](std::size_t k, std::size_t j) { return hermite_at(t, v, keys, k, j); }, error);
+  auto splits = worst_over(
+      v, keys, tolerance * (1 - 1e-6), [&](std::size_t k, std::size_t j) { return hermite_at(t, v, keys, k, j); }, error);
   if (!splits.empty()) return splits;
   result.curve = to_raw_curve(t, v, keys, where);
   const Curve built = Curve::build(result.curve);
-  return worst_over(v, keys, tolerance, [&](std::size_t, std::size_t j) { return built.evaluate(t[j]); }, result.max_error);
+  return worst_over(
+      v, keys, tolerance, [&](std::size_t, std::size_t j) { return built.evaluate(t[j]); }, result.max_error);
 }
 
 }  // namespace

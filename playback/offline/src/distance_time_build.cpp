@@ -27,8 +27,9 @@ DistanceTime DistanceTime::from_keys(const RawCurve& raw) {
       const double s = f.user_.evaluate(t);
       if (s < previous || s < 0 || s > 1)
         throw InputError(keys[k].where, "expected " + what + " to rise from 0 to 1 without ever going back, but between " +
-                                            format_number(keys[k].time) + " and " + format_number(keys[k + 1].time) + " it reaches " +
-                                            format_number(s) + " at " + format_number(t) + " after " + format_number(previous));
+                                            format_number(keys[k].time) + " and " + format_number(keys[k + 1].time) +
+                                            " it reaches " + format_number(s) + " at " + format_number(t) + " after " +
+                                            format_number(previous));
       previous = s;
     }
   }

@@ -86,10 +86,8 @@ void calc_handles(Triple& b, const Triple* prev, const Triple* next, bool smooth
       if (left_violate || right_violate) {
         // Keep the pair collinear: the clamped side decides the slope.
         const double left_x = b.left.x - p2.x, right_x = p2.x - b.right.x;
-        if (left_violate)
-          b.right.y = p2.y + (p2.y - b.left.y) / left_x * right_x;
-        else
-          b.left.y = p2.y + (p2.y - b.right.y) / right_x * left_x;
+        if (left_violate) b.right.y = p2.y + (p2.y - b.left.y) / left_x * right_x;
+        else b.left.y = p2.y + (p2.y - b.right.y) / right_x * left_x;
       }
     }
   }
@@ -185,7 +183,8 @@ bool solve_with_limits(System s, std::vector<double>& h, const std::vector<doubl
     if (!locked) {
       for (std::size_t i = 0; i < n; ++i) {
         if (!is_locked[i] || unlocks[i] >= 2) continue;
-        const double state = original.a[i] * h[(i + n - 1) % n] + original.b[i] * h[i] + original.c[i] * h[(i + 1) % n] - original.d[i];
+        const double state =
+            original.a[i] * h[(i + n - 1) % n] + original.b[i] * h[i] + original.c[i] * h[(i + 1) % n] - original.d[i];
         const double relax = -state * original.b[i];
         if ((relax > 0 && h[i] < hmax[i]) || (relax < 0 && h[i] > hmin[i])) {
           s.a[i] = original.a[i], s.b[i] = original.b[i], s.c[i] = original.c[i], s.d[i] = original.d[i];

@@ -92,8 +92,8 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
     if (!spec.points[i].allFinite())
       throw InputError(i < spec.point_where.size() ? spec.point_where[i] : spec.where, "expected a path point of finite numbers");
   if (!std::isfinite(spec.from) || !std::isfinite(spec.to) || !(spec.to > spec.from))
-    throw InputError(spec.where, "expected a path's end time `to` (" + format_number(spec.to) + " s) after its start time `from` (" +
-                                     format_number(spec.from) + " s)");
+    throw InputError(spec.where, "expected a path's end time `to` (" + format_number(spec.to) +
+                                     " s) after its start time `from` (" + format_number(spec.from) + " s)");
   if (!spec.up.allFinite() || !(spec.up.norm() > 0)) throw InputError(spec.where, "expected a non-zero finite up vector");
   if (!spec.look_at.allFinite()) throw InputError(spec.where, "expected a finite look_at point");
   if (std::all_of(spec.points.begin(), spec.points.end(), [&](const Eigen::Vector3d& p) { return p == spec.points.front(); }))
@@ -102,10 +102,11 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
   for (const auto* handles : {&spec.left, &spec.right}) {
     if (handles->empty()) continue;
     if (spec.spline != PathSpline::bezier)
-      throw InputError(spec.where, std::string("handles do not belong to a ") + to_string(spec.spline) + " path; expected them only on bezier paths");
+      throw InputError(spec.where, std::string("handles do not belong to a ") + to_string(spec.spline) +
+                                       " path; expected them only on bezier paths");
     if (handles->size() != spec.points.size())
-      throw InputError(spec.where, "expected one handle entry per path point (" + std::to_string(spec.points.size()) + "), found " +
-                                       std::to_string(handles->size()));
+      throw InputError(spec.where, "expected one handle entry per path point (" + std::to_string(spec.points.size()) +
+                                       "), found " + std::to_string(handles->size()));
     for (std::size_t i = 0; i < handles->size(); ++i)
       if ((*handles)[i] && !(*handles)[i]->allFinite()) throw InputError(where_of(i), "expected a path handle of finite numbers");
   }
@@ -123,7 +124,8 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
     for (Eigen::Index axis = 0; axis < 3; ++axis) {
       Eigen::Vector4d samples;
       for (int r = 0; r < 4; ++r)
-        samples[r] = coordinates[static_cast<std::size_t>(axis)].evaluate(static_cast<double>(i) + kS[static_cast<std::size_t>(r)]);
+        samples[r] =
+            coordinates[static_cast<std::size_t>(axis)].evaluate(static_cast<double>(i) + kS[static_cast<std::size_t>(r)]);
       const Eigen::Vector4d c = inverse * samples;
       for (std::size_t k = 0; k < 4; ++k) cubics[i][k][axis] = c[static_cast<Eigen::Index>(k)];
     }
@@ -185,7 +187,8 @@ void PathTrack::build_frames() {
   }
   // Carry tangents over points where the speed vanishes (backwards for the start).
   const auto first = std::find(defined.begin(), defined.end(), true);
-  const Eigen::Vector3d first_tangent = first == defined.end() ? Eigen::Vector3d::UnitX() : tangents[static_cast<std::size_t>(first - defined.begin())];
+  const Eigen::Vector3d first_tangent =
+      first == defined.end() ? Eigen::Vector3d::UnitX() : tangents[static_cast<std::size_t>(first - defined.begin())];
   for (std::size_t k = 0; k < n; ++k)
     if (!defined[k]) tangents[k] = k == 0 ? first_tangent : tangents[k - 1];
 

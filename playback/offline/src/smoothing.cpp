@@ -159,7 +159,8 @@ std::vector<double> bspline_smooth(std::span<const double> samples, double knot_
 
 std::vector<double> butterworth_zero_phase(std::span<const double> samples, double fs, double fc, int order) {
   if (order != 2 && order != 4) throw std::invalid_argument("butterworth: order must be 2 or 4");
-  if (!(fs > 0) || !(fc > 0) || !(fc < 0.5 * fs)) throw std::invalid_argument("butterworth: cutoff must lie between 0 and half the sample rate");
+  if (!(fs > 0) || !(fc > 0) || !(fc < 0.5 * fs))
+    throw std::invalid_argument("butterworth: cutoff must lie between 0 and half the sample rate");
   const std::size_t n = samples.size();
   if (n < 2) return {samples.begin(), samples.end()};
   // Pad with the odd extension, long enough for the start-up transient to die out.

@@ -9,10 +9,9 @@ namespace avar::playback {
 namespace {
 
 // 5-point Gauss-Legendre nodes and weights on [-1, 1].
-constexpr std::array<double, 5> kNodes = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                                          0.9061798459386640};
-constexpr std::array<double, 5> kWeights = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
-                                            0.2369268850561891, 0.2369268850561891};
+constexpr std::array<double, 5> kNodes = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
+constexpr std::array<double, 5> kWeights = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
+                                            0.2369268850561891};
 
 double gauss5(const ParametricCurve& c, double a, double b) noexcept {
   const double half = 0.5 * (b - a), mid = 0.5 * (a + b);

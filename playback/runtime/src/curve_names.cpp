@@ -23,27 +23,51 @@ const char* name_of(const std::array<std::pair<std::string_view, E>, N>& table, 
 
 using I = Interpolation;
 constexpr std::array<std::pair<std::string_view, I>, 18> kInterpolations{{
-    {"constant", I::step}, {"linear", I::linear}, {"bezier", I::bezier}, {"sine", I::sine}, {"quad", I::quad},
-    {"cubic", I::cubic}, {"quart", I::quart}, {"quint", I::quint}, {"expo", I::expo}, {"circ", I::circ},
-    {"back", I::back}, {"bounce", I::bounce}, {"elastic", I::elastic}, {"hermite", I::hermite},
-    {"catmull_rom", I::catmull_rom}, {"cardinal", I::cardinal}, {"kochanek_bartels", I::kochanek_bartels},
+    {"constant", I::step},
+    {"linear", I::linear},
+    {"bezier", I::bezier},
+    {"sine", I::sine},
+    {"quad", I::quad},
+    {"cubic", I::cubic},
+    {"quart", I::quart},
+    {"quint", I::quint},
+    {"expo", I::expo},
+    {"circ", I::circ},
+    {"back", I::back},
+    {"bounce", I::bounce},
+    {"elastic", I::elastic},
+    {"hermite", I::hermite},
+    {"catmull_rom", I::catmull_rom},
+    {"cardinal", I::cardinal},
+    {"kochanek_bartels", I::kochanek_bartels},
     {"bspline", I::bspline},
 }};
 constexpr std::array<std::pair<std::string_view, Easing>, 4> kEasings{{
-    {"auto", Easing::automatic}, {"ease_in", Easing::ease_in}, {"ease_out", Easing::ease_out}, {"ease_in_out", Easing::ease_in_out},
+    {"auto", Easing::automatic},
+    {"ease_in", Easing::ease_in},
+    {"ease_out", Easing::ease_out},
+    {"ease_in_out", Easing::ease_in_out},
 }};
 constexpr std::array<std::pair<std::string_view, HandleType>, 5> kHandleTypes{{
-    {"free", HandleType::free}, {"aligned", HandleType::aligned}, {"vector", HandleType::vector},
-    {"auto", HandleType::automatic}, {"auto_clamped", HandleType::auto_clamped},
+    {"free", HandleType::free},
+    {"aligned", HandleType::aligned},
+    {"vector", HandleType::vector},
+    {"auto", HandleType::automatic},
+    {"auto_clamped", HandleType::auto_clamped},
 }};
 constexpr std::array<std::pair<std::string_view, Extrapolation>, 2> kExtrapolations{{
-    {"constant", Extrapolation::constant}, {"linear", Extrapolation::linear},
+    {"constant", Extrapolation::constant},
+    {"linear", Extrapolation::linear},
 }};
 constexpr std::array<std::pair<std::string_view, AutoSmoothing>, 2> kSmoothings{{
-    {"none", AutoSmoothing::none}, {"continuous_acceleration", AutoSmoothing::continuous_acceleration},
+    {"none", AutoSmoothing::none},
+    {"continuous_acceleration", AutoSmoothing::continuous_acceleration},
 }};
 constexpr std::array<std::pair<std::string_view, CycleMode>, 4> kCycleModes{{
-    {"none", CycleMode::none}, {"repeat", CycleMode::repeat}, {"repeat_offset", CycleMode::repeat_offset}, {"mirror", CycleMode::mirror},
+    {"none", CycleMode::none},
+    {"repeat", CycleMode::repeat},
+    {"repeat_offset", CycleMode::repeat_offset},
+    {"mirror", CycleMode::mirror},
 }};
 
 }  // namespace

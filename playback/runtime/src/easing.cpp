@@ -30,8 +30,14 @@ double poly_in_out(double t, int power) noexcept {
 double bounce_out(double t) noexcept {
   constexpr double k = 7.5625;
   if (t < 1 / 2.75) return k * t * t;
-  if (t < 2 / 2.75) { t -= 1.5 / 2.75; return k * t * t + 0.75; }
-  if (t < 2.5 / 2.75) { t -= 2.25 / 2.75; return k * t * t + 0.9375; }
+  if (t < 2 / 2.75) {
+    t -= 1.5 / 2.75;
+    return k * t * t + 0.75;
+  }
+  if (t < 2.5 / 2.75) {
+    t -= 2.25 / 2.75;
+    return k * t * t + 0.9375;
+  }
   t -= 2.625 / 2.75;
   return k * t * t + 0.984375;
 }
@@ -44,7 +50,10 @@ double expo_in(double t) noexcept { return t == 0 ? 0 : (std::pow(2.0, 10 * (t -
 double expo_out(double t) noexcept { return t == 0 ? 0 : 1 - (std::pow(2.0, -10 * t) - kPowMin) * kPowScale; }
 
 double circ_in(double t) noexcept { return 1 - std::sqrt(std::max(0.0, 1 - t * t)); }
-double circ_out(double t) noexcept { t -= 1; return std::sqrt(std::max(0.0, 1 - t * t)); }
+double circ_out(double t) noexcept {
+  t -= 1;
+  return std::sqrt(std::max(0.0, 1 - t * t));
+}
 
 // Elastic, in Blender's form: `u` is the signed time from the segment end in units of the
 // duration (negative before it), the oscillation uses the period in seconds, and an amplitude
@@ -121,8 +130,7 @@ double back(Easing e, double t, double overshoot) noexcept {
 double fraction(Interpolation family, Easing e, double t, const EasingParams& p) noexcept {
   const bool in = e == Easing::ease_in, out = e == Easing::ease_out;
   switch (family) {
-    case Interpolation::sine:
-      return in ? 1 - std::cos(t * kPi / 2) : out ? std::sin(t * kPi / 2) : -(std::cos(kPi * t) - 1) / 2;
+    case Interpolation::sine: return in ? 1 - std::cos(t * kPi / 2) : out ? std::sin(t * kPi / 2) : -(std::cos(kPi * t) - 1) / 2;
     case Interpolation::quad:
       return in ? t * t : out ? -t * (t - 2) : (t < 0.5 ? 2 * t * t : -((2 * t - 1) * (2 * t - 3) - 1) / 2);
     case Interpolation::cubic: return in ? poly_in(t, 3) : out ? poly_out(t, 3) : poly_in_out(t, 3);

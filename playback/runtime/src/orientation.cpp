@@ -19,9 +19,7 @@ constexpr std::array<OrderInfo, 6> kOrders = {{{EulerOrder::xyz, "xyz", {0, 1, 2
                                                {EulerOrder::zxy, "zxy", {2, 0, 1}},
                                                {EulerOrder::zyx, "zyx", {2, 1, 0}}}};
 
-const OrderInfo& info(EulerOrder order) {
-  return kOrders[static_cast<std::size_t>(order)];
-}
+const OrderInfo& info(EulerOrder order) { return kOrders[static_cast<std::size_t>(order)]; }
 
 Eigen::Vector3d axis(int index) { return Eigen::Vector3d::Unit(index); }
 
@@ -94,9 +92,11 @@ QuaternionTrack::QuaternionTrack(std::vector<QuaternionKey> keys, OrientationInt
   for (std::size_t i = 0; i < keys_.size(); ++i) {
     auto& k = keys_[i];
     if (!std::isfinite(k.time)) throw std::invalid_argument("orientation track: key time is not finite");
-    if (i > 0 && !(k.time > keys_[i - 1].time)) throw std::invalid_argument("orientation track: key times must strictly increase");
+    if (i > 0 && !(k.time > keys_[i - 1].time))
+      throw std::invalid_argument("orientation track: key times must strictly increase");
     const double norm = k.rotation.norm();
-    if (!std::isfinite(norm) || norm == 0) throw std::invalid_argument("orientation track: a rotation is not a finite non-zero quaternion");
+    if (!std::isfinite(norm) || norm == 0)
+      throw std::invalid_argument("orientation track: a rotation is not a finite non-zero quaternion");
     k.rotation.coeffs() /= norm;
     if (i > 0 && k.rotation.dot(keys_[i - 1].rotation) < 0) k.rotation.coeffs() = -k.rotation.coeffs();
   }

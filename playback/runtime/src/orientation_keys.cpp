@@ -28,7 +28,8 @@ QuaternionTrack OrientationKeyTrack::build(const OrientationKeysSpec& spec) {
                                     format_number(spec.keys[i - 1].time) + " s; expected strictly increasing times");
     if (k.quaternion) {
       const double norm = k.quaternion->norm();
-      if (!std::isfinite(norm) || norm == 0) throw InputError(k.where, "expected a quaternion [w, x, y, z] of finite numbers, not all 0");
+      if (!std::isfinite(norm) || norm == 0)
+        throw InputError(k.where, "expected a quaternion [w, x, y, z] of finite numbers, not all 0");
       keys.push_back({k.time, *k.quaternion});
     } else {
       if (!k.euler.allFinite()) throw InputError(k.where, "expected Euler angles [x, y, z] of finite numbers (radians)");

@@ -13,7 +13,8 @@ std::size_t frame_index(std::span<const std::string> frame_channels, const std::
   if (it != frame_channels.end()) return static_cast<std::size_t>(it - frame_channels.begin());
   std::string names;
   for (const std::string& n : frame_channels) names += (names.empty() ? "" : ", ") + n;
-  throw std::invalid_argument(user + " names channel '" + channel + "', which the frame does not have; expected one of: " + names);
+  throw std::invalid_argument(user + " names channel '" + channel +
+                              "', which the frame does not have; expected one of: " + names);
 }
 
 }  // namespace
@@ -21,17 +22,19 @@ std::size_t frame_index(std::span<const std::string> frame_channels, const std::
 Sampler::Sampler(const Show& show, std::span<const std::size_t> channel_of_track, std::span<const double> defaults)
     : show_(show), defaults_(defaults.begin(), defaults.end()) {
   if (show_.layered())
-    throw std::invalid_argument("the show has layers of clips; expected the sampler to be given the frame's channel names to bind them");
+    throw std::invalid_argument(
+        "the show has layers of clips; expected the sampler to be given the frame's channel names to bind them");
   bind_tracks(channel_of_track);
 }
 
 Sampler::Sampler(const Show& show, std::span<const std::string> frame_channels, std::span<const double> defaults)
     : show_(show), defaults_(defaults.begin(), defaults.end()) {
   if (frame_channels.size() != defaults_.size())
-    throw std::invalid_argument(std::to_string(frame_channels.size()) + " frame channel names but " + std::to_string(defaults_.size()) +
-                                " defaults were given; expected one default per channel");
+    throw std::invalid_argument(std::to_string(frame_channels.size()) + " frame channel names but " +
+                                std::to_string(defaults_.size()) + " defaults were given; expected one default per channel");
   std::vector<std::size_t> binding;
-  for (const Track& track : show_.tracks) binding.push_back(frame_index(frame_channels, track.channel, "track '" + track.channel + "'"));
+  for (const Track& track : show_.tracks)
+    binding.push_back(frame_index(frame_channels, track.channel, "track '" + track.channel + "'"));
   bind_tracks(binding);
   bind_layers(frame_channels);
 }

@@ -8,11 +8,11 @@ namespace avar::assembly {
 
 /// Settings of a Pololu Maestro link.
 struct MaestroOptions {
-  int channel_count = 24;        ///< 6 (Micro), 12, 18 or 24 (Mini)
-  bool pololu_form = false;      ///< address by device number (daisy chains) instead of compact
+  int channel_count = 24;    ///< 6 (Micro), 12, 18 or 24 (Mini)
+  bool pololu_form = false;  ///< address by device number (daisy chains) instead of compact
   std::uint8_t device_number = 12;
-  bool crc = false;              ///< append CRC-7 (the device's "Enable CRC" setting)
-  bool baud_detect = false;      ///< send 0xAA first (device in "UART, detect baud rate" mode)
+  bool crc = false;          ///< append CRC-7 (the device's "Enable CRC" setting)
+  bool baud_detect = false;  ///< send 0xAA first (device in "UART, detect baud rate" mode)
 };
 
 /// The link's settings, validated (InputError at the offending setting).

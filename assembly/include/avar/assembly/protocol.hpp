@@ -19,9 +19,9 @@ namespace avar::assembly {
 
 /// How an actuator is addressed and calibrated on a link.
 struct AddressRule {
-  const char* key;                 ///< device_channel, id or address
-  long long low, high;             ///< valid addresses
-  const char* cal_min;             ///< calibration keys
+  const char* key;      ///< device_channel, id or address
+  long long low, high;  ///< valid addresses
+  const char* cal_min;  ///< calibration keys
   const char* cal_max;
   const char* trim;
   double device_low, device_high;  ///< the device's own range
@@ -46,7 +46,7 @@ struct Protocol {
   const char* name;         ///< the settings block's key in a rig file: `maestro: {...}`
   const char* device_name;  ///< for messages: "Maestro"
   int default_baud;
-  const char* bauds_text;   ///< the rates the device runs at, for messages
+  const char* bauds_text;  ///< the rates the device runs at, for messages
   bool (*device_accepts_baud)(int baud);
   /// Checks the link's settings whole (keys, types, ranges); throws InputError at the setting.
   void (*validate_settings)(const rig::LinkSpec& link);
@@ -59,8 +59,8 @@ struct Protocol {
   bool (*reports_telemetry)(const rig::LinkSpec& link);
   /// The driver of link `link` of a validated rig over `transport` (borrowed).
   std::unique_ptr<firmware_iface::ActuatorLink> (*make_link)(const rig::Rig& rig, std::size_t link,
-                                                            firmware_iface::ByteTransport& transport,
-                                                            const DriverTuning& tuning);
+                                                             firmware_iface::ByteTransport& transport,
+                                                             const DriverTuning& tuning);
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
 };

@@ -46,5 +46,4 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig:
 /// fade, so it is refused rather than retimed dishonestly.
 playback::Show retime(const playback::Show& show, const rig::Rig& rig);
 
-
 }  // namespace avar::config

@@ -25,15 +25,15 @@ const char* to_string(Phase p) noexcept;
 
 enum class FaultCause {
   none,
-  estop,             ///< the e-stop input
-  link_watchdog,     ///< a link completed no send within its watchdog time
-  link_failure,      ///< a link reported an I/O error
-  tracking_error,    ///< measured position too far from the command (channel)
-  non_finite,        ///< a NaN or infinity reached the limiter (channel)
-  device_overheat,   ///< a device reported over-temperature (channel)
-  device_overload,   ///< a device reported overload (channel)
-  device_error,      ///< a device reported another hardware error: voltage, encoder... (channel)
-  deadline_budget,   ///< more deadline misses than allowed
+  estop,            ///< the e-stop input
+  link_watchdog,    ///< a link completed no send within its watchdog time
+  link_failure,     ///< a link reported an I/O error
+  tracking_error,   ///< measured position too far from the command (channel)
+  non_finite,       ///< a NaN or infinity reached the limiter (channel)
+  device_overheat,  ///< a device reported over-temperature (channel)
+  device_overload,  ///< a device reported overload (channel)
+  device_error,     ///< a device reported another hardware error: voltage, encoder... (channel)
+  deadline_budget,  ///< more deadline misses than allowed
 };
 const char* to_string(FaultCause c) noexcept;
 
@@ -41,9 +41,9 @@ const char* to_string(FaultCause c) noexcept;
 struct Fault {
   FaultCause cause = FaultCause::none;
   Status status = Status::ok;
-  std::size_t index = 0;  ///< channel or link, by cause
-  double value = 0;       ///< the offending measurement where there is one (error, misses)
-  double time_s = 0;      ///< loop time at which it was detected
+  std::size_t index = 0;         ///< channel or link, by cause
+  double value = 0;              ///< the offending measurement where there is one (error, misses)
+  double time_s = 0;             ///< loop time at which it was detected
   Phase from = Phase::disabled;  ///< the state the fault interrupted
 };
 

@@ -11,9 +11,9 @@
 namespace avar {
 
 struct ScalarValue {
-  std::string text;       ///< the scalar's text (empty when not a scalar)
-  bool scalar = true;     ///< false: a map, a list or nothing was found instead
-  std::string found;      ///< how to name what was found in messages: "'abc'", "a map", "nothing"
+  std::string text;    ///< the scalar's text (empty when not a scalar)
+  bool scalar = true;  ///< false: a map, a list or nothing was found instead
+  std::string found;   ///< how to name what was found in messages: "'abc'", "a map", "nothing"
   SourceLocation where;
 
   /// A scalar with its text quoted for messages.
@@ -22,10 +22,10 @@ struct ScalarValue {
   [[noreturn]] void fail(const std::string& problem) const;
   const std::string& describe() const { return found; }
 
-  double as_double(std::string_view what) const;      ///< finite number
-  long long as_integer(std::string_view what) const;  ///< whole number
-  bool as_bool(std::string_view what) const;          ///< true / false (yes/no, on/off)
-  std::string as_string(std::string_view what) const; ///< non-empty scalar
+  double as_double(std::string_view what) const;       ///< finite number
+  long long as_integer(std::string_view what) const;   ///< whole number
+  bool as_bool(std::string_view what) const;           ///< true / false (yes/no, on/off)
+  std::string as_string(std::string_view what) const;  ///< non-empty scalar
 };
 
 }  // namespace avar

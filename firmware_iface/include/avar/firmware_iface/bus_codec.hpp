@@ -30,8 +30,7 @@ class BusCodec {
  public:
   virtual ~BusCodec() = default;
   /// Looks for one reply at the start of `in`.
-  virtual Framing parse(std::span<const std::uint8_t> in, BusReply* reply, std::size_t* used,
-                        std::size_t* want) noexcept = 0;
+  virtual Framing parse(std::span<const std::uint8_t> in, BusReply* reply, std::size_t* used, std::size_t* want) noexcept = 0;
   /// Encodes into `out` the request that asks `device` alone for what the exchange asked every
   /// device (a retry); returns its size.
   virtual std::size_t encode_retry(std::uint32_t device, std::span<std::uint8_t> out) noexcept = 0;

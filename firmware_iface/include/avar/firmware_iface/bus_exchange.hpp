@@ -50,7 +50,8 @@ class ReplySink {
  public:
   template <class F>
   ReplySink(F& f) noexcept  // implicit: drivers pass their lambdas as they are
-      : object_(&f), call_([](void* o, std::size_t slot, const BusReply& r) noexcept { return (*static_cast<F*>(o))(slot, r); }) {}
+      : object_(&f),
+        call_([](void* o, std::size_t slot, const BusReply& r) noexcept { return (*static_cast<F*>(o))(slot, r); }) {}
   bool operator()(std::size_t slot, const BusReply& r) const noexcept { return call_(object_, slot, r); }
 
  private:
@@ -99,8 +100,8 @@ class BusExchange {
   std::vector<std::uint32_t> devices_;
   BusExchangeConfig config_;
   Reconnector reconnector_;
-  std::unique_ptr<bool[]> answered_;  ///< per slot, this exchange
-  std::unique_ptr<bool[]> awaited_;   ///< per slot, this collect()
+  std::unique_ptr<bool[]> answered_;   ///< per slot, this exchange
+  std::unique_ptr<bool[]> awaited_;    ///< per slot, this collect()
   std::vector<std::uint32_t> missed_;  ///< per slot: exchanges in a row without a reply
   std::vector<std::uint8_t> rx_;
   std::vector<std::uint8_t> request_;

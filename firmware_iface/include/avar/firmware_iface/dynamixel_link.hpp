@@ -88,7 +88,7 @@ class DynamixelLink final : public ActuatorLink {
   struct Servo {
     std::uint8_t id = 0;
     std::size_t actuator = 0;
-    bool read_hardware_error = false;  ///< an Alert was seen: read address 70 next exchange
+    bool read_hardware_error = false;      ///< an Alert was seen: read address 70 next exchange
     std::uint8_t status_return_level = 2;  ///< 0: Ping only, 1: + Read, 2: every instruction
   };
   /// Sends a request and waits for the status packet of `servo` with at least `params`

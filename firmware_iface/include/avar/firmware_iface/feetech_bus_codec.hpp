@@ -12,7 +12,6 @@ class FeetechBusCodec final : public RegisterBusCodec {
  public:
   Framing parse(std::span<const std::uint8_t> in, BusReply* reply, std::size_t* used, std::size_t* want) noexcept override;
   std::size_t encode_retry(std::uint32_t device, std::span<std::uint8_t> out) noexcept override;
-
 };
 
 }  // namespace avar::firmware_iface

@@ -75,8 +75,8 @@ class MaestroLink final : public ActuatorLink {
   std::vector<std::size_t> slots_;        ///< actuator indices sorted by device channel
   std::vector<Run> runs_;
   ActuatorTable table_;
-  std::vector<std::uint16_t> targets_;    ///< quarter-µs per slot, rebuilt each send
-  std::vector<std::uint8_t> packet_;      ///< the whole tick's bytes
+  std::vector<std::uint16_t> targets_;  ///< quarter-µs per slot, rebuilt each send
+  std::vector<std::uint8_t> packet_;    ///< the whole tick's bytes
   std::size_t last_send_size_ = 0;
   std::string description_;
   Reconnector reconnector_;  ///< reopens the port after an I/O error

@@ -29,10 +29,10 @@ using LinkIndex = Index<struct LinkTag>;
 /// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
 struct ChannelSpec {
   std::string name;
-  std::string unit;         ///< free text: deg, mm, % ...
-  double min = 0;           ///< hard lower limit (channel units); no command goes below
-  double max = 1;           ///< hard upper limit (channel units), > min
-  double rest = 0;          ///< rest pose, inside [min, max]: soft stop and faults go here
+  std::string unit;             ///< free text: deg, mm, % ...
+  double min = 0;               ///< hard lower limit (channel units); no command goes below
+  double max = 1;               ///< hard upper limit (channel units), > min
+  double rest = 0;              ///< rest pose, inside [min, max]: soft stop and faults go here
   double max_velocity = 0;      ///< limiter: largest speed commanded (units/s), > 0
   double max_acceleration = 0;  ///< limiter: units/s², > 0
   double max_jerk = 0;          ///< limiter: units/s³, > 0
@@ -73,7 +73,7 @@ struct LinkSpec {
   std::string protocol;  ///< a protocol's name in the registry: maestro, dynamixel, feetech...
   std::string port;
   int baud = 0;
-  double watchdog_s = 0.25;   ///< in real time: a link that completes no send for this long faults
+  double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
   LinkSettings settings;
   SourceLocation where;
 
@@ -95,7 +95,7 @@ struct ActuatorSpec {
   LinkIndex link;
   /// Where the actuator is on its link: Maestro / SSC-32 channel, servo ID, or DMX start address.
   int device_channel = 0;
-  bool fine = false;        ///< DMX: 16-bit (coarse at the address, fine at the next slot)
+  bool fine = false;  ///< DMX: 16-bit (coarse at the address, fine at the next slot)
   firmware_iface::LinearCalibration calibration;
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²

@@ -23,8 +23,8 @@
 namespace avar::playback {
 
 struct CurveFitOptions {
-  double tolerance = 0;         ///< largest allowed |curve(t_i) - v_i|, channel units, > 0
-  bool keep_corners = true;     ///< split at sharp corners with broken tangents
+  double tolerance = 0;      ///< largest allowed |curve(t_i) - v_i|, channel units, > 0
+  bool keep_corners = true;  ///< split at sharp corners with broken tangents
   /// A sample is a corner when the chords to its two neighbours turn by more than this angle
   /// (degrees), measured with the data's time span and value range scaled to a square, and the
   /// slope change is significant: |v_{i+1} - 2 v_i + v_{i-1}| (for even spacing; in general the
@@ -47,6 +47,7 @@ CurveFitResult fit_curve(std::span<const double> times, std::span<const double> 
                          const SourceLocation& where = {});
 
 /// The corner samples as CurveFitOptions defines them (interior samples only).
-std::vector<std::size_t> find_corners(std::span<const double> times, std::span<const double> values, const CurveFitOptions& options);
+std::vector<std::size_t> find_corners(std::span<const double> times, std::span<const double> values,
+                                      const CurveFitOptions& options);
 
 }  // namespace avar::playback

@@ -42,8 +42,7 @@ double arc_length(const ParametricCurve& curve, double a, double b, double toler
 /// steps on length(u) - distance, replaced by bisection of the bracketing interval whenever a step
 /// leaves it or the speed vanishes. `total_length` may be passed when known (negative: computed).
 /// No allocation or exception.
-double parameter_at_length(const ParametricCurve& curve, double distance, double tolerance,
-                           double total_length = -1) noexcept;
+double parameter_at_length(const ParametricCurve& curve, double distance, double tolerance, double total_length = -1) noexcept;
 
 /// A table of length against parameter for real-time evaluation: the range of u is cut into
 /// equal intervals, doubled in number at build until the cubic Hermite interpolant of the length

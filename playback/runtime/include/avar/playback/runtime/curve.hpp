@@ -49,7 +49,8 @@ class Curve {
   double evaluate(double t, CurveCursor& cursor) const noexcept {
     if (cursor.segment < segment_count_) [[likely]] {
       const Segment& s = segments_[cursor.segment];
-      if (t > s.t0 && t < s.t1) [[likely]] return evaluate_in(s, t);
+      if (t > s.t0 && t < s.t1) [[likely]]
+        return evaluate_in(s, t);
     }
     return evaluate_moved(t, cursor);
   }
@@ -72,18 +73,18 @@ class Curve {
   friend class CurveBuilder;  // the offline layer's builder fills the segments and tables
 
   enum class Shape : std::uint8_t {
-    linear,           ///< v0 + s e1 in the normalised time s: linear, step and Blender's constant Bezier (e1 = 0)
+    linear,  ///< v0 + s e1 in the normalised time s: linear, step and Blender's constant Bezier (e1 = 0)
     /// v0 + s (e1 + s (e2 + s e3)): the Hermite-family splines, the B-spline, and Bezier segments
     /// whose time handles sit at thirds (time linear in the parameter: u = s, no solve)
     polynomial,
-    bezier_table,     ///< Bezier, time strictly increasing in u: tabulated inverse (certified pieces, or checked)
-    bezier_closed,    ///< Bezier with handles that let time stall or run backwards: Blender's solve
-    easing,           ///< one of Blender's easing equations
+    bezier_table,   ///< Bezier, time strictly increasing in u: tabulated inverse (certified pieces, or checked)
+    bezier_closed,  ///< Bezier with handles that let time stall or run backwards: Blender's solve
+    easing,         ///< one of Blender's easing equations
   };
   /// Segment i runs from key i to key i+1. Times are normalised: s = (t - t0) / (t1 - t0).
   /// One cache line: what every sample of the segment reads.
   struct alignas(64) Segment {
-    double t0 = 0, t1 = 0;          ///< key times (s)
+    double t0 = 0, t1 = 0;  ///< key times (s)
     /// 1 / (t1 - t0); bezier_table: pieces / (t1 - t0), a power of two times 1 / (t1 - t0), so
     /// that (t - t0) * inv_duration is exactly `pieces` times the normalised time: the index of
     /// the inverse's piece plus the position within it
@@ -147,7 +148,8 @@ class Curve {
   double evaluate_in(const Segment& s, double t) const noexcept {
     const double x = (t - s.t0) * s.inv_duration;
     if (s.shape == Shape::linear) return s.v0 + x * s.e1;
-    if (s.shape == Shape::polynomial) [[likely]] return value_cubic(s, x);
+    if (s.shape == Shape::polynomial) [[likely]]
+      return value_cubic(s, x);
     if (s.shape == Shape::bezier_table) {
       // x in [0, pieces]: piece index and position; x == pieces (t rounds onto t1) reads the
       // table's last entry, u = 1.
@@ -174,13 +176,13 @@ class Curve {
   double cycle_time(double t, double& offset) const noexcept;
   double evaluate_keys(double t, CurveCursor* cursor) const noexcept;
 
-  std::vector<double> times_;         ///< key times
-  std::vector<Segment> segments_;     ///< times_.size() - 1 of them
+  std::vector<double> times_;      ///< key times
+  std::vector<Segment> segments_;  ///< times_.size() - 1 of them
   /// segments_.size(), kept beside it: the cursor's bounds check then reads one member instead
   /// of computing the size from two pointers, on the path every sequential sample takes.
   std::size_t segment_count_ = 0;
-  std::vector<SegmentExtra> extras_;  ///< one per bezier_closed and easing segment
-  std::vector<InversePiece> inverse_; ///< pieces + 2 per bezier_table segment
+  std::vector<SegmentExtra> extras_;   ///< one per bezier_closed and easing segment
+  std::vector<InversePiece> inverse_;  ///< pieces + 2 per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
   double slope_before_ = 0, slope_after_ = 0;  ///< units per second; 0 for constant extrapolation

@@ -16,9 +16,20 @@ namespace avar::playback {
 
 /// How the segment that starts at a key is shaped. `step` is Blender's CONSTANT.
 enum class Interpolation : std::uint8_t {
-  step, linear, bezier,
+  step,
+  linear,
+  bezier,
   // Blender's easing families (Robert Penner's equations as blenlib easing.cc has them).
-  sine, quad, cubic, quart, quint, expo, circ, back, bounce, elastic,
+  sine,
+  quad,
+  cubic,
+  quart,
+  quint,
+  expo,
+  circ,
+  back,
+  bounce,
+  elastic,
   // avar's own cubic splines.
   hermite,           ///< cubic Hermite with the keys' explicit out_slope / in_slope (units per second)
   catmull_rom,       ///< tangent at a key: mean of the slopes of its two neighbouring chords
@@ -45,11 +56,11 @@ enum class CycleMode : std::uint8_t { none, repeat, repeat_offset, mirror };
 
 /// "constant" (also "step"), "linear", "bezier", "sine", ... "bspline"; nullopt for anything else.
 std::optional<Interpolation> interpolation_from_name(std::string_view name);
-std::optional<Easing> easing_from_name(std::string_view name);            ///< auto, ease_in, ease_out, ease_in_out
-std::optional<HandleType> handle_type_from_name(std::string_view name);   ///< free, aligned, vector, auto, auto_clamped
-std::optional<Extrapolation> extrapolation_from_name(std::string_view name);  ///< constant, linear
+std::optional<Easing> easing_from_name(std::string_view name);                 ///< auto, ease_in, ease_out, ease_in_out
+std::optional<HandleType> handle_type_from_name(std::string_view name);        ///< free, aligned, vector, auto, auto_clamped
+std::optional<Extrapolation> extrapolation_from_name(std::string_view name);   ///< constant, linear
 std::optional<AutoSmoothing> auto_smoothing_from_name(std::string_view name);  ///< none, continuous_acceleration
-std::optional<CycleMode> cycle_mode_from_name(std::string_view name);     ///< none, repeat, repeat_offset, mirror
+std::optional<CycleMode> cycle_mode_from_name(std::string_view name);          ///< none, repeat, repeat_offset, mirror
 /// The names the *_from_name functions accept (the canonical one where there are aliases).
 const char* to_string(Interpolation interpolation);
 const char* to_string(Easing easing);
@@ -68,8 +79,8 @@ struct Handle {
 };
 
 struct RawKey {
-  double time = 0;   ///< seconds
-  double value = 0;  ///< channel units
+  double time = 0;                                      ///< seconds
+  double value = 0;                                     ///< channel units
   Interpolation interpolation = Interpolation::linear;  ///< of the segment from this key to the next
   /// Handles. A side without a type is `free` when its handle is given and `auto_clamped`
   /// (Blender's default) when not; free and aligned sides need their handle, the others compute it.

@@ -42,7 +42,7 @@ struct QuaternionKey {
 /// Euler-angle keys: converted to quaternion keys in their stated order, then interpolated on the
 /// sphere (never angle by angle, which would depend on the order and could gimbal-lock).
 struct EulerKey {
-  double time = 0;                              ///< seconds
+  double time = 0;  ///< seconds
   Eigen::Vector3d xyz_radians = Eigen::Vector3d::Zero();
 };
 

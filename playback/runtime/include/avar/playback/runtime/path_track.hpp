@@ -86,7 +86,7 @@ struct PathSpec {
   double to = 1;          ///< show seconds when it reaches points.back(); > from
   DistanceTime speed{DistanceTimeShape::linear};
   PathOrientation orientation = PathOrientation::none;
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  ///< tangent, look_at: non-zero
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();      ///< tangent, look_at: non-zero
   Eigen::Vector3d look_at = Eigen::Vector3d::Zero();  ///< look_at: the point looked at (base frame)
   SourceLocation where;
 };
@@ -95,7 +95,7 @@ struct PathSpec {
 struct PathSample {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< identity when the path does not orient
-  double distance = 0;  ///< metres travelled along the path
+  double distance = 0;                                              ///< metres travelled along the path
 };
 
 class PathTrack {

@@ -35,12 +35,12 @@ enum class TargetKind {
 struct TargetTrack {
   std::string effector;  ///< effector name in the rig's kinematics
   TargetKind kind = TargetKind::position;
-  std::array<double, 3> aim_axis{1, 0, 0};  ///< effector frame, any non-zero length (aim only)
-  std::array<RawCurve, 3> raw;              ///< x, y, z as authored (position, aim, pose)
-  std::array<Curve, 3> xyz;                 ///< built from raw
-  std::array<RawCurve, 3> raw_rpy;          ///< roll, pitch, yaw as authored (orientation, pose)
-  std::array<Curve, 3> rpy;                 ///< built from raw_rpy
-  std::optional<PathTrack> path;            ///< when set, the point (and, if it orients, the orientation)
+  std::array<double, 3> aim_axis{1, 0, 0};              ///< effector frame, any non-zero length (aim only)
+  std::array<RawCurve, 3> raw;                          ///< x, y, z as authored (position, aim, pose)
+  std::array<Curve, 3> xyz;                             ///< built from raw
+  std::array<RawCurve, 3> raw_rpy;                      ///< roll, pitch, yaw as authored (orientation, pose)
+  std::array<Curve, 3> rpy;                             ///< built from raw_rpy
+  std::optional<PathTrack> path;                        ///< when set, the point (and, if it orients, the orientation)
   std::optional<OrientationKeyTrack> orientation_keys;  ///< when set, the orientation
   SourceLocation where;
 

@@ -71,8 +71,8 @@ struct MaskChannel {
 struct Layer {
   std::string name;
   Blend blend = Blend::override;
-  double weight = 1;               ///< in [0, 1], scales the layer's coverage
-  std::vector<MaskChannel> mask;   ///< the channels the layer may touch; empty: every one its clips drive
+  double weight = 1;              ///< in [0, 1], scales the layer's coverage
+  std::vector<MaskChannel> mask;  ///< the channels the layer may touch; empty: every one its clips drive
   std::vector<Placement> placements;
   SourceLocation where;
 
