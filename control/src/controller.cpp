@@ -77,7 +77,8 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
 
 void Controller::sample_show(double show_time_s, std::span<double> frame) noexcept {
   sampler_.sample(show_time_s, frame);
-  if (ik_) ik_->apply(show_time_s, frame);
+  // The stage keeps its own tally of converged, degraded and failed solves (IkStage::stats).
+  if (ik_) (void)ik_->apply(show_time_s, frame);
 }
 
 void Controller::lap(Stage s, std::int64_t& mark) noexcept {
@@ -210,12 +211,12 @@ void Controller::release_now() noexcept {
   supervisor_.enter(Phase::disabled);
 }
 
-Status Controller::tick(double now_s) noexcept {
+void Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
   // Before the clock moves on: what the devices reported came with the last tick's exchange.
   read_feedback();
   last_now_ = now_s;
-  if (!supervisor_.drives()) return Status::ok;
+  if (!supervisor_.drives()) return;
 
   // Feedback from the last tick against the command it answered.
   for (std::size_t c = 0; c < measured_known_.size(); ++c) {
@@ -253,7 +254,7 @@ Status Controller::tick(double now_s) noexcept {
     case Phase::disabled: break;
   }
   lap(Stage::sample, mark);
-  if (sampled_show && ik_) ik_->apply(show_time_, target_);
+  if (sampled_show && ik_) (void)ik_->apply(show_time_, target_);  // tallied in IkStage::stats
   lap(Stage::ik, mark);
 
   if (limiter_.apply(target_, commanded_) != Status::ok) {
@@ -263,7 +264,6 @@ Status Controller::tick(double now_s) noexcept {
   }
   lap(Stage::limit, mark);
 
-  Status result = Status::ok;
   for (std::size_t i = 0; i < links_.size(); ++i) {
     if (supervisor_.link_dead(i)) continue;
     const Status s = links_[i]->send(commanded_);
@@ -271,13 +271,11 @@ Status Controller::tick(double now_s) noexcept {
     // Nothing more can be sent over this link: its actuators keep their last command (or the
     // device's own fail-safe). The other links do their fail-safe actions.
     supervisor_.link_died(i);
-    result = s;
     fault(s == Status::timeout ? FaultCause::link_watchdog : FaultCause::link_failure, i, 0, now_s, s);
   }
   lap(Stage::send, mark);
 
   if (supervisor_.phase() == Phase::stopping && ramp_done(now_s)) supervisor_.enter(Phase::disabled);
-  return result;
 }
 
 }  // namespace avar::control

@@ -44,7 +44,9 @@ Supervisor::Supervisor(const rig::Rig& rig, std::size_t link_count)
 }
 
 void Supervisor::enter(Phase p) noexcept {
-  if (p != Phase::faulted) phase_ = p;
+  if (p == Phase::faulted) return;
+  if (phase_ == Phase::faulted && p != Phase::disabled) return;  // motion resumes only after clear()
+  phase_ = p;
 }
 
 bool Supervisor::latch(FaultCause cause, std::size_t index, double value, double now_s, Status status) noexcept {

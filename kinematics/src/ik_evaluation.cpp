@@ -1,5 +1,7 @@
 #include "ik_evaluation.hpp"
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,7 +43,11 @@ Eigen::Index stacked_rows(std::span<const IkGoal> goals) noexcept {
 
 double evaluate(const Model& model, IkWorkspace& ik, std::span<const IkGoal> goals, const Eigen::VectorXd& q,
                 GoalErrors& errors) noexcept {
-  forward_kinematics(model, std::span<const double>(q.data(), static_cast<std::size_t>(q.size())), ik.fk);
+  // A non-finite configuration has no pose: it costs infinitely, so no solver accepts it.
+  if (forward_kinematics(model, std::span<const double>(q.data(), static_cast<std::size_t>(q.size())), ik.fk) != Status::ok) {
+    errors = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    return std::numeric_limits<double>::infinity();
+  }
   errors = {};
   Eigen::Index row = 0;
   for (const IkGoal& goal : goals) {

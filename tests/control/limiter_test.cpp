@@ -20,7 +20,7 @@ TEST(Limiter, ClampsTargetsIntoTheRangeAndCountsIt) {
   Limiter limiter({{0, 30, 100, 1000, 20000, 0}}, 0.01);
   limiter.reset(std::vector<double>{10});
   std::vector<double> out(1);
-  for (int i = 0; i < 200; ++i) limiter.apply(std::vector<double>{45}, out);
+  for (int i = 0; i < 200; ++i) EXPECT_EQ(limiter.apply(std::vector<double>{45}, out), Status::ok);
   EXPECT_DOUBLE_EQ(out[0], 30);
   EXPECT_EQ(limiter.clamped(0), 200u);
   EXPECT_TRUE(limiter.settled());
@@ -29,7 +29,7 @@ TEST(Limiter, ClampsTargetsIntoTheRangeAndCountsIt) {
 TEST(Limiter, SoftMarginsKeepTargetsInside) {
   Limiter limiter({{0, 30, 100, 1000, 20000, 2}}, 0.01);
   std::vector<double> out(1);
-  for (int i = 0; i < 200; ++i) limiter.apply(std::vector<double>{45}, out);
+  for (int i = 0; i < 200; ++i) EXPECT_EQ(limiter.apply(std::vector<double>{45}, out), Status::ok);
   EXPECT_DOUBLE_EQ(out[0], 28);
 }
 
@@ -77,7 +77,7 @@ template <class Target>
 ::testing::AssertionResult follow(Limiter& limiter, LimitChecker& check, int n, Target target) {
   std::vector<double> out(1);
   for (int k = 0; k < n; ++k) {
-    limiter.apply(std::vector<double>{target(k)}, out);
+    EXPECT_EQ(limiter.apply(std::vector<double>{target(k)}, out), Status::ok);
     if (::testing::AssertionResult ok = check(limiter); !ok) return ok << " at tick " << k;
   }
   return ::testing::AssertionSuccess();
@@ -90,7 +90,7 @@ template <class Target>
   std::vector<double> out{limiter.last()[0]};
   for (ticks = 0; !limiter.settled() || out[0] != goal; ++ticks) {
     if (ticks >= 1000000) return ::testing::AssertionFailure() << "not at rest on " << goal;
-    limiter.apply(std::vector<double>{target}, out);
+    EXPECT_EQ(limiter.apply(std::vector<double>{target}, out), Status::ok);
     if (::testing::AssertionResult ok = check(limiter); !ok) return ok << " at tick " << ticks;
     if (furthest != nullptr) *furthest = std::max(*furthest, out[0]);
   }
@@ -176,13 +176,13 @@ TEST(Limiter, ChannelsAreIndependentAndNotDelayed) {
   // starts moving on the first tick, with no padding delay.
   Limiter limiter({{0, 10, 5, 20, 100, 0}, {0, 10, 50, 2000, 1e5, 0}}, 0.01);
   std::vector<double> out(2);
-  limiter.apply(std::vector<double>{0.04, 0.04}, out);
+  EXPECT_EQ(limiter.apply(std::vector<double>{0.04, 0.04}, out), Status::ok);
   EXPECT_GT(out[0], 0);
   EXPECT_GT(out[1], 0);
   EXPECT_NEAR(out[0], 100 * 1e-6 / 6, 1e-15);  // J dt³/6: the jerk phase's first tick
   int settled_at = -1;
   for (int k = 1; k < 300 && settled_at < 0; ++k) {
-    limiter.apply(std::vector<double>{0.04, 0.04}, out);
+    EXPECT_EQ(limiter.apply(std::vector<double>{0.04, 0.04}, out), Status::ok);
     if (out[1] == 0.04 && limiter.state(1).v == 0) settled_at = k;
   }
   EXPECT_GE(settled_at, 0);
@@ -415,7 +415,7 @@ TEST(Limiter, EveryPlanOfAMovingTargetStaysWithinTheEvaluationBound) {
       const double w = 2 + 1.7 * static_cast<double>(i);
       target[i] = 60 * std::cos(static_cast<double>(i)) * std::sin(w * k * dt) + (k % 4000 < 2000 ? 10.0 : -10.0);
     }
-    limiter.apply(target, out);
+    EXPECT_EQ(limiter.apply(target, out), Status::ok);
     for (std::size_t i = 0; i < target.size(); ++i) {
       const int e = limiter.evaluations(i);
       worst = std::max(worst, e);
@@ -449,7 +449,7 @@ TEST(Limiter, AGoalThatEasesOutOfRestAndBackToRestIsFollowedCheaplyAtBothEnds) {
         const double distance = 60 * std::cos(static_cast<double>(i) + 0.5);
         target[i] = 0.5 * distance * (1 - std::cos(M_PI * t / duration));
       }
-      limiter.apply(target, out);
+      EXPECT_EQ(limiter.apply(target, out), Status::ok);
       int total = 0;
       for (std::size_t i = 0; i < n; ++i) total += limiter.evaluations(i);
       if (k <= 12) {
@@ -485,7 +485,7 @@ TEST(Limiter, AKeyWhereEveryGoalChangesItsAccelerationAtOnceCostsLittleMore) {
   limiter.reset(target);
   for (int k = 1; k <= 3000; ++k) {
     set_targets(k);
-    limiter.apply(target, out);
+    EXPECT_EQ(limiter.apply(target, out), Status::ok);
     if (k < 500 || k % 500 == 0 || k % 500 > 3) continue;
     int total = 0;
     for (std::size_t i = 0; i < n; ++i) total += limiter.evaluations(i);
@@ -509,7 +509,7 @@ TEST(Limiter, AGlideBringsEveryChannelToItsGoalTogetherOnTheSmoothestMoveFromOne
   std::vector<std::vector<double>> samples{{0}, {10}, {-5}};
   int ticks = 0, evaluations = 0, worst = 0;
   for (; (ticks == 0 || !limiter.settled()) && ticks < 5000; ++ticks) {
-    limiter.apply(goal, out);
+    EXPECT_EQ(limiter.apply(goal, out), Status::ok);
     for (std::size_t i = 0; i < 3; ++i) {
       evaluations += limiter.evaluations(i);
       worst = std::max(worst, limiter.evaluations(i));
@@ -542,10 +542,10 @@ TEST(Limiter, AGlideBringsEveryChannelToItsGoalTogetherOnTheSmoothestMoveFromOne
   }
   // A new target ends the glide: the channel's own limits apply again at once.
   std::vector<double> away{60, 4, 5};
-  limiter.apply(away, out);
+  EXPECT_EQ(limiter.apply(away, out), Status::ok);
   EXPECT_FALSE(limiter.gliding(2));
   EXPECT_TRUE(limiter.gliding(0));  // (still on its glide's goal)
-  for (int k = 0; k < 200; ++k) limiter.apply(away, out);
+  for (int k = 0; k < 200; ++k) EXPECT_EQ(limiter.apply(away, out), Status::ok);
   EXPECT_DOUBLE_EQ(out[2], 5.0);  // 10.3 units in 0.2 s: at the glide's jerk it would take 2.4 s
 }
 
@@ -564,8 +564,8 @@ TEST(Limiter, WarmingChangesNothingThatApplyDoes) {
   for (int k = 0; k < 3000; ++k) {
     const std::vector<double>& target = k < 500 ? goal : next;
     if (k == 500) warmed.warm(next);  // (in motion: nothing to do)
-    warmed.apply(target, a);
-    cold.apply(target, b);
+    EXPECT_EQ(warmed.apply(target, a), Status::ok);
+    EXPECT_EQ(cold.apply(target, b), Status::ok);
     ASSERT_EQ(a, b) << "tick " << k;
   }
 }
@@ -582,7 +582,7 @@ TEST(Limiter, ATargetLeavingRestIsFollowedAtOneEvaluationAPlanWhileItsPlansShare
     std::vector<double> target(1), out(1);
     for (int k = 1; k <= 4; ++k) {
       target[0] = 0.5 * acceleration * (k * dt) * (k * dt);
-      limiter.apply(target, out);
+      EXPECT_EQ(limiter.apply(target, out), Status::ok);
       EXPECT_EQ(limiter.evaluations(0), 1) << "tick " << k;
     }
   }
@@ -633,7 +633,7 @@ TEST(Limiter, NoSampleEverExceedsAnyLimitAndHeldTargetsAreReached) {
       target = u(rng) < 0.05 ? std::numeric_limits<double>::quiet_NaN() : min - 0.5 * range + 2 * range * u(rng);
       const int hold = 1 + static_cast<int>(rng() % 40);
       for (int h = 0; h < hold; ++h, ++tick) {
-        limiter.apply(std::span<const double>(&target, 1), out);
+        EXPECT_EQ(limiter.apply(std::span<const double>(&target, 1), out), std::isnan(target) ? Status::not_finite : Status::ok);
         check(tick);
         if (HasFatalFailure()) return;
       }
@@ -642,7 +642,7 @@ TEST(Limiter, NoSampleEverExceedsAnyLimitAndHeldTargetsAreReached) {
     const double margin = std::min(cl.soft_margin, range / 2);
     const double goal = std::clamp(target, cl.min + margin, cl.max - margin);
     for (int h = 0; !(limiter.settled() && out[0] == goal); ++h, ++tick) {
-      limiter.apply(std::span<const double>(&target, 1), out);
+      EXPECT_EQ(limiter.apply(std::span<const double>(&target, 1), out), Status::ok);
       check(tick);
       if (HasFatalFailure()) return;
       // At most: a stop, then a move across the range.

@@ -246,7 +246,7 @@ TEST(Supervisor, EstopInputReachesTheControllerThroughTheRunner) {
   const std::atomic<int> no_interrupts{0};
   RunOptions options{1 / kDt, ClockMode::stepped, {}};
   options.estop = &estop;
-  run_loop(c, options, pressing, no_interrupts);
+  EXPECT_FALSE(run_loop(c, options, pressing, no_interrupts).interrupted);
   EXPECT_EQ(c.latched_fault().cause, FaultCause::estop);
   EXPECT_NEAR(c.latched_fault().time_s, 0.61, 1e-9);
   EXPECT_DOUBLE_EQ(link.frames.back()[1], 0.0);

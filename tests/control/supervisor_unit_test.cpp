@@ -15,7 +15,7 @@ namespace {
 /// Channels a, b, c, d on two links: a rests, b holds, c releases, d has no actuator.
 rig::Rig four_channels() {
   rig::Rig r;
-  for (const char* name : {"a", "b", "c", "d"}) r.channels.push_back({.name = name, .where = {}});
+  for (const char* name : {"a", "b", "c", "d"}) r.channels.emplace_back().name = name;
   r.links.resize(2);
   const rig::Failsafe actions[] = {rig::Failsafe::rest, rig::Failsafe::hold, rig::Failsafe::release};
   for (std::size_t c = 0; c < 3; ++c) {
@@ -41,8 +41,11 @@ TEST(SupervisorUnit, TheFirstFaultStaysLatchedWithTheStateItInterruptedAndLaterO
   EXPECT_DOUBLE_EQ(s.latched_fault().time_s, 3.0);
   EXPECT_EQ(s.faults_seen(), 2u);
   EXPECT_TRUE(s.driving_failsafe());
-  s.enter(Phase::running);  // only clear() leaves faulted
+  s.enter(Phase::running);  // motion resumes only after clear()
   EXPECT_EQ(s.phase(), Phase::faulted);
+  s.enter(Phase::disabled);  // released at once: the fault stays latched
+  EXPECT_EQ(s.phase(), Phase::disabled);
+  EXPECT_EQ(s.latched_fault().cause, FaultCause::tracking_error);
 }
 
 TEST(SupervisorUnit, AFaultWhileIdleLatchesButDrivesNothing) {

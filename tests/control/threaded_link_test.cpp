@@ -176,10 +176,10 @@ TEST(ThreadedLink, ReleaseRunsOnTheIoThreadOnceAndStopsSending) {
   StallableLink inner;
   {
     ThreadedLink link(inner, 1, 10);
-    link.send(std::vector<double>{1});
+    EXPECT_EQ(link.send(std::vector<double>{1}), Status::ok);
     inner.wait_sent(1);
-    link.release();
-    link.release();
+    EXPECT_EQ(link.release(), Status::ok);
+    EXPECT_EQ(link.release(), Status::ok);
   }
   EXPECT_EQ(inner.releases(), 1);
   EXPECT_EQ(inner.sent_count(), 1u);

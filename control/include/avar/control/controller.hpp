@@ -77,9 +77,9 @@ class Controller {
   /// or the rest pose where unknown). Ignored in any other state.
   void begin(double now_s, std::span<const double> start_pose) noexcept;
 
-  /// One tick at loop time now_s (period: options.tick_period_s). Returns the status of this
-  /// tick's sends.
-  Status tick(double now_s) noexcept;
+  /// One tick at loop time now_s (period: options.tick_period_s). A send that fails latches a
+  /// link fault (latched_fault() says which link and why).
+  void tick(double now_s) noexcept;
 
   /// homing/running -> stopping: ease to rest from wherever the figure is heading. Idempotent.
   void request_stop(double now_s) noexcept;

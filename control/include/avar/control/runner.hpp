@@ -40,7 +40,7 @@ class TickObserver {
   virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, Controller& controller) = 0;
 };
 
-struct RunResult {
+struct [[nodiscard]] RunResult {
   std::uint64_t ticks = 0;
   std::uint64_t deadline_misses = 0;  ///< ticks whose work ended after the next deadline
   LatencyHistogram lateness;          ///< wake-up lateness after each deadline (realtime only)

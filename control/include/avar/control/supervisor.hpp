@@ -61,8 +61,9 @@ class Supervisor {
   /// Whether a tick has anything to drive: homing, running, stopping, or fail-safe moves.
   bool drives() const noexcept { return phase_ != Phase::disabled && (phase_ != Phase::faulted || drive_in_fault_); }
 
-  /// A transition of the motion (homing, running, stopping, disabled); faulted is entered by
-  /// latch() only.
+  /// A transition of the motion (homing, running, stopping, disabled). Faulted is entered by
+  /// latch() only, and left for motion only through clear(); entering disabled from it (every
+  /// actuator released at once) keeps the fault latched.
   void enter(Phase p) noexcept;
 
   /// Latches a fault at loop time now_s: the first one wins and is kept with the state it

@@ -6,7 +6,8 @@
 
 namespace avar {
 
-enum class Status {
+/// [[nodiscard]]: a status dropped on the floor is a fault nobody handles.
+enum class [[nodiscard]] Status {
   ok,
   timeout,       ///< a deadline passed before the operation completed
   io_error,      ///< the transport failed (port closed, write error, device gone)

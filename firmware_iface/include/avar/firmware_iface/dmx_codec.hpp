@@ -66,7 +66,7 @@ struct Message {
   std::span<const std::uint8_t> data;  ///< points into the input
 };
 
-enum class DecodeResult {
+enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,    ///< a message may have started but is not complete
   bad_framing,  ///< no 7E, a length above 600 or no E7 where it belongs: drop *consumed bytes

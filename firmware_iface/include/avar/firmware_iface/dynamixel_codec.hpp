@@ -82,7 +82,7 @@ struct Status {
   std::uint8_t processing_error() const noexcept { return error & 0x7F; }
 };
 
-enum class DecodeResult {
+enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,     ///< a packet has started but is not complete yet
   bad_crc,       ///< a whole packet arrived with a wrong CRC (consume it and go on)

@@ -146,7 +146,7 @@ struct Packet {
   std::span<const std::uint8_t> params;  ///< points into the input
 };
 
-enum class DecodeResult {
+enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,     ///< a packet may have started but is not complete
   bad_checksum,  ///< a whole packet arrived with a wrong checksum (*consumed covers it)

@@ -62,7 +62,7 @@ struct Command {
   std::size_t query_count = 0;
 };
 
-enum class ParseResult {
+enum class [[nodiscard]] ParseResult {
   ok,
   empty,    ///< nothing but whitespace
   invalid,  ///< not a command the board accepts (unknown letters, mixed kinds, out of range): ignored

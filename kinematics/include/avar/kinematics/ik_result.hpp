@@ -14,7 +14,7 @@ enum class IkStatus {
               ///< the output is still within limits (the best iterate, or the clamped seed)
 };
 
-struct IkResult {
+struct [[nodiscard]] IkResult {
   IkStatus status = IkStatus::failed;
   int iterations = 0;           ///< error evaluations (forward kinematics runs) spent, over all restarts
   double position_error = 0;    ///< m: largest |component| of any goal's position error at the output

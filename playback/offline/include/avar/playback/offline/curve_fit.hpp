@@ -33,7 +33,7 @@ struct CurveFitOptions {
   double corner_angle_deg = 60;
 };
 
-struct CurveFitResult {
+struct [[nodiscard]] CurveFitResult {
   RawCurve curve;                        ///< Bezier keys, free handles; build it with Curve::build
   std::vector<std::size_t> key_samples;  ///< the sample index of every key
   std::vector<std::size_t> corners;      ///< the sample indices kept as corners
