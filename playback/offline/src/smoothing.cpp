@@ -157,7 +157,9 @@ std::vector<double> bspline_smooth(std::span<const double> samples, double knot_
   return y;
 }
 
-std::vector<double> butterworth_zero_phase(std::span<const double> samples, double fs, double fc, int order) {
+std::vector<double> butterworth_zero_phase(std::span<const double> samples, double sample_rate_hz, double cutoff_hz, int order) {
+  const double fs = sample_rate_hz;
+  const double fc = cutoff_hz;
   if (order != 2 && order != 4) throw std::invalid_argument("butterworth: order must be 2 or 4");
   if (!(fs > 0) || !(fc > 0) || !(fc < 0.5 * fs))
     throw std::invalid_argument("butterworth: cutoff must lie between 0 and half the sample rate");
@@ -178,7 +180,9 @@ std::vector<double> butterworth_zero_phase(std::span<const double> samples, doub
   return {x.begin() + static_cast<std::ptrdiff_t>(pad), x.begin() + static_cast<std::ptrdiff_t>(pad + n)};
 }
 
-std::vector<double> smooth(std::span<const double> samples, SmoothingMethod method, double fs, double fc) {
+std::vector<double> smooth(std::span<const double> samples, SmoothingMethod method, double sample_rate_hz, double cutoff_hz) {
+  const double fs = sample_rate_hz;
+  const double fc = cutoff_hz;
   if (method == SmoothingMethod::none) return {samples.begin(), samples.end()};
   if (!(fs > 0) || !(fc > 0) || !(fc < 0.5 * fs))
     throw std::invalid_argument("smoothing: the cutoff must lie between 0 and half the sample rate");

@@ -37,7 +37,8 @@ double Curve::evaluate_uncertified(const Segment& s, const InversePiece& p, doub
   return value_cubic(s, u);
 }
 
-double Curve::evaluate_bezier_closed(const Segment& s, double k1, double k2, double k3, double x) noexcept {
+double Curve::evaluate_bezier_closed(const Segment& s, double k1, double k2, double k3, double normalised_time) noexcept {
+  const double x = normalised_time;
   // Blender returns a key's own value when the time falls on it, whatever roots the cubic has.
   if (x == 0.0) return s.v0;
   double roots[3];

@@ -82,12 +82,12 @@ std::optional<Extrapolation> extrapolation_from_name(std::string_view name) { re
 std::optional<AutoSmoothing> auto_smoothing_from_name(std::string_view name) { return lookup(kSmoothings, name); }
 std::optional<CycleMode> cycle_mode_from_name(std::string_view name) { return lookup(kCycleModes, name); }
 
-const char* to_string(Interpolation v) { return name_of(kInterpolations, v); }
-const char* to_string(Easing v) { return name_of(kEasings, v); }
-const char* to_string(HandleType v) { return name_of(kHandleTypes, v); }
-const char* to_string(Extrapolation v) { return name_of(kExtrapolations, v); }
-const char* to_string(AutoSmoothing v) { return name_of(kSmoothings, v); }
-const char* to_string(CycleMode v) { return name_of(kCycleModes, v); }
+const char* to_string(Interpolation interpolation) { return name_of(kInterpolations, interpolation); }
+const char* to_string(Easing easing) { return name_of(kEasings, easing); }
+const char* to_string(HandleType type) { return name_of(kHandleTypes, type); }
+const char* to_string(Extrapolation extrapolation) { return name_of(kExtrapolations, extrapolation); }
+const char* to_string(AutoSmoothing smoothing) { return name_of(kSmoothings, smoothing); }
+const char* to_string(CycleMode mode) { return name_of(kCycleModes, mode); }
 
 const char* interpolation_names() {
   return "constant (or step), linear, bezier, sine, quad, cubic, quart, quint, expo, circ, back, bounce, elastic, hermite, "

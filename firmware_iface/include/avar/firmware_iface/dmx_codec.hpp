@@ -66,11 +66,14 @@ struct Message {
   std::span<const std::uint8_t> data;  ///< points into the input
 };
 
+// clang-format 14 misreads an attribute on an enum and indents it:
+// clang-format off
 enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,    ///< a message may have started but is not complete
   bad_framing,  ///< no 7E, a length above 600 or no E7 where it belongs: drop *consumed bytes
 };
+// clang-format on
 
 /// Looks for one message at the start of `in`; *consumed: the message (ok) or the bytes to drop.
 DecodeResult decode_message(std::span<const std::uint8_t> in, Message* message, std::size_t* consumed) noexcept;

@@ -82,6 +82,8 @@ struct Status {
   std::uint8_t processing_error() const noexcept { return error & 0x7F; }
 };
 
+// clang-format 14 misreads an attribute on an enum and indents it:
+// clang-format off
 enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,     ///< a packet has started but is not complete yet
@@ -89,6 +91,7 @@ enum class [[nodiscard]] DecodeResult {
   bad_framing,   ///< no header, or a length that cannot be (resynchronise past the first byte)
   not_status,    ///< a well-formed packet that is not a status packet
 };
+// clang-format on
 
 /// Any packet, decoded: instruction packets as a device receives them, status packets as the
 /// host does. For a status packet, params start with the error byte.

@@ -146,12 +146,15 @@ struct Packet {
   std::span<const std::uint8_t> params;  ///< points into the input
 };
 
+// clang-format 14 misreads an attribute on an enum and indents it:
+// clang-format off
 enum class [[nodiscard]] DecodeResult {
   ok,
   need_more,     ///< a packet may have started but is not complete
   bad_checksum,  ///< a whole packet arrived with a wrong checksum (*consumed covers it)
   bad_framing,   ///< bytes that cannot start a packet (*consumed says how many to drop)
 };
+// clang-format on
 
 /// Looks for one packet at the start of `in`. bad_framing: skip *consumed bytes and try again
 /// (garbage before a header, a third FF, a length below 2). need_more: *consumed is 0 (or the

@@ -62,11 +62,14 @@ struct Command {
   std::size_t query_count = 0;
 };
 
+// clang-format 14 misreads an attribute on an enum and indents it:
+// clang-format off
 enum class [[nodiscard]] ParseResult {
   ok,
   empty,    ///< nothing but whitespace
   invalid,  ///< not a command the board accepts (unknown letters, mixed kinds, out of range): ignored
 };
+// clang-format on
 
 /// Parses one line (without its CR) the way the board does: letters in either case, spaces,
 /// tabs and line feeds separate but mean nothing, numbers in decimal (offsets may be negative).

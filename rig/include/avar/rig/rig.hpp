@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <initializer_list>
 #include <optional>
-#include <ranges>
 #include <span>
 #include <string>
 #include <string_view>
@@ -125,6 +124,39 @@ struct RigKinematics {
 /// between it and the base).
 std::vector<std::size_t> bindings_moving(const RigKinematics& kinematics, std::size_t effector);
 
+/// The actuators of a rig that sit on one link: iterate it with a range for. (Hand-written:
+/// clang 14, which the lint runs, cannot read libstdc++ 12's std::views::filter.)
+class ActuatorsOnLink {
+ public:
+  class iterator {
+   public:
+    iterator(const std::vector<ActuatorSpec>* all, std::size_t at, LinkIndex link) : all_(all), at_(at), link_(link) { skip(); }
+    const ActuatorSpec& operator*() const { return (*all_)[at_]; }
+    iterator& operator++() {
+      ++at_;
+      skip();
+      return *this;
+    }
+    bool operator==(const iterator& other) const { return at_ == other.at_; }
+
+   private:
+    void skip() {
+      while (at_ < all_->size() && (*all_)[at_].link != link_) ++at_;
+    }
+    const std::vector<ActuatorSpec>* all_;
+    std::size_t at_;
+    LinkIndex link_;
+  };
+
+  ActuatorsOnLink(const std::vector<ActuatorSpec>* all, LinkIndex link) : all_(all), link_(link) {}
+  iterator begin() const { return {all_, 0, link_}; }
+  iterator end() const { return {all_, all_->size(), link_}; }
+
+ private:
+  const std::vector<ActuatorSpec>* all_;
+  LinkIndex link_;
+};
+
 struct Rig {
   std::string name;
   std::string file;
@@ -140,9 +172,7 @@ struct Rig {
   const LinkSpec& link(LinkIndex l) const { return links[l.value]; }
   /// The actuators on one link, in file order (the order drivers and simulated devices list
   /// them in). A view: no copy.
-  auto actuators_on(LinkIndex l) const {
-    return actuators | std::views::filter([l](const ActuatorSpec& a) { return a.link == l; });
-  }
+  ActuatorsOnLink actuators_on(LinkIndex l) const { return {&actuators, l}; }
   /// The channels' rest poses, as a frame.
   std::vector<double> rest_frame() const;
   /// Comma-separated channel names, for error messages.
