@@ -1,6 +1,5 @@
 #include "avar/assembly/servo_bus_options.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <vector>
 

@@ -65,7 +65,6 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       telemetry_seen_(rig.channels.size(), 0),
       telemetry_(rig.channels.size()),
       link_telemetry_seen_(rig.channels.size(), 0),
-      source_measured_(rig.channels.size(), 0.0),
       source_known_(new bool[rig.channels.size()]()) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
   if (!show.targets.empty()) {
@@ -177,14 +176,12 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
 
 void Controller::read_feedback() noexcept {
   if (options_.positions) {
-    const std::span<bool> known(source_known_.get(), source_measured_.size());
+    // The source writes straight into measured_, and only where it knows.
+    const std::span<bool> known(source_known_.get(), measured_.size());
     std::fill(known.begin(), known.end(), false);
-    options_.positions->measure(source_measured_, known);
-    for (std::size_t c = 0; c < known.size(); ++c) {
-      if (!known[c]) continue;
-      measured_[c] = source_measured_[c];
-      measured_known_[c] = 1;
-    }
+    options_.positions->measure(measured_, known);
+    for (std::size_t c = 0; c < known.size(); ++c)
+      if (known[c]) measured_known_[c] = 1;
   }
   for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
   take_telemetry(telemetry_, link_telemetry_seen_);

@@ -75,7 +75,7 @@ const Protocol& dynamixel_protocol() {
       [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
          const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
-        config.reply_timeout = std::max(config.reply_timeout, std::chrono::milliseconds(tuning.min_reply_timeout_ms));
+        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
         return std::make_unique<firmware_iface::DynamixelLink>(transport, config);
       },
       simulated_dynamixel,

@@ -93,7 +93,7 @@ const Protocol& feetech_protocol() {
       [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
          const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
         firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
-        config.reply_timeout = std::max(config.reply_timeout, std::chrono::milliseconds(tuning.min_reply_timeout_ms));
+        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
         return std::make_unique<firmware_iface::FeetechLink>(transport, config);
       },
       simulated_feetech,

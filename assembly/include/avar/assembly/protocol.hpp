@@ -4,6 +4,8 @@
 // the registry's list; the rig reader, the validation, the driver and the simulator all reach it
 // through here. Load-time only: nothing here runs in the tick.
 
+#include <algorithm>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -40,6 +42,11 @@ struct DriverTuning {
   /// Smallest wait for a reply (ms): a simulated device answers from a thread of this process,
   /// which a busy machine may keep waiting longer than a real servo's reply timeout.
   int min_reply_timeout_ms = 0;
+
+  /// A driver's configured reply timeout, raised to the minimum above.
+  std::chrono::milliseconds reply_timeout(std::chrono::milliseconds configured) const {
+    return std::max(configured, std::chrono::milliseconds(min_reply_timeout_ms));
+  }
 };
 
 struct Protocol {

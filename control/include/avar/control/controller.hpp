@@ -169,8 +169,7 @@ class Controller {
   std::vector<std::uint64_t> telemetry_seen_;  ///< per channel: `updates` at the last feed_telemetry
   std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< per channel: the links' newest reports
   std::vector<std::uint64_t> link_telemetry_seen_;           ///< per channel: `updates` the tick took
-  std::vector<double> source_measured_;                      ///< per channel, from options.positions
-  std::unique_ptr<bool[]> source_known_;
+  std::unique_ptr<bool[]> source_known_;                     ///< per channel: options.positions knew it
   std::array<StageTime, kStageCount> stage_times_{};
   bool begun_ = false;
   double last_now_ = 0;
