@@ -21,6 +21,8 @@ enum DeviceFault : std::uint32_t {
   kDeviceVoltage = 1u << 3,     ///< input voltage out of range
   kDeviceEncoder = 1u << 4,     ///< position sensor failure
   kDeviceOther = 1u << 5,
+  kDeviceLost = 1u << 6,        ///< stopped answering: heartbeats or replies missed past their budget
+  kDeviceFaultState = 1u << 7,  ///< the drive went to its fault state or left closed-loop control
 };
 
 /// What a device last reported of one channel. NaN for what it does not report.
@@ -58,6 +60,14 @@ class ActuatorLink {
   /// After a failed start(): what was wrong beyond the Status (which servo, which setting), for
   /// the message; empty when there is nothing more to say.
   virtual std::string start_problem() const { return {}; }
+
+  /// After a channel fault from this link's telemetry: what the device said or failed to say
+  /// ("ODrive node 2: no heartbeat for 30 ticks"); empty when there is nothing more to say.
+  /// Not real-time; call on the thread that calls send(), or after the loop stopped.
+  virtual std::string channel_problem(std::size_t channel) const {
+    static_cast<void>(channel);
+    return {};
+  }
 
   /// Reads where the device says each of this link's channels is, in channel units, into
   /// frame[channel]; sets known[channel] for those it could read. Channels the device cannot
