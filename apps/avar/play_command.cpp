@@ -272,11 +272,14 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     const bool about_link = fault.cause == control::FaultCause::link_watchdog || fault.cause == control::FaultCause::link_failure;
     const bool about_channel = fault.cause == control::FaultCause::tracking_error || fault.cause == control::FaultCause::non_finite ||
                                fault.cause == control::FaultCause::device_overheat ||
-                               fault.cause == control::FaultCause::device_overload;
+                               fault.cause == control::FaultCause::device_overload ||
+                               fault.cause == control::FaultCause::device_error || fault.cause == control::FaultCause::device_lost;
     err << "fault at " << format_fixed(fault.time_s, 3) << " s while " << control::to_string(fault.from) << ": "
         << control::to_string(fault.cause);
     if (about_link) err << " on link " << rig.links[fault.index].name << " (" << to_string(fault.status) << ")";
     if (about_channel) err << " on channel " << rig.channels[fault.index].name;
+    if (about_channel)
+      if (const std::string problem = figure->channel_problem(fault.index); !problem.empty()) err << " (" << problem << ")";
     if (fault.cause == control::FaultCause::tracking_error) err << " (error " << format_fixed(fault.value, 3) << ")";
     if (fault.cause == control::FaultCause::deadline_budget) err << " (" << fault.value << " misses)";
     err << "; actuators took their fail-safe actions (hold, rest or release, from the rig)\n";

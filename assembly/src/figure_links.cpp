@@ -15,7 +15,7 @@ struct FigureLinks::Entry {
   bool simulated = false;
   SimulatedDevice device;
   std::unique_ptr<sim::PtyDeviceHost> host;
-  std::unique_ptr<firmware_iface::SerialTransport> transport;
+  std::unique_ptr<firmware_iface::SerialTransport> transport;  ///< null for links that are no serial port
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
@@ -39,7 +39,10 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     if (entry->simulated) {
       entry->device = protocol.make_simulated(rig, i);
       if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
-      entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, sim::PtyDeviceHost::Clock::stepped);
+      // Drives that need their own time to come up (a heartbeat) run on the wall clock until
+      // the first tick; every other simulator waits for the loop's stepped clock from the start.
+      const auto clock = protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
+      entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
       port = entry->host->slave_path();
       // A simulated device answers from a thread of this process, which a busy machine may keep
       // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
@@ -47,8 +50,12 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
       // when it runs, so only a lost reply would ever wait this long).
       tuning.min_reply_timeout_ms = 1000;
     }
-    entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-    entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+    if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
+      entry->link = protocol.open_link(rig, i, port);
+    } else {
+      entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
+      entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+    }
     if (selection.threaded_rate_hz > 0) {
       const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
       entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
@@ -91,9 +98,17 @@ bool FigureLinks::reports_telemetry(std::size_t link) const {
   return protocol_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
 }
 
+std::string FigureLinks::channel_problem(std::size_t channel) const {
+  for (const rig::ActuatorSpec& a : rig_.actuators)
+    if (a.channel.value == channel)
+      if (std::string p = entries_[a.link.value]->link->channel_problem(channel); !p.empty()) return p;
+  return {};
+}
+
 void FigureLinks::advance(double dt_s) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
+    e->host->set_clock(sim::PtyDeviceHost::Clock::stepped);
     // Everything sent this tick must have reached the device before its time moves on, so
     // a run on the stepped clock is deterministic.
     e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
@@ -117,7 +132,7 @@ void FigureLinks::measure(std::span<double> measured, std::span<bool> known) con
 
 std::uint64_t FigureLinks::bytes_sent() const {
   std::uint64_t total = 0;
-  for (const auto& e : entries_) total += e->transport->bytes_written();
+  for (const auto& e : entries_) total += e->transport ? e->transport->bytes_written() : e->outer()->counters().bytes_sent;
   return total;
 }
 

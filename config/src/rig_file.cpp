@@ -116,12 +116,28 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
   return link;
 }
 
+/// The keys every actuator may have, whatever its link.
+constexpr std::string_view kActuatorKeys[] = {"channel", "protocol", "link",   "device_channel", "id",      "address",
+                                              "fine",    "calibration", "speed", "acceleration", "failsafe"};
+
+/// On a bus of drives, the keys its protocol interprets (everything but the common ones) go to
+/// a.settings as written; the protocol then checks them.
+void read_drive_settings(const YamlRef& node, const std::string& what, const assembly::AddressRule& rule, ActuatorSpec& a) {
+  a.settings.where = node.where();
+  a.settings.what = "the settings of " + what;
+  for (auto it = node.node.begin(); it != node.node.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    // The protocol and the address stay in too: the drive's entry checks them.
+    if (key != "protocol" && key != rule.key &&
+        std::find(std::begin(kActuatorKeys), std::end(kActuatorKeys), key) != std::end(kActuatorKeys))
+      continue;
+    const YamlRef value{it->second, node.file};
+    a.settings.entries.push_back({key, YamlRef{it->first, node.file}.where(), value.scalar()});
+  }
+}
+
 ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t index) {
   const std::string what = "actuator " + std::to_string(index + 1);
-  node.expect_only_keys(
-      {"channel", "protocol", "link", "device_channel", "id", "address", "fine", "calibration", "speed", "acceleration",
-       "failsafe"},
-      what);
   ActuatorSpec a;
   a.where = node.where();
 
@@ -144,7 +160,15 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   const LinkSpec& spec = rig.link(a.link);
   const assembly::Protocol& link_protocol = assembly::protocol_of(spec);
   const std::string& protocol_name = spec.protocol;
-  if (auto protocol = node.find("protocol")) {
+  const bool drive_bus = link_protocol.finish_actuator != nullptr;
+  // A bus of drives takes keys of its own, which its protocol checks (finish_actuator).
+  if (!drive_bus) node.expect_only_keys(kActuatorKeys, what);
+  if (drive_bus) {
+    if (auto cal = node.find("calibration"))
+      cal->fail("actuators on " + protocol_name + " link '" + link_name +
+                "' take no calibration block; their gear_ratio, units_per_turn and zero map the channel to the motor");
+    if (auto fine = node.find("fine")) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
+  } else if (auto protocol = node.find("protocol")) {
     const std::string p = protocol->as_string("the protocol of " + what);
     if (!assembly::find_protocol(p))
       protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + assembly::protocol_names());
@@ -211,6 +235,10 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   if (auto s = node.find("speed")) a.speed_limit = positive(*s, "the speed limit of " + what + " (" + ch.unit + "/s)");
   if (auto s = node.find("acceleration"))
     a.acceleration_limit = positive(*s, "the acceleration limit of " + what + " (" + ch.unit + "/s²)");
+  if (drive_bus) {
+    read_drive_settings(node, what, rule, a);
+    link_protocol.finish_actuator(rig, a);
+  }
   return a;
 }
 
@@ -252,7 +280,13 @@ rig::Rig load_rig_file(const std::string& path) {
     const YamlRef node = actuators[i];
     ActuatorSpec a = read_actuator(rig, node, i);
     const LinkSpec& link = rig.link(a.link);
-    const assembly::AddressRule rule = assembly::protocol_of(link).address_rule(link, a.fine);
+    const assembly::Protocol& protocol = assembly::protocol_of(link);
+    // A bus of drives checks its identifiers itself, once every actuator is read.
+    if (protocol.validate_link_actuators) {
+      rig.actuators.push_back(std::move(a));
+      continue;
+    }
+    const assembly::AddressRule rule = protocol.address_rule(link, a.fine);
     // A 16-bit DMX channel takes two slots.
     for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
       if (!used.insert({a.link.value, slot}).second)
@@ -261,6 +295,8 @@ rig::Rig load_rig_file(const std::string& path) {
                   "' is used by two actuators");
     rig.actuators.push_back(std::move(a));
   }
+  for (std::size_t i = 0; i < rig.links.size(); ++i)
+    if (const auto check = assembly::protocol_of(rig.links[i]).validate_link_actuators) check(rig, i);
   if (auto kin = root.find("kinematics")) rig.kinematics = read_rig_kinematics(rig, *kin);
   return rig;
 }

@@ -26,6 +26,7 @@ const char* to_string(FaultCause c) noexcept {
     case FaultCause::device_overheat: return "device over-temperature";
     case FaultCause::device_overload: return "device overload";
     case FaultCause::device_error: return "device hardware error";
+    case FaultCause::device_lost: return "device lost";
     case FaultCause::deadline_budget: return "deadline misses over budget";
   }
   return "unknown";

@@ -84,7 +84,8 @@ void PtyDeviceHost::serve() {
   auto last_advance = clock::now();
   for (;;) {
     int timeout_ms = -1;
-    if (clock_ == Clock::wall) {
+    const Clock clock_now = clock_.load(std::memory_order_acquire);
+    if (clock_now == Clock::wall) {
       const auto left = last_advance + kWallStep - clock::now();
       timeout_ms = static_cast<int>(std::max<std::int64_t>(0, std::chrono::ceil<std::chrono::milliseconds>(left).count()));
     }
@@ -114,15 +115,23 @@ void PtyDeviceHost::serve() {
         }
       }
     }
-    if (clock_ == Clock::wall) {
+    if (clock_now == Clock::wall) {
       const auto now = clock::now();
       if (now - last_advance >= kWallStep) {
+        std::size_t reply = 0;
         {
           std::lock_guard lock(mutex_);
           device_.advance(std::chrono::duration<double>(now - last_advance).count());
+          reply = device_.take_replies(out);
         }
         last_advance = now;
         changed_cv_.notify_all();
+        // What the device sends of its own as time passes (a drive's heartbeat).
+        while (reply > 0) {
+          write_or_drop(master_, out.data(), reply);
+          std::lock_guard lock(mutex_);
+          reply = device_.take_replies(out);
+        }
       }
     }
   }

@@ -33,7 +33,8 @@ struct LinkSelection {
 class FigureLinks final : public control::PositionSource, public control::Plant {
  public:
   /// Opens every link: starts simulated devices first, then opens each port with the real
-  /// serial transport. Throws InputError naming the port when one cannot be opened or the
+  /// serial transport (or, for a protocol that opens its own, such as a SocketCAN interface,
+  /// through the protocol). Throws InputError naming the port when one cannot be opened or the
   /// selection does not fit the rig (for example --port on a rig with several links).
   FigureLinks(const rig::Rig& rig, const LinkSelection& selection);
   ~FigureLinks() override;
@@ -57,6 +58,9 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   std::size_t link_count() const { return entries_.size(); }
   /// One link's wire counters (ActuatorLink::counters), any thread.
   firmware_iface::LinkCounters counters(std::size_t link) const;
+  /// What the device driving `channel` said of its fault (ActuatorLink::channel_problem); after
+  /// the loop stopped.
+  std::string channel_problem(std::size_t channel) const;
   /// Whether a link's devices report telemetry (smart servo buses).
   bool reports_telemetry(std::size_t link) const;
 

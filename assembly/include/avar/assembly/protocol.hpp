@@ -70,6 +70,28 @@ struct Protocol {
                                                              const DriverTuning& tuning);
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
+
+  // Buses of drives (CAN) only; nullptr for every other protocol.
+
+  /// Interprets an actuator's own keys (a.settings: everything but channel, link, the address,
+  /// speed, acceleration and failsafe), fills a.drive and a.calibration. Throws InputError at
+  /// the key. A protocol with this hook takes no calibration block.
+  void (*finish_actuator)(const rig::Rig& rig, rig::ActuatorSpec& a) = nullptr;
+  /// Checks a link's actuators together once all are read (identifiers that collide on the bus,
+  /// a bitrate a drive cannot run at). Replaces the one-address-one-actuator check. Throws
+  /// InputError at the offending actuator.
+  void (*validate_link_actuators)(const rig::Rig& rig, std::size_t link) = nullptr;
+  /// Opens a link whose port is no serial device (a SocketCAN interface) and makes its driver;
+  /// nullptr: FigureLinks opens a SerialTransport on the port and calls make_link. Not called for
+  /// simulated links.
+  std::unique_ptr<firmware_iface::ActuatorLink> (*open_link)(const rig::Rig& rig, std::size_t link, const std::string& port) =
+      nullptr;
+  /// Whether the link's port (as written or given with --port) is a serial device (make_link)
+  /// rather than something open_link opens.
+  bool (*port_is_serial)(const rig::LinkSpec& link, const std::string& port) = nullptr;
+  /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
+  /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
+  bool simulation_runs_during_start = false;
 };
 
 /// Every protocol avar speaks, in the order messages list them.

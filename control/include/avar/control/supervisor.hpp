@@ -32,7 +32,8 @@ enum class FaultCause {
   non_finite,       ///< a NaN or infinity reached the limiter (channel)
   device_overheat,  ///< a device reported over-temperature (channel)
   device_overload,  ///< a device reported overload (channel)
-  device_error,     ///< a device reported another hardware error: voltage, encoder... (channel)
+  device_error,     ///< a device reported another hardware error or its fault state (channel)
+  device_lost,      ///< a device stopped answering: heartbeats or replies missed past budget (channel)
   deadline_budget,  ///< more deadline misses than allowed
 };
 const char* to_string(FaultCause c) noexcept;

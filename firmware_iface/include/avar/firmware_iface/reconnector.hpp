@@ -29,7 +29,9 @@ class Reconnector {
 
   /// While lost: reopens the transport on every `every`-th call. Returns ok when the port is
   /// usable (never lost, or reopened now: `*reopened` is then set), io_error while it is gone.
-  Status ask(ByteTransport& transport, bool* reopened) noexcept {
+  /// Transport: a ByteTransport or a FrameTransport (anything with reopen()).
+  template <class Transport>
+  Status ask(Transport& transport, bool* reopened) noexcept {
     *reopened = false;
     if (!lost_) return Status::ok;
     if (++asks_ < every_) return Status::io_error;

@@ -99,6 +99,11 @@ struct ActuatorSpec {
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
   Failsafe failsafe = Failsafe::rest;
+  /// On a bus of drives (a CAN link): the keys its protocol interprets (protocol, gear_ratio,
+  /// units_per_turn, ...), as written; empty elsewhere.
+  LinkSettings settings;
+  /// On a bus of drives: the drive protocol (odrive, cia402, mit), from settings; empty elsewhere.
+  std::string drive;
   SourceLocation where;
 };
 

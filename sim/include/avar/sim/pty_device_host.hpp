@@ -29,7 +29,8 @@ class PtyDeviceHost {
  public:
   /// stepped: the device's time moves only when the owner calls advance() through
   /// with_device() (deterministic runs). wall: the host thread also advances it by the elapsed
-  /// monotonic time every 10 ms (a stand-alone simulator such as `avar sim maestro --pty`).
+  /// monotonic time every 10 ms and sends what the device says meanwhile (a stand-alone
+  /// simulator such as `avar sim maestro --pty`).
   enum class Clock { stepped, wall };
 
   /// Opens the pseudo-terminal and starts serving. Throws std::runtime_error when no pty can
@@ -70,6 +71,11 @@ class PtyDeviceHost {
     return f(device_);
   }
 
+  /// Switches from the wall clock to stepped time (a simulated drive that needed its own time
+  /// to come up, now handed to the loop's stepped clock). Switching to wall takes effect within
+  /// the next wake-up only. Any thread.
+  void set_clock(Clock clock) { clock_.store(clock, std::memory_order_release); }
+
   /// How many times the host thread has woken from poll(): once per burst of bytes from the
   /// client, plus once per 10 ms in wall mode. An idle stepped host does not wake, whether or
   /// not a client holds the slave open (diagnostics; the proof that it does not spin).
@@ -80,7 +86,7 @@ class PtyDeviceHost {
   void close_all() noexcept;
 
   ByteDevice& device_;
-  Clock clock_;
+  std::atomic<Clock> clock_;
   int master_ = -1;
   int slave_ = -1;  ///< held open so the master never sees a hang-up between clients
   int wake_[2] = {-1, -1};
