@@ -58,6 +58,7 @@ Status OdriveDrives::ask_position(FrameTransport& bus, std::size_t i, float* tur
 
 Status OdriveDrives::start(FrameTransport& bus) {
   start_problem_.clear();
+  bus.discard_input();  // heartbeats from before start may still carry errors since cleared
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     if (const Status s = start_axis(bus, i); s != Status::ok) {
       idle_axes(bus, i + 1);
