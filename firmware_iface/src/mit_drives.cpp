@@ -85,7 +85,10 @@ bool MitDrives::is_reply_of(const CanFrame& f, std::size_t i, mit::MitReply* rep
 void MitDrives::record_reply(std::size_t i, const mit::MitReply& reply) noexcept {
   ChannelTelemetry& t = table().telemetry(i);
   t.position = table().to_channel(i, reply.position);
-  t.load = std::clamp(reply.torque / config_.actuators[i].ranges.t_max, -1.0, 1.0);
+  // The torque limit is t_max for the symmetric ranges every model uses; the larger bound keeps
+  // the fraction's sign and scale for odd ones.
+  const mit::MitRanges& r = config_.actuators[i].ranges;
+  t.load = std::clamp(reply.torque / std::max(std::abs(r.t_min), std::abs(r.t_max)), -1.0, 1.0);
   t.faults &= ~static_cast<std::uint32_t>(kDeviceLost);
   ++t.updates;
   motors_[i].silent_ticks = 0;

@@ -13,11 +13,11 @@
 namespace avar::firmware_iface::mit {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using MitBytes = std::vector<std::uint8_t>;
 
-Bytes mit_bytes(std::span<const std::uint8_t> data) { return Bytes(data.begin(), data.end()); }
+MitBytes mit_bytes(std::span<const std::uint8_t> data) { return MitBytes(data.begin(), data.end()); }
 
-Bytes mit_command_bytes(double p, double v, double kp, double kd, double t) {
+MitBytes mit_command_bytes(double p, double v, double kp, double kd, double t) {
   return mit_bytes(pack_command(quantise_command({p, v, kp, kd, t}, kMiniCheetahRanges)));
 }
 
@@ -47,24 +47,24 @@ TEST(MitCodec, RangesPresetsAreValidAndBadRangesAreNot) {
 TEST(MitCodec, K1_ZeroCommand) {
   const MitCommandBits b = quantise_command({}, kMiniCheetahRanges);
   EXPECT_EQ(b, (MitCommandBits{32767, 2047, 0, 0, 2047}));
-  EXPECT_EQ(mit_command_bytes(0, 0, 0, 0, 0), (Bytes{0x7F, 0xFF, 0x7F, 0xF0, 0x00, 0x00, 0x07, 0xFF}));
+  EXPECT_EQ(mit_command_bytes(0, 0, 0, 0, 0), (MitBytes{0x7F, 0xFF, 0x7F, 0xF0, 0x00, 0x00, 0x07, 0xFF}));
 }
 
 TEST(MitCodec, K2_HoldOneRadian) {
   EXPECT_EQ(quantise_command({1.0, 0, 20.0, 0.5, 0}, kMiniCheetahRanges), (MitCommandBits{35388, 2047, 163, 409, 2047}));
-  EXPECT_EQ(mit_command_bytes(1.0, 0, 20.0, 0.5, 0), (Bytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
+  EXPECT_EQ(mit_command_bytes(1.0, 0, 20.0, 0.5, 0), (MitBytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
 }
 
 TEST(MitCodec, K3_K4_BottomAndFullScale) {
-  EXPECT_EQ(mit_command_bytes(-12.5, -65, 0, 0, -18), Bytes(8, 0x00));
+  EXPECT_EQ(mit_command_bytes(-12.5, -65, 0, 0, -18), MitBytes(8, 0x00));
   EXPECT_EQ(quantise_command({12.5, 65, 500, 5, 18}, kMiniCheetahRanges), (MitCommandBits{65535, 4095, 4095, 4095, 4095}));
-  const Bytes full = mit_command_bytes(12.5, 65, 500, 5, 18);
-  EXPECT_EQ(full, Bytes(8, 0xFF));
+  const MitBytes full = mit_command_bytes(12.5, 65, 500, 5, 18);
+  EXPECT_EQ(full, MitBytes(8, 0xFF));
   EXPECT_EQ(classify(std::span<const std::uint8_t, 8>(full.data(), 8)), MitFrameKind::command);
 }
 
 TEST(MitCodec, K5_ReplyAtZero) {
-  const Bytes golden{0x01, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF};
+  const MitBytes golden{0x01, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF};
   EXPECT_EQ(mit_bytes(pack_reply(1, 0, 0, 0, kMiniCheetahRanges)), golden);
   MitReplyBits bits;
   ASSERT_TRUE(unpack_reply(golden, &bits));
@@ -80,9 +80,9 @@ TEST(MitCodec, K5_ReplyAtZero) {
 }
 
 TEST(MitCodec, K6_SpecialFramesAndTheirClassification) {
-  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::enter_motor_mode)), (Bytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC}));
-  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::exit_motor_mode)), (Bytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFD}));
-  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::set_zero)), (Bytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFE}));
+  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::enter_motor_mode)), (MitBytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC}));
+  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::exit_motor_mode)), (MitBytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFD}));
+  EXPECT_EQ(mit_bytes(special_data(MitFrameKind::set_zero)), (MitBytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFE}));
   for (MitFrameKind k : {MitFrameKind::enter_motor_mode, MitFrameKind::exit_motor_mode, MitFrameKind::set_zero})
     EXPECT_EQ(classify(special_data(k)), k);
   const std::array<std::uint8_t, 8> almost{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFE, 0xFC};
@@ -99,7 +99,7 @@ TEST(MitCodec, CommandFrameGoesToTheMotorsCanId) {
   EXPECT_EQ(f.id, 3u);
   EXPECT_FALSE(f.extended);
   EXPECT_FALSE(f.rtr);
-  EXPECT_EQ(mit_bytes(f.payload()), (Bytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
+  EXPECT_EQ(mit_bytes(f.payload()), (MitBytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
 }
 
 TEST(MitCodec, FloatToUintTruncatesTowardZeroLikeTheFirmware) {
@@ -142,14 +142,14 @@ TEST(MitCodec, NoCommandEverPacksToASpecialFrame) {
 }
 
 TEST(MitCodec, ReplyDecoderToleratesLongerCloneRepliesWhenAsked) {
-  const Bytes eight{0x01, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF, 0x28, 0x00};  // + temperature, error code
+  const MitBytes eight{0x01, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF, 0x28, 0x00};  // + temperature, error code
   MitReply r;
   ASSERT_TRUE(decode_reply(eight, kMiniCheetahRanges, {}, &r));
   EXPECT_EQ(r.id, 1);
   EXPECT_NEAR(r.position, 0, 1e-3);
   EXPECT_FALSE(decode_reply(eight, kMiniCheetahRanges, {.accept_longer = false}, &r));
   EXPECT_FALSE(decode_reply(std::span(eight).first(5), kMiniCheetahRanges, {}, &r));
-  const Bytes nibble{0x93, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF};  // error bits 0x9 in byte 0's high nibble, ID 3
+  const MitBytes nibble{0x93, 0x7F, 0xFF, 0x7F, 0xF7, 0xFF};  // error bits 0x9 in byte 0's high nibble, ID 3
   ASSERT_TRUE(decode_reply(nibble, kMiniCheetahRanges, {.accept_longer = true, .id_mask = 0x0F}, &r));
   EXPECT_EQ(r.id, 3);
 }

@@ -14,23 +14,21 @@
 namespace avar::sim {
 namespace {
 
-using namespace firmware_iface;
-
 TEST(MitDrivesAllocation, TicksReleaseAndSilenceAllocateNothing) {
   SimMitMotorConfig a, b;
   a.id = 1;
   b.id = 2;
   SimMitMotor m1(a), m2(b);
   test::DirectCanBus bus({&m1, &m2});
-  MitDrivesConfig config;
+  firmware_iface::MitDrivesConfig config;
   config.actuators.push_back({.channel = 0, .node = 1, .calibration = {-90, 90, -1.5, 1.5}});
   config.actuators.push_back({.channel = 1, .node = 2, .calibration = {-90, 90, -1.5, 1.5}});
   config.reply_budget_ticks = 2;
-  MitDrives drives(config);
-  CanOutbox out(drives.max_tick_frames());
+  firmware_iface::MitDrives drives(config);
+  firmware_iface::CanOutbox out(drives.max_tick_frames());
   ASSERT_EQ(drives.start(bus), Status::ok);
   std::vector<double> frame{10.0, -10.0};
-  std::vector<CanFrame> replies;
+  std::vector<firmware_iface::CanFrame> replies;
   replies.reserve(8);
 
   long counted = 0;
@@ -44,10 +42,10 @@ TEST(MitDrivesAllocation, TicksReleaseAndSilenceAllocateNothing) {
     counted += testing::allocations.load() - before;
     ASSERT_EQ(bus.send(out.frames()), Status::ok);
     replies.clear();
-    CanFrame f;
+    firmware_iface::CanFrame f;
     while (bus.receive(&f, bus.now()) == Status::ok) replies.push_back(f);
     before = testing::allocations.load();
-    for (const CanFrame& r : replies) drives.take(r);
+    for (const firmware_iface::CanFrame& r : replies) drives.take(r);
     (void)drives.replies_complete();
     (void)drives.settle();
     counted += testing::allocations.load() - before;

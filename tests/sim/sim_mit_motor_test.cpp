@@ -12,7 +12,7 @@ namespace {
 
 namespace mit = firmware_iface::mit;
 using firmware_iface::CanFrame;
-using Bytes = std::vector<std::uint8_t>;
+using MitBytes = std::vector<std::uint8_t>;
 
 SimMitMotorConfig mit_sim_config(double initial_position = 0) {
   SimMitMotorConfig c;
@@ -65,7 +65,7 @@ TEST(SimMitMotor, StartsInMenuModeAndEveryAcceptedFrameIsAnswered) {
 
 TEST(SimMitMotor, K6_EnterMotorModeHoldsNoTorqueUntilTheFirstCommand) {
   SimMitMotor m(mit_sim_config(0.5));
-  m.receive(firmware_iface::can_data_frame(3, Bytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC}));
+  m.receive(firmware_iface::can_data_frame(3, MitBytes{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC}));
   EXPECT_TRUE(m.motor_mode());
   ASSERT_EQ(mit_sim_replies(m).size(), 1u);
   EXPECT_EQ(m.command().kp, 0);
@@ -77,7 +77,7 @@ TEST(SimMitMotor, K6_EnterMotorModeHoldsNoTorqueUntilTheFirstCommand) {
 TEST(SimMitMotor, K2_CommandIsDecodedAsTheFirmwareDoesAndTracked) {
   SimMitMotor m(mit_sim_config());
   m.receive(mit::special_frame(3, mit::MitFrameKind::enter_motor_mode));
-  m.receive(firmware_iface::can_data_frame(3, Bytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
+  m.receive(firmware_iface::can_data_frame(3, MitBytes{0x8A, 0x3C, 0x7F, 0xF0, 0xA3, 0x19, 0x97, 0xFF}));
   // Quantisation is real: 35388, 163, 409 decode below 1.0, 20, 0.5.
   EXPECT_FLOAT_EQ(static_cast<float>(m.command().position), static_cast<float>(mit::uint_to_float(35388, -12.5, 12.5, 16)));
   EXPECT_LT(m.command().position, 1.0);
@@ -151,7 +151,7 @@ TEST(SimMitMotor, CommandTimeoutRemovesTorqueUntilTheNextCommand) {
 
 TEST(SimMitMotor, FramesOfWrongLengthOrForOthersAreIgnored) {
   SimMitMotor m(mit_sim_config());
-  const Bytes enter{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC};
+  const MitBytes enter{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC};
   m.receive(firmware_iface::can_data_frame(3, std::span(enter).first(7)));
   m.receive(firmware_iface::can_data_frame(3, std::span(enter).first(6)));
   m.receive(firmware_iface::can_data_frame(4, enter));

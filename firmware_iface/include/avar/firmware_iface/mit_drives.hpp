@@ -2,7 +2,9 @@
 // MIT mini-cheetah style CAN motors (../shared/protocols/mit-cheetah-can.md) as one CanDrives set:
 // each tick one impedance command per driven motor (position from the calibration, velocity 0,
 // the configured kp and kd, no feed-forward torque), and the reply every motor sends to every
-// frame it accepts (to the master ID, byte 0 = its ID) refreshes its position and load.
+// frame it accepts (to the master ID, byte 0 = its ID) refreshes its position (channel units) and
+// load (measured torque over the torque limit, t_max for symmetric ranges; MIT replies carry no
+// temperature and no error).
 //
 // Velocity: the command's velocity target is 0, not a finite difference of consecutive ticks.
 // The drive set has no clock (silence is judged in ticks), a jump in the stream would become a
