@@ -21,6 +21,12 @@ bool MitRanges::valid() const noexcept {
   return ordered(p_min, p_max) && ordered(v_min, v_max) && ordered(0, kp_max) && ordered(0, kd_max) && ordered(t_min, t_max);
 }
 
+const MitRanges* find_ranges(std::string_view model) noexcept {
+  for (const NamedMitRanges& n : kNamedRanges)
+    if (n.name == model) return &n.ranges;
+  return nullptr;
+}
+
 std::uint32_t float_to_uint(double x, double min, double max, int bits) noexcept {
   // Single precision throughout, in the firmware's order of operations.
   const float lo = static_cast<float>(min);

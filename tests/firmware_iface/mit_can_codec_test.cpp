@@ -44,6 +44,16 @@ TEST(MitCodec, RangesPresetsAreValidAndBadRangesAreNot) {
   EXPECT_FALSE(r.valid());
 }
 
+TEST(MitCodec, PresetsAreFoundByTheirModelNames) {
+  ASSERT_NE(find_ranges("mini-cheetah"), nullptr);
+  EXPECT_EQ(find_ranges("mini-cheetah")->t_max, 18);
+  ASSERT_NE(find_ranges("ht04"), nullptr);
+  EXPECT_EQ(find_ranges("ht04")->p_max, 95.5);
+  ASSERT_NE(find_ranges("bgkatz-comments"), nullptr);
+  EXPECT_EQ(find_ranges("bgkatz-comments")->kd_max, 100);
+  EXPECT_EQ(find_ranges("ak80"), nullptr);
+}
+
 TEST(MitCodec, K1_ZeroCommand) {
   const MitCommandBits b = quantise_command({}, kMiniCheetahRanges);
   EXPECT_EQ(b, (MitCommandBits{32767, 2047, 0, 0, 2047}));

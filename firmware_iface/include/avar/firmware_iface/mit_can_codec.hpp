@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "avar/firmware_iface/can_frame.hpp"
 
@@ -38,6 +39,19 @@ inline constexpr MitRanges kBgkatzCommentRanges{-12.566370614359172, 12.56637061
 /// The HT04 header the notes cite: ±95.5 rad, ±45 rad/s, ±35 N·m. The notes give no gains for it;
 /// these use the common KP 500, KD 5.
 inline constexpr MitRanges kHt04HeaderRanges{-95.5, 95.5, -45, 45, 500, 5, -35, 35};
+
+/// The presets by the names rig files use (`model: mini-cheetah`).
+struct NamedMitRanges {
+  std::string_view name;
+  MitRanges ranges;
+};
+inline constexpr std::array<NamedMitRanges, 3> kNamedRanges{{
+    {"mini-cheetah", kMiniCheetahRanges},
+    {"bgkatz-comments", kBgkatzCommentRanges},
+    {"ht04", kHt04HeaderRanges},
+}};
+/// The preset called `model`, or null.
+const MitRanges* find_ranges(std::string_view model) noexcept;
 
 inline constexpr int kPositionBits = 16;
 inline constexpr int kVelocityBits = 12;
