@@ -4,24 +4,25 @@ namespace avar::firmware_iface::canopen {
 namespace {
 
 // Command specifier field (bits 5-7 of byte 0) and the expedited / size-indicated flags.
-constexpr std::uint8_t kCsMask = 0xE0;
-constexpr std::uint8_t kClientDownload = 0x20;
-constexpr std::uint8_t kClientUpload = 0x40;
-constexpr std::uint8_t kServerDownload = 0x60;
-constexpr std::uint8_t kServerUpload = 0x40;
-constexpr std::uint8_t kAbort = 0x80;
-constexpr std::uint8_t kExpedited = 0x02;
-constexpr std::uint8_t kSizeIndicated = 0x01;
+constexpr std::uint8_t kSdoCsMask = 0xE0;
+constexpr std::uint8_t kSdoClientDownload = 0x20;
+constexpr std::uint8_t kSdoClientUpload = 0x40;
+constexpr std::uint8_t kSdoServerDownload = 0x60;
+constexpr std::uint8_t kSdoServerUpload = 0x40;
+constexpr std::uint8_t kSdoAbortCommand = 0x80;
+constexpr std::uint8_t kSdoExpedited = 0x02;
+constexpr std::uint8_t kSdoSizeIndicated = 0x01;
 
-CanFrame frame8(std::uint32_t id) noexcept {
+CanFrame canopen_frame8(std::uint32_t id) noexcept {
   CanFrame f;
   f.id = id;
   f.dlc = 8;
   return f;
 }
 
-CanFrame sdo_frame(std::uint32_t id, std::uint8_t command, std::uint16_t index, std::uint8_t sub, std::uint32_t data) noexcept {
-  CanFrame f = frame8(id);
+CanFrame canopen_sdo_frame(std::uint32_t id, std::uint8_t command, std::uint16_t index, std::uint8_t sub,
+                           std::uint32_t data) noexcept {
+  CanFrame f = canopen_frame8(id);
   f.data[0] = command;
   put_le(&f.data[1], index, 2);
   f.data[3] = sub;
@@ -30,22 +31,22 @@ CanFrame sdo_frame(std::uint32_t id, std::uint8_t command, std::uint16_t index, 
 }
 
 /// 1..4; anything else means 4.
-std::uint8_t normal_size(std::uint8_t size) noexcept { return size >= 1 && size <= 4 ? size : 4; }
+std::uint8_t sdo_normal_size(std::uint8_t size) noexcept { return size >= 1 && size <= 4 ? size : 4; }
 
 /// Expedited command byte with `size` (1..4) bytes: base | n << 2 | e | s, n = unused bytes.
-std::uint8_t expedited_command(std::uint8_t base, std::uint8_t size) noexcept {
-  return static_cast<std::uint8_t>(base | (4 - size) << 2 | kExpedited | kSizeIndicated);
+std::uint8_t sdo_expedited_command(std::uint8_t base, std::uint8_t size) noexcept {
+  return static_cast<std::uint8_t>(base | (4 - size) << 2 | kSdoExpedited | kSdoSizeIndicated);
 }
 
-std::uint32_t masked(std::uint32_t value, std::uint8_t size) noexcept {
+std::uint32_t sdo_masked(std::uint32_t value, std::uint8_t size) noexcept {
   return size >= 4 ? value : value & ((1u << (8 * size)) - 1);
 }
 
 /// Fills the data fields of a download request or upload response.
-void decode_transfer(const CanFrame& f, Sdo* sdo) noexcept {
+void sdo_decode_transfer(const CanFrame& f, Sdo* sdo) noexcept {
   const std::uint8_t c = f.data[0];
-  sdo->expedited = c & kExpedited;
-  if (sdo->expedited) sdo->size = (c & kSizeIndicated) ? static_cast<std::uint8_t>(4 - ((c >> 2) & 0x03)) : 0;
+  sdo->expedited = c & kSdoExpedited;
+  if (sdo->expedited) sdo->size = (c & kSdoSizeIndicated) ? static_cast<std::uint8_t>(4 - ((c >> 2) & 0x03)) : 0;
   else sdo->size = 0;
 }
 
@@ -95,6 +96,16 @@ bool decode_heartbeat(const CanFrame& f, std::uint8_t* node, NmtState* state) no
   return true;
 }
 
+const char* nmt_state_name(NmtState state) noexcept {
+  switch (state) {
+    case NmtState::boot_up: return "boot-up";
+    case NmtState::stopped: return "Stopped";
+    case NmtState::operational: return "Operational";
+    case NmtState::pre_operational: return "Pre-operational";
+  }
+  return "unknown NMT state";
+}
+
 CanFrame encode_sync() noexcept {
   CanFrame f;
   f.id = kSyncCobId;
@@ -104,7 +115,7 @@ CanFrame encode_sync() noexcept {
 bool is_sync(const CanFrame& f) noexcept { return f.id == kSyncCobId && !f.extended && !f.rtr && !f.error && f.dlc <= 1; }
 
 CanFrame encode_emcy(std::uint8_t node, const Emcy& emcy) noexcept {
-  CanFrame f = frame8(emcy_cob_id(node));
+  CanFrame f = canopen_frame8(emcy_cob_id(node));
   put_le(&f.data[0], emcy.error_code, 2);
   f.data[2] = emcy.error_register;
   for (std::size_t i = 0; i < emcy.vendor.size(); ++i) f.data[3 + i] = emcy.vendor[i];
@@ -124,51 +135,54 @@ bool decode_emcy(const CanFrame& f, std::uint8_t* node, Emcy* emcy) noexcept {
 
 const char* sdo_abort_name(std::uint32_t code) noexcept {
   switch (code) {
-    case kSdoAbortTimeout: return "SDO protocol timed out";
+    case kSdoAbortTimeout: return "SDO timeout";
     case kSdoAbortInvalidCommand: return "invalid command specifier";
-    case kSdoAbortUnsupportedAccess: return "unsupported access to an object";
-    case kSdoAbortReadWriteOnly: return "attempt to read a write-only object";
-    case kSdoAbortWriteReadOnly: return "attempt to write a read-only object";
+    case kSdoAbortUnsupportedAccess: return "unsupported access";
+    case kSdoAbortReadWriteOnly: return "read of write-only object";
+    case kSdoAbortWriteReadOnly: return "write to read-only object";
     case kSdoAbortNoObject: return "object does not exist";
-    case kSdoAbortCannotMap: return "object cannot be mapped to the PDO";
-    case kSdoAbortPdoTooLong: return "mapped objects would exceed the PDO length";
-    case kSdoAbortLengthMismatch: return "data type does not match, length does not match";
-    case kSdoAbortLengthTooHigh: return "data type does not match, length too high";
-    case kSdoAbortLengthTooLow: return "data type does not match, length too low";
+    case kSdoAbortCannotMap: return "object cannot be mapped to PDO";
+    case kSdoAbortPdoTooLong: return "mapped objects exceed PDO length";
+    case kSdoAbortLengthMismatch: return "data type / length mismatch";
+    case kSdoAbortLengthTooHigh: return "length too high";
+    case kSdoAbortLengthTooLow: return "length too low";
     case kSdoAbortNoSubIndex: return "sub-index does not exist";
-    case kSdoAbortValueRange: return "value range of parameter exceeded";
-    case kSdoAbortValueTooHigh: return "value of parameter written too high";
-    case kSdoAbortValueTooLow: return "value of parameter written too low";
+    case kSdoAbortValueRange: return "value range exceeded";
+    case kSdoAbortValueTooHigh: return "value too high";
+    case kSdoAbortValueTooLow: return "value too low";
     case kSdoAbortGeneral: return "general error";
-    case kSdoAbortLocalControl: return "cannot transfer: local control";
-    case kSdoAbortDeviceState: return "cannot transfer: not allowed in the present device state";
+    case kSdoAbortLocalControl: return "local control";
+    case kSdoAbortDeviceState: return "not allowed in present device state";
     default: return "unknown abort code";
   }
 }
 
 CanFrame encode_sdo_download(std::uint8_t node, std::uint16_t index, std::uint8_t sub, std::uint32_t value,
                              std::uint8_t size) noexcept {
-  const std::uint8_t n = normal_size(size);
-  return sdo_frame(sdo_request_cob_id(node), expedited_command(kClientDownload, n), index, sub, masked(value, n));
+  const std::uint8_t n = sdo_normal_size(size);
+  return canopen_sdo_frame(sdo_request_cob_id(node), sdo_expedited_command(kSdoClientDownload, n), index, sub,
+                           sdo_masked(value, n));
 }
 
 CanFrame encode_sdo_download_response(std::uint8_t node, std::uint16_t index, std::uint8_t sub) noexcept {
-  return sdo_frame(sdo_response_cob_id(node), kServerDownload, index, sub, 0);
+  return canopen_sdo_frame(sdo_response_cob_id(node), kSdoServerDownload, index, sub, 0);
 }
 
 CanFrame encode_sdo_upload(std::uint8_t node, std::uint16_t index, std::uint8_t sub) noexcept {
-  return sdo_frame(sdo_request_cob_id(node), kClientUpload, index, sub, 0);
+  return canopen_sdo_frame(sdo_request_cob_id(node), kSdoClientUpload, index, sub, 0);
 }
 
 CanFrame encode_sdo_upload_response(std::uint8_t node, std::uint16_t index, std::uint8_t sub, std::uint32_t value,
                                     std::uint8_t size) noexcept {
-  const std::uint8_t n = normal_size(size);
-  return sdo_frame(sdo_response_cob_id(node), expedited_command(kServerUpload, n), index, sub, masked(value, n));
+  const std::uint8_t n = sdo_normal_size(size);
+  return canopen_sdo_frame(sdo_response_cob_id(node), sdo_expedited_command(kSdoServerUpload, n), index, sub,
+                           sdo_masked(value, n));
 }
 
 CanFrame encode_sdo_abort(std::uint8_t node, bool from_server, std::uint16_t index, std::uint8_t sub,
                           std::uint32_t code) noexcept {
-  return sdo_frame(from_server ? sdo_response_cob_id(node) : sdo_request_cob_id(node), kAbort, index, sub, code);
+  return canopen_sdo_frame(from_server ? sdo_response_cob_id(node) : sdo_request_cob_id(node), kSdoAbortCommand, index, sub,
+                           code);
 }
 
 bool decode_sdo(const CanFrame& f, std::uint8_t* node, bool* from_server, Sdo* sdo) noexcept {
@@ -182,21 +196,21 @@ bool decode_sdo(const CanFrame& f, std::uint8_t* node, bool* from_server, Sdo* s
   sdo->index = static_cast<std::uint16_t>(get_le(&f.data[1], 2));
   sdo->sub = f.data[3];
   sdo->data = get_le(&f.data[4], 4);
-  const std::uint8_t cs = f.data[0] & kCsMask;
-  if (cs == kAbort) {
+  const std::uint8_t cs = f.data[0] & kSdoCsMask;
+  if (cs == kSdoAbortCommand) {
     sdo->kind = SdoKind::abort;
   } else if (*from_server) {
-    if (cs == kServerDownload) {
+    if (cs == kSdoServerDownload) {
       sdo->kind = SdoKind::download_response;
-    } else if (cs == kServerUpload) {
+    } else if (cs == kSdoServerUpload) {
       sdo->kind = SdoKind::upload_response;
-      decode_transfer(f, sdo);
+      sdo_decode_transfer(f, sdo);
     }
   } else {
-    if (cs == kClientDownload) {
+    if (cs == kSdoClientDownload) {
       sdo->kind = SdoKind::download_request;
-      decode_transfer(f, sdo);
-    } else if (cs == kClientUpload) {
+      sdo_decode_transfer(f, sdo);
+    } else if (cs == kSdoClientUpload) {
       sdo->kind = SdoKind::upload_request;
     }
   }
@@ -204,8 +218,8 @@ bool decode_sdo(const CanFrame& f, std::uint8_t* node, bool* from_server, Sdo* s
 }
 
 std::int64_t sdo_value(std::uint32_t value, std::uint8_t size, bool is_signed) noexcept {
-  size = normal_size(size);
-  const std::uint32_t v = masked(value, size);
+  size = sdo_normal_size(size);
+  const std::uint32_t v = sdo_masked(value, size);
   if (!is_signed) return v;
   const std::uint32_t sign = 1u << (8 * size - 1);
   return static_cast<std::int64_t>(v ^ sign) - static_cast<std::int64_t>(sign);

@@ -6,24 +6,24 @@
 namespace avar::firmware_iface::cia402 {
 namespace {
 
-struct StateRow {
+struct Cia402StateRow {
   State state;
   std::uint16_t mask;
   std::uint16_t value;
 };
 // Section 6's table (no statusword matches two rows).
-constexpr StateRow kStates[] = {
+constexpr Cia402StateRow kCia402States[] = {
     {State::not_ready_to_switch_on, 0x4F, 0x00}, {State::switch_on_disabled, 0x4F, 0x40},
     {State::ready_to_switch_on, 0x6F, 0x21},     {State::switched_on, 0x6F, 0x23},
     {State::operation_enabled, 0x6F, 0x27},      {State::quick_stop_active, 0x6F, 0x07},
     {State::fault_reaction_active, 0x4F, 0x0F},  {State::fault, 0x4F, 0x08},
 };
 
-bool pdo_frame(const CanFrame& f, std::uint32_t cob_id) noexcept {
+bool cia402_pdo_frame(const CanFrame& f, std::uint32_t cob_id) noexcept {
   return f.id == cob_id && !f.extended && !f.rtr && !f.error && f.dlc >= 6;
 }
 
-CanFrame word_and_i32(std::uint32_t cob_id, std::uint16_t word, std::int32_t value) noexcept {
+CanFrame cia402_word_and_i32(std::uint32_t cob_id, std::uint16_t word, std::int32_t value) noexcept {
   CanFrame f;
   f.id = cob_id;
   f.dlc = 6;
@@ -32,7 +32,7 @@ CanFrame word_and_i32(std::uint32_t cob_id, std::uint16_t word, std::int32_t val
   return f;
 }
 
-void read_word_and_i32(const CanFrame& f, std::uint16_t* word, std::int32_t* value) noexcept {
+void cia402_read_word_and_i32(const CanFrame& f, std::uint16_t* word, std::int32_t* value) noexcept {
   *word = static_cast<std::uint16_t>(canopen::get_le(&f.data[0], 2));
   *value = static_cast<std::int32_t>(canopen::get_le(&f.data[2], 4));
 }
@@ -73,13 +73,13 @@ std::uint32_t supported_mode_bit(std::int8_t mode) noexcept {
 }
 
 State decode_state(std::uint16_t statusword) noexcept {
-  for (const StateRow& row : kStates)
+  for (const Cia402StateRow& row : kCia402States)
     if ((statusword & row.mask) == row.value) return row.state;
   return State::unknown;
 }
 
 std::uint16_t state_bits(State state) noexcept {
-  for (const StateRow& row : kStates)
+  for (const Cia402StateRow& row : kCia402States)
     if (row.state == state) return row.value;
   return 0;
 }
@@ -146,22 +146,22 @@ std::uint32_t emcy_device_faults(std::uint16_t code) noexcept {
 }
 
 CanFrame encode_control_target(std::uint32_t cob_id, std::uint16_t controlword, std::int32_t target) noexcept {
-  return word_and_i32(cob_id, controlword, target);
+  return cia402_word_and_i32(cob_id, controlword, target);
 }
 
 bool decode_control_target(const CanFrame& f, std::uint32_t cob_id, std::uint16_t* controlword, std::int32_t* target) noexcept {
-  if (!pdo_frame(f, cob_id)) return false;
-  read_word_and_i32(f, controlword, target);
+  if (!cia402_pdo_frame(f, cob_id)) return false;
+  cia402_read_word_and_i32(f, controlword, target);
   return true;
 }
 
 CanFrame encode_status_position(std::uint32_t cob_id, std::uint16_t statusword, std::int32_t position) noexcept {
-  return word_and_i32(cob_id, statusword, position);
+  return cia402_word_and_i32(cob_id, statusword, position);
 }
 
 bool decode_status_position(const CanFrame& f, std::uint32_t cob_id, std::uint16_t* statusword, std::int32_t* position) noexcept {
-  if (!pdo_frame(f, cob_id)) return false;
-  read_word_and_i32(f, statusword, position);
+  if (!cia402_pdo_frame(f, cob_id)) return false;
+  cia402_read_word_and_i32(f, statusword, position);
   return true;
 }
 

@@ -5,14 +5,14 @@
 #include "avar/firmware_iface/canopen_codec.hpp"
 
 namespace avar::sim {
-namespace co = firmware_iface::canopen;
+namespace canopen = firmware_iface::canopen;
 namespace {
 
-std::uint32_t cut(std::uint32_t raw, std::uint8_t size) noexcept { return size >= 4 ? raw : raw & ((1u << (8 * size)) - 1); }
+std::uint32_t od_cut(std::uint32_t raw, std::uint8_t size) noexcept { return size >= 4 ? raw : raw & ((1u << (8 * size)) - 1); }
 
 }  // namespace
 
-std::int64_t ObjectEntry::value() const noexcept { return co::sdo_value(raw, size, is_signed); }
+std::int64_t ObjectEntry::value() const noexcept { return canopen::sdo_value(raw, size, is_signed); }
 
 void CanopenObjectDictionary::add(ObjectEntry entry) {
   if (!entry.ranged) {
@@ -20,7 +20,7 @@ void CanopenObjectDictionary::add(ObjectEntry entry) {
     entry.min = entry.is_signed ? -(std::int64_t{1} << (bits - 1)) : 0;
     entry.max = entry.is_signed ? (std::int64_t{1} << (bits - 1)) - 1 : (std::int64_t{1} << bits) - 1;
   }
-  entry.raw = cut(entry.raw, entry.size);
+  entry.raw = od_cut(entry.raw, entry.size);
   entries_.push_back(entry);
 }
 
@@ -45,7 +45,7 @@ std::int64_t CanopenObjectDictionary::value(std::uint16_t index, std::uint8_t su
 }
 
 void CanopenObjectDictionary::set(std::uint16_t index, std::uint8_t sub, std::uint32_t raw) noexcept {
-  if (ObjectEntry* e = find(index, sub)) e->raw = cut(raw, e->size);
+  if (ObjectEntry* e = find(index, sub)) e->raw = od_cut(raw, e->size);
 }
 
 std::uint32_t CanopenObjectDictionary::check_read(std::uint16_t index, std::uint8_t sub,
@@ -54,9 +54,9 @@ std::uint32_t CanopenObjectDictionary::check_read(std::uint16_t index, std::uint
   if (!e) {
     const bool index_exists =
         std::any_of(entries_.begin(), entries_.end(), [&](const ObjectEntry& x) { return x.index == index; });
-    return index_exists ? co::kSdoAbortNoSubIndex : co::kSdoAbortNoObject;
+    return index_exists ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
   }
-  if (e->access == ObjectAccess::write_only) return co::kSdoAbortReadWriteOnly;
+  if (e->access == ObjectAccess::write_only) return canopen::kSdoAbortReadWriteOnly;
   *entry = e;
   return 0;
 }
@@ -67,16 +67,16 @@ std::uint32_t CanopenObjectDictionary::check_write(std::uint16_t index, std::uin
   if (!e) {
     const bool index_exists =
         std::any_of(entries_.begin(), entries_.end(), [&](const ObjectEntry& x) { return x.index == index; });
-    return index_exists ? co::kSdoAbortNoSubIndex : co::kSdoAbortNoObject;
+    return index_exists ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
   }
-  if (e->access == ObjectAccess::read_only) return co::kSdoAbortWriteReadOnly;
-  if (size > e->size) return co::kSdoAbortLengthTooHigh;
-  if (size != 0 && size < e->size) return co::kSdoAbortLengthTooLow;
-  if (size == 0 && cut(data, e->size) != data) return co::kSdoAbortLengthMismatch;
-  const std::uint32_t r = cut(data, e->size);
-  const std::int64_t v = co::sdo_value(r, e->size, e->is_signed);
-  if (v > e->max) return co::kSdoAbortValueTooHigh;
-  if (v < e->min) return co::kSdoAbortValueTooLow;
+  if (e->access == ObjectAccess::read_only) return canopen::kSdoAbortWriteReadOnly;
+  if (size > e->size) return canopen::kSdoAbortLengthTooHigh;
+  if (size != 0 && size < e->size) return canopen::kSdoAbortLengthTooLow;
+  if (size == 0 && od_cut(data, e->size) != data) return canopen::kSdoAbortLengthMismatch;
+  const std::uint32_t r = od_cut(data, e->size);
+  const std::int64_t v = canopen::sdo_value(r, e->size, e->is_signed);
+  if (v > e->max) return canopen::kSdoAbortValueTooHigh;
+  if (v < e->min) return canopen::kSdoAbortValueTooLow;
   *entry = e;
   *raw = r;
   return 0;

@@ -125,25 +125,26 @@ TEST(CanopenCodec, C13_Sync) {
 
 TEST(CanopenCodec, EveryAbortCodeOfTheNoteHasItsName) {
   const std::pair<std::uint32_t, const char*> names[] = {
-      {0x05040000, "SDO protocol timed out"},
+      {0x05040000, "SDO timeout"},
       {0x05040001, "invalid command specifier"},
-      {0x06010000, "unsupported access to an object"},
-      {0x06010001, "attempt to read a write-only object"},
-      {0x06010002, "attempt to write a read-only object"},
+      {0x06010000, "unsupported access"},
+      {0x06010001, "read of write-only object"},
+      {0x06010002, "write to read-only object"},
       {0x06020000, "object does not exist"},
-      {0x06040041, "object cannot be mapped to the PDO"},
-      {0x06070010, "data type does not match, length does not match"},
-      {0x06070012, "data type does not match, length too high"},
-      {0x06070013, "data type does not match, length too low"},
+      {0x06040041, "object cannot be mapped to PDO"},
+      {0x06070010, "data type / length mismatch"},
+      {0x06070012, "length too high"},
+      {0x06070013, "length too low"},
       {0x06090011, "sub-index does not exist"},
-      {0x06090030, "value range of parameter exceeded"},
-      {0x06090031, "value of parameter written too high"},
-      {0x06090032, "value of parameter written too low"},
+      {0x06090030, "value range exceeded"},
+      {0x06090031, "value too high"},
+      {0x06090032, "value too low"},
       {0x08000000, "general error"},
-      {0x08000021, "cannot transfer: local control"},
-      {0x08000022, "cannot transfer: not allowed in the present device state"},
+      {0x08000021, "local control"},
+      {0x08000022, "not allowed in present device state"},
   };
   for (const auto& [code, name] : names) EXPECT_STREQ(sdo_abort_name(code), name) << std::hex << code;
+  EXPECT_STREQ(sdo_abort_name(0x06040042), "mapped objects exceed PDO length");
   EXPECT_STREQ(sdo_abort_name(0x12345678), "unknown abort code");
 }
 

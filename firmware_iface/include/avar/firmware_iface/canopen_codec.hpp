@@ -92,6 +92,8 @@ bool decode_nmt(const CanFrame& frame, NmtCommand* command, std::uint8_t* node) 
 CanFrame encode_heartbeat(std::uint8_t node, NmtState state) noexcept;
 /// False unless `frame` is a heartbeat of a node 1..127; *state is the byte & 0x7F (any value).
 bool decode_heartbeat(const CanFrame& frame, std::uint8_t* node, NmtState* state) noexcept;
+/// "boot-up", "Stopped", "Operational", "Pre-operational"; "unknown NMT state" otherwise.
+const char* nmt_state_name(NmtState state) noexcept;
 
 /// SYNC: COB-ID 0x080, no data.
 CanFrame encode_sync() noexcept;
