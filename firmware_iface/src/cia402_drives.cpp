@@ -62,7 +62,6 @@ void Cia402Drives::fail(const Drive& d, const std::string& what) {
 
 Status Cia402Drives::start(FrameTransport& bus) {
   start_problem_.clear();
-  device_errors_ = 0;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     Drive& d = drives_[i];
     if (const Status s = start_drive(bus, d); s != Status::ok) return s;
