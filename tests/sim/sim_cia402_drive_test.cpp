@@ -295,6 +295,25 @@ TEST(SimCia402Drive, SdoAbortForEachCase) {
   EXPECT_EQ(b.drive.sdo_aborts_sent(), 27u);
 }
 
+TEST(SimCia402Drive, DictionaryRefusesReadingAWriteOnlyEntry) {
+  // The drive has no write-only object; the dictionary under it knows the case.
+  CanopenObjectDictionary od;
+  od.add({0x2000, 1, 4, false, ObjectAccess::write_only, PdoMappable::no, false, 0, 0, 0});
+  od.add({0x2001, 0, 1, true, ObjectAccess::read_write, PdoMappable::both, true, -5, 5, 0});
+  const ObjectEntry* read_entry = nullptr;
+  EXPECT_EQ(od.check_read(0x2000, 1, &read_entry), canopen::kSdoAbortReadWriteOnly);
+  ObjectEntry* entry = nullptr;
+  std::uint32_t raw = 0;
+  EXPECT_EQ(od.check_write(0x2000, 1, 7, 4, &entry, &raw), 0u);
+  EXPECT_EQ(od.check_write(0x2001, 0, 6, 1, &entry, &raw), canopen::kSdoAbortValueTooHigh);
+  EXPECT_EQ(od.check_write(0x2001, 0, 0xFA, 1, &entry, &raw), canopen::kSdoAbortValueTooLow);  // -6
+  EXPECT_EQ(od.check_write(0x2001, 0, 0xFB, 1, &entry, &raw), 0u);                             // -5
+  EXPECT_EQ(entry->index, 0x2001);
+  EXPECT_EQ(raw, 0xFBu);
+  EXPECT_TRUE(od.can_map(0x2001, 0, 8, true));
+  EXPECT_FALSE(od.can_map(0x2000, 1, 32, false));
+}
+
 TEST(SimCia402Drive, NmtStatesAndResets) {
   Cia402SimBench b(cia402_sim_config(3));
   b.wait(0.003);
