@@ -31,6 +31,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
+      "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
+      "      a simulated SLCAN adapter (CANable-like) with simulated CAN drives behind it\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
   app.require_subcommand(1);
 
@@ -112,6 +114,16 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "dmx", "A simulated ENTTEC DMX USB Pro widget (one DMX universe); prints the port path, serves until Ctrl-C");
   sim_dmx_cmd->add_flag("--pty", sim_dmx.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
 
+  SimSlcanOptions sim_slcan;
+  CLI::App* sim_slcan_cmd = sim_cmd->add_subcommand(
+      "slcan",
+      "A simulated SLCAN (Lawicel) USB-CAN adapter with simulated drives on its bus; prints the port path, serves until Ctrl-C. "
+      "Any SLCAN client can open it: avar (a rig link with port: /dev/pts/N), python-can's slcan interface, slcand");
+  sim_slcan_cmd->add_flag("--pty", sim_slcan.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
+  sim_slcan_cmd->add_option("--drive", sim_slcan.drive, "The drives on the bus: odrive (CAN Simple), cia402 (CANopen) or mit (default odrive)");
+  sim_slcan_cmd->add_option("--ids", sim_slcan.ids, "Node ids of the drives, comma-separated (default 1)")->delimiter(',');
+  sim_slcan_cmd->add_option("--bitrate", sim_slcan.bitrate, "Bus bitrate in bit/s; open the adapter at the same rate (default 1000000)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -141,6 +153,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);
   if (*sim_ssc32_cmd) return run_sim_ssc32(sim_ssc32, out, err);
   if (*sim_dmx_cmd) return run_sim_dmx(sim_dmx, out, err);
+  if (*sim_slcan_cmd) return run_sim_slcan(sim_slcan, out, err);
   return kExitBadInput;
 }
 

@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "avar/assembly/can_drive.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/firmware_iface/can_frame.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
 #include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/sim/pty_device_host.hpp"
@@ -19,6 +21,7 @@
 #include "avar/sim/sim_dynamixel.hpp"
 #include "avar/sim/sim_feetech.hpp"
 #include "avar/sim/sim_maestro.hpp"
+#include "avar/sim/sim_slcan_adapter.hpp"
 #include "avar/sim/sim_ssc32.hpp"
 
 namespace avar::app {
@@ -190,6 +193,60 @@ int run_sim_dmx(const SimDmxOptions& options, std::ostream& out, std::ostream& e
       [&] {
         std::string line = std::to_string(device.frames_received()) + " frames; slots:";
         for (int address = 1; address <= 16; ++address) line += " " + std::to_string(device.slot(address));
+        return line;
+      },
+      out, err);
+}
+
+int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.pty) return refuse_without_pty(err);
+  const assembly::CanDriveProtocol* drive = assembly::find_can_drive(options.drive);
+  if (!drive) {
+    err << "error: --drive: '" << options.drive << "' is not a CAN drive protocol; expected one of: " << assembly::can_drive_names()
+        << "\n";
+    return kExitBadInput;
+  }
+  if (!firmware_iface::is_standard_can_bitrate(options.bitrate)) {
+    err << "error: --bitrate: " << options.bitrate
+        << " is not a CAN bitrate; expected 10000, 20000, 50000, 100000, 125000, 250000, 500000, 800000 or 1000000\n";
+    return kExitBadInput;
+  }
+  if (!drive->accepts_bitrate(options.bitrate)) {
+    err << "error: --bitrate: a " << drive->device_name << " cannot run at " << options.bitrate << "; expected one of: "
+        << drive->bitrates_text << "\n";
+    return kExitBadInput;
+  }
+  assembly::CanBusOptions bus;
+  bus.bitrate = options.bitrate;
+  std::vector<assembly::SimulatedDrive> drives;
+  std::vector<sim::CanNode*> nodes;
+  std::string ids;
+  for (int id : options.ids) {
+    if (id < drive->node_low || id > drive->node_high) {
+      err << "error: --ids: " << id << " is not a " << drive->device_name << " node; expected " << drive->node_low << " to "
+          << drive->node_high << "\n";
+      return kExitBadInput;
+    }
+    if (std::find(options.ids.begin(), options.ids.end(), id) != options.ids.begin() + static_cast<std::ptrdiff_t>(drives.size())) {
+      err << "error: --ids: " << id << " is given twice; every drive on a bus needs its own node id\n";
+      return kExitBadInput;
+    }
+    drives.push_back(drive->make_simulated(nullptr, static_cast<std::uint32_t>(id), 0, bus));
+    nodes.push_back(drives.back().node.get());
+    ids += (ids.empty() ? "" : ",") + std::to_string(id);
+  }
+  sim::SimSlcanAdapter device(sim::SimSlcanConfig{.bus_bitrate = options.bitrate}, nodes);
+  return serve_on_pty(
+      device,
+      "simulated SLCAN adapter with " + std::string(drive->device_name) + (drives.size() == 1 ? "" : "s") + " at node" +
+          (drives.size() == 1 ? " " : "s ") + ids + " on a " + std::to_string(options.bitrate) + " bit/s bus",
+      [&] {
+        std::string line = std::string("positions (") + drive->device_unit + "):";
+        char value[24];
+        for (std::size_t i = 0; i < drives.size() && i < 8; ++i) {
+          std::snprintf(value, sizeof value, " %.3f", drives[i].device_position());
+          line += value;
+        }
         return line;
       },
       out, err);

@@ -30,7 +30,9 @@ long long ScalarValue::as_integer(std::string_view what) const {
   if (!scalar) fail("expected " + std::string(what) + " to be a whole number, found " + found);
   char* end = nullptr;
   errno = 0;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
+  // YAML 1.2 writes hexadecimal as 0x..: CAN identifiers read naturally so.
+  const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  const long long v = std::strtoll(text.c_str() + (hex ? 2 : 0), &end, hex ? 16 : 10);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
     fail("expected " + std::string(what) + " to be a whole number, found " + found);
   return v;

@@ -33,6 +33,7 @@ struct CanBusOptions {
   int reply_timeout_ms = 5;          ///< longest a tick waits for the drives' replies
   int heartbeat_ms = 100;            ///< heartbeat period the drives produce (where configurable)
   std::uint32_t silent_ticks = 30;   ///< ticks without a heartbeat or reply before a drive is lost
+  std::uint32_t mit_master_id = 0;   ///< the id MIT-style motors reply to (their CAN_MASTER)
 };
 
 /// A simulated drive for one actuator and its true position in the drive's own unit.
@@ -54,15 +55,16 @@ struct CanDriveProtocol {
   void (*validate)(const rig::ActuatorSpec& a);
   /// The drive's position unit per motor turn (ODrive 1, MIT 2π, CiA 402 its counts per turn).
   double (*device_units_per_turn)(const rig::ActuatorSpec& a);
-  /// Appends the identifiers a drive at `node` sends or listens on.
-  void (*can_ids)(std::uint32_t node, std::vector<CanIdRange>& out);
+  /// Appends the identifiers the drive of actuator `a` sends or listens on.
+  void (*can_ids)(const rig::ActuatorSpec& a, const CanBusOptions& bus, std::vector<CanIdRange>& out);
   /// The drive set for these actuators (all of this protocol, on one link of a validated rig).
   std::unique_ptr<firmware_iface::CanDrives> (*make_drives)(const rig::Rig& rig,
                                                               std::span<const rig::ActuatorSpec* const> actuators,
                                                               const CanBusOptions& bus);
-  /// A simulated drive set up as its owner would have set up the real one, at the actuator's
-  /// rest pose.
-  SimulatedDrive (*make_simulated)(const rig::Rig& rig, const rig::ActuatorSpec& a, const CanBusOptions& bus);
+  /// A simulated drive at `node`, its position `position` (the drive's unit), set up as the
+  /// owner of actuator `a` would have set up the real one (null: factory settings, for
+  /// `avar sim slcan`).
+  SimulatedDrive (*make_simulated)(const rig::ActuatorSpec* a, std::uint32_t node, double position, const CanBusOptions& bus);
 };
 
 const std::vector<const CanDriveProtocol*>& can_drive_protocols();

@@ -23,7 +23,7 @@ struct ScalarValue {
   const std::string& describe() const { return found; }
 
   double as_double(std::string_view what) const;       ///< finite number
-  long long as_integer(std::string_view what) const;   ///< whole number
+  long long as_integer(std::string_view what) const;   ///< whole number (decimal, or hexadecimal as 0x7F0)
   bool as_bool(std::string_view what) const;           ///< true / false (yes/no, on/off)
   std::string as_string(std::string_view what) const;  ///< non-empty scalar
 };
