@@ -47,8 +47,7 @@ PtyDeviceHost::PtyDeviceHost(ByteDevice& device, Clock clock) : device_(device),
     raw.c_cc[VTIME] = 0;
     if (::tcsetattr(slave_, TCSANOW, &raw) != 0) fail("cannot make the terminal raw");
     // Child processes (an `avar` run under test) must not inherit the pty's ends.
-    if (::fcntl(master_, F_SETFD, FD_CLOEXEC) != 0 || ::fcntl(slave_, F_SETFD, FD_CLOEXEC) != 0)
-      fail("cannot set close-on-exec");
+    if (::fcntl(master_, F_SETFD, FD_CLOEXEC) != 0 || ::fcntl(slave_, F_SETFD, FD_CLOEXEC) != 0) fail("cannot set close-on-exec");
     if (::fcntl(master_, F_SETFL, ::fcntl(master_, F_GETFL) | O_NONBLOCK) != 0) fail("cannot make the master non-blocking");
     if (::pipe2(wake_, O_CLOEXEC | O_NONBLOCK) != 0) fail("cannot create the wake-up pipe");
     thread_ = std::thread([this] { serve(); });
@@ -75,6 +74,15 @@ void PtyDeviceHost::close_all() noexcept {
 
 bool PtyDeviceHost::wait_consumed(std::uint64_t total_bytes, std::chrono::milliseconds timeout) {
   return wait_until([&](const ByteDevice& d) { return d.bytes_received() >= total_bytes; }, timeout);
+}
+
+void PtyDeviceHost::send_replies_locked() noexcept {
+  std::array<std::uint8_t, 4096> out{};
+  try {
+    for (std::size_t n = device_.take_replies(out); n > 0; n = device_.take_replies(out)) write_or_drop(master_, out.data(), n);
+  } catch (...) {
+    // A device that fails to hand over its replies answers nothing, as on a dead wire.
+  }
 }
 
 void PtyDeviceHost::serve() {
@@ -120,6 +128,7 @@ void PtyDeviceHost::serve() {
         {
           std::lock_guard lock(mutex_);
           device_.advance(std::chrono::duration<double>(now - last_advance).count());
+          send_replies_locked();
         }
         last_advance = now;
         changed_cv_.notify_all();
