@@ -20,6 +20,7 @@ SimCanBusConfig instant_bus(const SimSlcanConfig& config) {
   SimCanBusConfig bus;
   bus.bitrate = config.bus_bitrate;
   bus.timing = SimCanTiming::instant;
+  bus.idle_step_s = config.idle_step_s;
   return bus;
 }
 

@@ -35,6 +35,7 @@ struct SimSlcanConfig {
   bool linux_error_lines = true;  ///< report the bus's error frames as `s`/`e` lines
   std::string version = "V1013";  ///< the answer to `V`
   std::string serial = "NA123";   ///< the answer to `N`
+  double idle_step_s = 1e-3;      ///< the bus's idle step (its nodes' time resolution between frames)
 };
 
 class SimSlcanAdapter final : public ByteDevice {
