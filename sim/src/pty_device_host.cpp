@@ -87,7 +87,6 @@ void PtyDeviceHost::send_replies_locked() noexcept {
 
 void PtyDeviceHost::serve() {
   std::array<std::uint8_t, 4096> in{};
-  std::array<std::uint8_t, 4096> out{};
   using clock = std::chrono::steady_clock;
   auto last_advance = clock::now();
   for (;;) {
@@ -107,19 +106,14 @@ void PtyDeviceHost::serve() {
     if (ready > 0 && (fds[0].revents & POLLIN)) {
       const ssize_t n = ::read(master_, in.data(), in.size());
       if (n > 0) {
-        std::size_t reply = 0;
         {
+          // Replies are written under the lock, so that those sent after with_device() never
+          // overtake these (the master is non-blocking: writing does not wait).
           std::lock_guard lock(mutex_);
           device_.receive(std::span(in.data(), static_cast<std::size_t>(n)));
-          reply = device_.take_replies(out);
+          send_replies_locked();
         }
         changed_cv_.notify_all();
-        // Replies can outgrow the buffer (1-byte queries with 2-byte answers): send them all.
-        while (reply > 0) {
-          write_or_drop(master_, out.data(), reply);
-          std::lock_guard lock(mutex_);
-          reply = device_.take_replies(out);
-        }
       }
     }
     if (clock_ == Clock::wall) {
