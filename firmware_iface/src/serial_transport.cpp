@@ -1,6 +1,7 @@
 #include "avar/firmware_iface/serial_transport.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <pty.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -153,6 +154,39 @@ Status SerialTransport::read_exact(std::span<std::uint8_t> out, std::chrono::mil
     return Status::timeout;
   } catch (...) {
     return Status::io_error;
+  }
+}
+
+Status SerialTransport::read_some(std::span<std::uint8_t> out, std::chrono::milliseconds timeout, std::size_t* got) noexcept {
+  *got = 0;
+  if (out.empty()) return Status::ok;
+  int fd = -1;
+  try {
+    if (!port_->IsOpen()) return Status::io_error;
+    fd = port_->GetFileDescriptor();
+  } catch (...) {
+    return Status::io_error;
+  }
+  // Straight on the descriptor: poll for the first byte, then one read of what is there (no
+  // buffer of libserial's in between, so nothing is allocated).
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (;;) {
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::max<std::int64_t>(0, left.count())));
+    if (ready < 0) {
+      if (errno == EINTR) continue;
+      return Status::io_error;
+    }
+    if (ready == 0) return Status::timeout;
+    if (p.revents & (POLLERR | POLLNVAL)) return Status::io_error;
+    const ssize_t n = ::read(fd, out.data(), out.size());
+    if (n > 0) {
+      *got = static_cast<std::size_t>(n);
+      return Status::ok;
+    }
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    return Status::io_error;  // end of file or EIO: the device vanished
   }
 }
 

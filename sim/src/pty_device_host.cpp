@@ -47,8 +47,7 @@ PtyDeviceHost::PtyDeviceHost(ByteDevice& device, Clock clock) : device_(device),
     raw.c_cc[VTIME] = 0;
     if (::tcsetattr(slave_, TCSANOW, &raw) != 0) fail("cannot make the terminal raw");
     // Child processes (an `avar` run under test) must not inherit the pty's ends.
-    if (::fcntl(master_, F_SETFD, FD_CLOEXEC) != 0 || ::fcntl(slave_, F_SETFD, FD_CLOEXEC) != 0)
-      fail("cannot set close-on-exec");
+    if (::fcntl(master_, F_SETFD, FD_CLOEXEC) != 0 || ::fcntl(slave_, F_SETFD, FD_CLOEXEC) != 0) fail("cannot set close-on-exec");
     if (::fcntl(master_, F_SETFL, ::fcntl(master_, F_GETFL) | O_NONBLOCK) != 0) fail("cannot make the master non-blocking");
     if (::pipe2(wake_, O_CLOEXEC | O_NONBLOCK) != 0) fail("cannot create the wake-up pipe");
     thread_ = std::thread([this] { serve(); });
@@ -77,9 +76,17 @@ bool PtyDeviceHost::wait_consumed(std::uint64_t total_bytes, std::chrono::millis
   return wait_until([&](const ByteDevice& d) { return d.bytes_received() >= total_bytes; }, timeout);
 }
 
+void PtyDeviceHost::send_replies_locked() noexcept {
+  std::array<std::uint8_t, 4096> out{};
+  try {
+    for (std::size_t n = device_.take_replies(out); n > 0; n = device_.take_replies(out)) write_or_drop(master_, out.data(), n);
+  } catch (...) {
+    // A device that fails to hand over its replies answers nothing, as on a dead wire.
+  }
+}
+
 void PtyDeviceHost::serve() {
   std::array<std::uint8_t, 4096> in{};
-  std::array<std::uint8_t, 4096> out{};
   using clock = std::chrono::steady_clock;
   auto last_advance = clock::now();
   for (;;) {
@@ -100,38 +107,26 @@ void PtyDeviceHost::serve() {
     if (ready > 0 && (fds[0].revents & POLLIN)) {
       const ssize_t n = ::read(master_, in.data(), in.size());
       if (n > 0) {
-        std::size_t reply = 0;
         {
+          // Replies are written under the lock, so that those sent after with_device() never
+          // overtake these (the master is non-blocking: writing does not wait).
           std::lock_guard lock(mutex_);
           device_.receive(std::span(in.data(), static_cast<std::size_t>(n)));
-          reply = device_.take_replies(out);
+          send_replies_locked();
         }
         changed_cv_.notify_all();
-        // Replies can outgrow the buffer (1-byte queries with 2-byte answers): send them all.
-        while (reply > 0) {
-          write_or_drop(master_, out.data(), reply);
-          std::lock_guard lock(mutex_);
-          reply = device_.take_replies(out);
-        }
       }
     }
     if (clock_now == Clock::wall) {
       const auto now = clock::now();
       if (now - last_advance >= kWallStep) {
-        std::size_t reply = 0;
         {
           std::lock_guard lock(mutex_);
           device_.advance(std::chrono::duration<double>(now - last_advance).count());
-          reply = device_.take_replies(out);
+          send_replies_locked();  // what the device says as time passes (a drive's heartbeat)
         }
         last_advance = now;
         changed_cv_.notify_all();
-        // What the device sends of its own as time passes (a drive's heartbeat).
-        while (reply > 0) {
-          write_or_drop(master_, out.data(), reply);
-          std::lock_guard lock(mutex_);
-          reply = device_.take_replies(out);
-        }
       }
     }
   }

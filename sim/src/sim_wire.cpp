@@ -77,6 +77,33 @@ Status SimWire::read_exact(std::span<std::uint8_t> out, std::chrono::millisecond
   return Status::ok;
 }
 
+Status SimWire::read_some(std::span<std::uint8_t> out, std::chrono::milliseconds timeout, std::size_t* got) noexcept {
+  *got = 0;
+  if (!connected_ || !open_) {
+    open_ = false;
+    return Status::io_error;
+  }
+  if (out.empty()) return Status::ok;
+  collect();
+  if (pending_size_ == 0) {
+    pass(turnaround_s_);
+    collect();
+  }
+  if (pending_size_ == 0) {
+    pass(std::chrono::duration<double>(timeout).count());
+    collect();
+    if (pending_size_ == 0) return Status::timeout;
+  }
+  const std::size_t n = std::min(out.size(), pending_size_);
+  std::memcpy(out.data(), pending_.data(), n);
+  std::memmove(pending_.data(), pending_.data() + n, pending_size_ - n);
+  pending_size_ -= n;
+  bytes_read_ += n;
+  pass(firmware_iface::wire_seconds(n, baud_));
+  *got = n;
+  return Status::ok;
+}
+
 void SimWire::discard_input() noexcept {
   collect();
   pending_size_ = 0;

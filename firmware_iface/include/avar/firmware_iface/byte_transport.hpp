@@ -3,6 +3,7 @@
 // servos. Implementations: SerialTransport (libserial), and in tests/sim in-memory ones.
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -21,6 +22,19 @@ class ByteTransport {
   /// Fills `out` completely, waiting at most `timeout` in total. Returns timeout when fewer
   /// bytes arrived (what did arrive is discarded). Real-time safe: no allocation, no exception.
   virtual Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept = 0;
+
+  /// Moves what has arrived, up to out.size() bytes, into `out` and sets *got to their count,
+  /// waiting at most `timeout` for the first byte: for line protocols (SLCAN) whose replies have
+  /// no length up front. ok with *got >= 1; timeout with *got == 0 when nothing came; io_error.
+  /// Real-time safe. This default reads one byte through read_exact (correct for any transport);
+  /// real and simulated ports override it to take everything that is there at once.
+  virtual Status read_some(std::span<std::uint8_t> out, std::chrono::milliseconds timeout, std::size_t* got) noexcept {
+    *got = 0;
+    if (out.empty()) return Status::ok;
+    const Status s = read_exact(out.first(1), timeout);
+    if (s == Status::ok) *got = 1;
+    return s;
+  }
 
   /// Now on the transport's own clock, for reply deadlines: the monotonic clock for a real port,
   /// simulated time for a simulated wire (a transport without time may return a constant, and

@@ -27,6 +27,8 @@ class SerialTransport final : public ByteTransport {
 
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
+  /// Waits on the port's descriptor (poll) and reads what is there, straight into `out`.
+  Status read_some(std::span<std::uint8_t> out, std::chrono::milliseconds timeout, std::size_t* got) noexcept override;
   /// The monotonic clock (steady_clock): a port lives in real time.
   std::chrono::nanoseconds now() const noexcept override;
   void discard_input() noexcept override;

@@ -6,7 +6,9 @@
 // The host keeps its own descriptor of the slave open for its whole life, so clients may open
 // and close the slave freely: the master never sees a hang-up (Linux reports EIO/POLLHUP on the
 // master while no slave descriptor is open) and the raw settings persist between clients.
-// Replies that nobody reads stay queued on the slave until a client reads or flushes them
+// Replies are sent as the device queues them: after each burst of client bytes, after each
+// wall-clock step and after with_device(), so a device may speak unprompted (a simulated CAN
+// bus's cyclic frames). Replies that nobody reads stay queued on the slave until a client reads or flushes them
 // (avar's SerialTransport flushes on open); when that queue is full further replies are
 // dropped, as bytes sent down a wire nobody listens to are lost.
 //
@@ -60,7 +62,8 @@ class PtyDeviceHost {
   }
 
   /// Runs f(ByteDevice&) while the host thread is kept away from the device; returns what f
-  /// returns, then wakes wait_until(). f must not call back into this host.
+  /// returns, sends the client whatever the device queued meanwhile (frames a simulated bus
+  /// produced as its time moved), then wakes wait_until(). f must not call back into this host.
   template <class F>
   auto with_device(F&& f) {
     struct NotifyAfterUnlock {
@@ -68,6 +71,10 @@ class PtyDeviceHost {
       ~NotifyAfterUnlock() { cv.notify_all(); }
     } notify{changed_cv_};
     std::lock_guard lock(mutex_);
+    struct SendRepliesAfter {
+      PtyDeviceHost& host;
+      ~SendRepliesAfter() { host.send_replies_locked(); }
+    } send{*this};
     return f(device_);
   }
 
@@ -83,6 +90,8 @@ class PtyDeviceHost {
 
  private:
   void serve();
+  /// Writes every reply the device has queued to the master; the caller holds mutex_.
+  void send_replies_locked() noexcept;
   void close_all() noexcept;
 
   ByteDevice& device_;

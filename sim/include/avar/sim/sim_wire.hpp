@@ -25,6 +25,9 @@ class SimWire final : public firmware_iface::ByteTransport {
 
   Status write(std::span<const std::uint8_t> bytes) noexcept override;
   Status read_exact(std::span<std::uint8_t> out, std::chrono::milliseconds timeout) noexcept override;
+  /// Takes what the device has sent; when it has sent nothing, waits the turnaround, then the
+  /// whole timeout (as read_exact does). The bytes taken cost their wire time.
+  Status read_some(std::span<std::uint8_t> out, std::chrono::milliseconds timeout, std::size_t* got) noexcept override;
   /// The simulated clock (now_s()).
   std::chrono::nanoseconds now() const noexcept override {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(now_s_));
