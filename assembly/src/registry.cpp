@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "avar/assembly/can_protocol.hpp"
 #include "avar/assembly/dmx_protocol.hpp"
 #include "avar/assembly/dynamixel_protocol.hpp"
 #include "avar/assembly/feetech_protocol.hpp"
@@ -13,7 +14,8 @@ namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
   static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(),
-                                                &ssc32_protocol(), &dmx_protocol()};
+                                                &ssc32_protocol(), &dmx_protocol(),
+                                                &can_protocol()};
   return all;
 }
 

@@ -167,7 +167,6 @@ std::size_t OdriveDrives::max_tick_frames() const noexcept {
 void OdriveDrives::encode_tick(std::span<const double> frame, CanOutbox& out) noexcept {
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     Axis& axis = axes_[i];
-    axis.heartbeat_this_tick = false;
     axis.estimate_asked = false;
     axis.estimate_taken = false;
     if (table().released(i)) {
@@ -234,8 +233,11 @@ Status OdriveDrives::settle() noexcept {
     Axis& axis = axes_[i];
     if (axis.estimate_asked && !axis.estimate_taken) complete = false;
     if (!axis.estimate_taken) table().forget_feedback(i);
+    // Heartbeats count from one settle to the next: those taken before this tick's frames
+    // went out (they arrived between ticks) count too.
     if (axis.heartbeat_this_tick) axis.silent_ticks = 0;
     else if (axis.silent_ticks < UINT32_MAX) ++axis.silent_ticks;
+    axis.heartbeat_this_tick = false;
     if (axis.silent_ticks > config_.heartbeat_budget_ticks) table().telemetry(i).faults |= kDeviceLost;
   }
   return complete ? Status::ok : Status::timeout;

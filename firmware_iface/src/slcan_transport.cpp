@@ -21,8 +21,12 @@ std::string milliseconds_text(std::chrono::milliseconds t) { return std::to_stri
 }  // namespace
 
 SlcanTransport::SlcanTransport(std::unique_ptr<ByteTransport> port, int bitrate, SlcanTransportConfig config)
-    : port_(std::move(port)), bitrate_(bitrate), config_(config) {
-  if (!port_) throw std::invalid_argument("SlcanTransport needs a byte transport");
+    : SlcanTransport(port ? *port : throw std::invalid_argument("SlcanTransport needs a byte transport"), bitrate, config) {
+  owned_ = std::move(port);
+}
+
+SlcanTransport::SlcanTransport(ByteTransport& port, int bitrate, SlcanTransportConfig config)
+    : port_(&port), bitrate_(bitrate), config_(config) {
   name_ = "SLCAN on " + port_->name();
   if (slcan::bitrate_code(bitrate) < 0)
     throw InputError({port_->name(), 0, 0}, "SLCAN adapter: bitrate " + std::to_string(bitrate) +

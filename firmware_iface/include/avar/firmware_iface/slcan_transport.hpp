@@ -36,6 +36,8 @@ class SlcanTransport final : public FrameTransport {
   /// is fine), then `O` (or `L`). Throws InputError naming the port and the step when the
   /// bitrate has no `Sn` code or the adapter does not answer as expected. Not real-time.
   SlcanTransport(std::unique_ptr<ByteTransport> port, int bitrate, SlcanTransportConfig config = {});
+  /// The same over a borrowed port, which must outlive this transport.
+  SlcanTransport(ByteTransport& port, int bitrate, SlcanTransportConfig config = {});
   /// Sends `C` (the adapter leaves the bus).
   ~SlcanTransport() override;
   SlcanTransport(const SlcanTransport&) = delete;
@@ -99,7 +101,8 @@ class SlcanTransport final : public FrameTransport {
   void hold(const CanFrame& frame) noexcept;
   void clear_input() noexcept;
 
-  std::unique_ptr<ByteTransport> port_;
+  std::unique_ptr<ByteTransport> owned_;  ///< the port, when this transport owns it
+  ByteTransport* port_;
   int bitrate_;
   SlcanTransportConfig config_;
   std::string name_;
