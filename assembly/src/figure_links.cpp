@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
@@ -96,6 +97,12 @@ firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { ret
 
 bool FigureLinks::reports_telemetry(std::size_t link) const {
   return protocol_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
+}
+
+void FigureLinks::with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f) {
+  const Entry& e = *entries_.at(link);
+  if (!e.simulated) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated");
+  e.host->with_device([&](sim::ByteDevice& d) { f(d); });
 }
 
 std::string FigureLinks::channel_problem(std::size_t channel) const {

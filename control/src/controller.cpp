@@ -161,6 +161,8 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
                                 std::vector<std::uint64_t>& seen) noexcept {
   for (std::size_t c = 0; c < seen.size() && c < telemetry.size(); ++c) {
     const firmware_iface::ChannelTelemetry& t = telemetry[c];
+    // A device that stopped answering sends nothing fresh: its silence is judged on every tick.
+    if (t.faults & firmware_iface::kDeviceLost) fault(FaultCause::device_lost, c, 0, last_now_);
     if (t.updates == seen[c]) continue;
     seen[c] = t.updates;
     if (std::isfinite(t.position)) {
@@ -169,7 +171,6 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
     }
     if (t.faults & firmware_iface::kDeviceOverheat) fault(FaultCause::device_overheat, c, t.temperature_c, last_now_);
     if (t.faults & firmware_iface::kDeviceOverload) fault(FaultCause::device_overload, c, t.load, last_now_);
-    if (t.faults & firmware_iface::kDeviceLost) fault(FaultCause::device_lost, c, 0, last_now_);
     if (t.faults & ~std::uint32_t{firmware_iface::kDeviceOverheat | firmware_iface::kDeviceOverload | firmware_iface::kDeviceLost})
       fault(FaultCause::device_error, c, static_cast<double>(t.faults), last_now_);
   }

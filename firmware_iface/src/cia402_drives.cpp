@@ -314,13 +314,14 @@ bool Cia402Drives::take(const CanFrame& frame) noexcept {
 }
 
 bool Cia402Drives::replies_complete() const noexcept {
-  return std::all_of(drives_.begin(), drives_.end(), [](const Drive& d) { return d.tpdo_seen; });
+  return std::all_of(drives_.begin(), drives_.end(), [](const Drive& d) { return d.tpdo_seen || d.tpdo_misses >= kStopWaitingAfter; });
 }
 
 Status Cia402Drives::settle() noexcept {
   bool complete = true;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     Drive& d = drives_[i];
+    d.tpdo_misses = d.tpdo_seen ? 0 : d.tpdo_misses + 1;
     if (!d.tpdo_seen) {
       table().forget_feedback(i);
       complete = false;

@@ -193,7 +193,8 @@ bool MitDrives::take(const CanFrame& frame) noexcept {
 }
 
 bool MitDrives::replies_complete() const noexcept {
-  return std::all_of(motors_.begin(), motors_.end(), [](const Motor& m) { return !m.expected || m.replied; });
+  return std::all_of(motors_.begin(), motors_.end(),
+                     [](const Motor& m) { return !m.expected || m.replied || m.silent_ticks >= kStopWaitingAfter; });
 }
 
 Status MitDrives::settle() noexcept {

@@ -224,14 +224,22 @@ void OdriveDrives::take_heartbeat(std::size_t i, const od::Heartbeat& h) noexcep
 }
 
 bool OdriveDrives::replies_complete() const noexcept {
-  return std::all_of(axes_.begin(), axes_.end(), [](const Axis& a) { return !a.estimate_asked || a.estimate_taken; });
+  // An axis that missed its last two estimates is still asked but not waited for (a drive off
+  // the bus must not stall every tick until its heartbeat budget runs out).
+  return std::all_of(axes_.begin(), axes_.end(),
+                     [](const Axis& a) { return !a.estimate_asked || a.estimate_taken || a.estimate_misses >= kStopWaitingAfter; });
 }
 
 Status OdriveDrives::settle() noexcept {
   bool complete = true;
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     Axis& axis = axes_[i];
-    if (axis.estimate_asked && !axis.estimate_taken) complete = false;
+    if (axis.estimate_asked && !axis.estimate_taken) {
+      complete = false;
+      ++axis.estimate_misses;
+    } else if (axis.estimate_taken) {
+      axis.estimate_misses = 0;
+    }
     if (!axis.estimate_taken) table().forget_feedback(i);
     // Heartbeats count from one settle to the next: those taken before this tick's frames
     // went out (they arrived between ticks) count too.

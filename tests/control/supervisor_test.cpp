@@ -181,7 +181,6 @@ TEST(Supervisor, DeviceTelemetryFaultsLatchWithTheirChannelAndFeedTracking) {
                                Case{firmware_iface::kDeviceOverload, FaultCause::device_overload, 0.97},
                                Case{firmware_iface::kDeviceEncoder, FaultCause::device_error,
                                     static_cast<double>(firmware_iface::kDeviceEncoder)},
-                               Case{firmware_iface::kDeviceLost, FaultCause::device_lost, 0},
                                Case{firmware_iface::kDeviceFaultState, FaultCause::device_error,
                                     static_cast<double>(firmware_iface::kDeviceFaultState)}}) {
     SCOPED_TRACE(to_string(expected.cause));
@@ -227,6 +226,25 @@ TEST(Supervisor, DeviceTelemetryFaultsLatchWithTheirChannelAndFeedTracking) {
   c.tick(k * kDt);
   EXPECT_EQ(c.latched_fault().cause, FaultCause::tracking_error);
   EXPECT_EQ(c.latched_fault().index, 0u);
+}
+
+TEST(Supervisor, ALostDeviceFaultsWithoutFreshTelemetry) {
+  // A device that stopped answering refreshes nothing; its link flags the silence.
+  const Rig r = rig();
+  const playback::Show s = show();
+  RecordingLink link;
+  Controller c(r, s, {&link}, {.tick_period_s = kDt});
+  int k = 0;
+  drive_to(c, Phase::running, k);
+  std::vector<firmware_iface::ChannelTelemetry> telemetry(3);
+  c.feed_telemetry(telemetry);
+  c.tick(k++ * kDt);
+  EXPECT_EQ(c.phase(), Phase::running);
+  telemetry[1].faults = firmware_iface::kDeviceLost;
+  c.feed_telemetry(telemetry);
+  EXPECT_EQ(c.phase(), Phase::faulted);
+  EXPECT_EQ(c.latched_fault().cause, FaultCause::device_lost);
+  EXPECT_EQ(c.latched_fault().index, 1u);
 }
 
 TEST(Supervisor, EstopInputReachesTheControllerThroughTheRunner) {

@@ -1,4 +1,5 @@
 #include "avar/assembly/can_protocol.hpp"
+#include "avar/assembly/simulated_can_bus.hpp"
 
 #include <cmath>
 #include <map>
@@ -9,7 +10,6 @@
 #include "avar/firmware_iface/can_link.hpp"
 #include "avar/firmware_iface/slcan_transport.hpp"
 #include "avar/firmware_iface/socketcan_transport.hpp"
-#include "avar/sim/sim_slcan_adapter.hpp"
 #include "../setting_reading.hpp"
 
 namespace avar::assembly {
@@ -151,42 +151,15 @@ std::vector<std::unique_ptr<firmware_iface::CanDrives>> make_drive_sets(const ri
 firmware_iface::CanLinkConfig link_config(const rig::Rig& rig, std::size_t link, const CanBusOptions& bus, const std::string& how,
                                           const DriverTuning& tuning) {
   firmware_iface::CanLinkConfig config;
-  config.reply_timeout = tuning.reply_timeout(std::chrono::milliseconds(bus.reply_timeout_ms));
+  // A simulated adapter answers from a thread of this process, which a busy machine may keep
+  // waiting: give it up to 100 ms. Unlike a servo bus, a late CAN reply only counts toward the
+  // drive's silence budget, so this need not cover the worst stall.
+  DriverTuning can_tuning = tuning;
+  can_tuning.min_reply_timeout_ms = std::min(tuning.min_reply_timeout_ms, 100);
+  config.reply_timeout = can_tuning.reply_timeout(std::chrono::milliseconds(bus.reply_timeout_ms));
   config.description = "CAN bus '" + rig.links[link].name + "' (" + how + ")";
   return config;
 }
-
-/// Simulated drives behind a simulated SLCAN adapter: the device a simulated CAN link talks to.
-class SimulatedCanBus final : public sim::ByteDevice {
- public:
-  SimulatedCanBus(const rig::Rig& rig, std::size_t link) : SimulatedCanBus(rig, link, can_bus_options(rig, link)) {}
-  void receive(std::span<const std::uint8_t> bytes) override { adapter_.receive(bytes); }
-  std::size_t take_replies(std::span<std::uint8_t> out) override { return adapter_.take_replies(out); }
-  void advance(double dt_s) override { adapter_.advance(dt_s); }
-  std::uint64_t bytes_received() const override { return adapter_.bytes_received(); }
-  /// The drive of the i-th actuator on the link (rig order), in its own unit.
-  double device_position(std::size_t i) const { return drives_[i].device_position(); }
-
- private:
-  SimulatedCanBus(const rig::Rig& rig, std::size_t link, const CanBusOptions& bus)
-      : drives_(simulated_drives(rig, link, bus)), adapter_(sim::SimSlcanConfig{.bus_bitrate = bus.bitrate}, nodes()) {}
-  static std::vector<SimulatedDrive> simulated_drives(const rig::Rig& rig, std::size_t link, const CanBusOptions& bus) {
-    std::vector<SimulatedDrive> drives;
-    for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
-      const double rest = a.calibration.to_device(rig.channel(a.channel).rest);
-      drives.push_back(can_drive_of(a).make_simulated(&a, static_cast<std::uint32_t>(a.device_channel), rest, bus));
-    }
-    return drives;
-  }
-  std::vector<sim::CanNode*> nodes() const {
-    std::vector<sim::CanNode*> out;
-    for (const SimulatedDrive& d : drives_) out.push_back(d.node.get());
-    return out;
-  }
-
-  std::vector<SimulatedDrive> drives_;  ///< before the adapter: its bus borrows them
-  sim::SimSlcanAdapter adapter_;
-};
 
 SimulatedDevice simulated_can(const rig::Rig& rig, std::size_t link) {
   auto device = std::make_unique<SimulatedCanBus>(rig, link);

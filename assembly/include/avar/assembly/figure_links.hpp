@@ -56,6 +56,10 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   void measure(std::span<double> measured, std::span<bool> known) const noexcept override;
 
   std::size_t link_count() const { return entries_.size(); }
+  /// Runs f on a simulated link's device under its host's lock, so that a test may change it
+  /// while it runs (a drive dropping off the bus mid-show). Throws std::invalid_argument for a
+  /// link that is not simulated.
+  void with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f);
   /// One link's wire counters (ActuatorLink::counters), any thread.
   firmware_iface::LinkCounters counters(std::size_t link) const;
   /// What the device driving `channel` said of its fault (ActuatorLink::channel_problem); after

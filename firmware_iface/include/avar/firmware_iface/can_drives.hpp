@@ -28,6 +28,11 @@
 
 namespace avar::firmware_iface {
 
+/// A drive whose replies failed to come this many ticks in a row is still asked, but no longer
+/// waited for until it answers again: a drive off the bus must not stall every tick by the reply
+/// timeout until its silence budget runs out.
+inline constexpr std::uint32_t kStopWaitingAfter = 2;
+
 class CanDrives {
  public:
   /// `actuators`: the drives' configs, each element with `channel` and `calibration`.
@@ -63,7 +68,8 @@ class CanDrives {
   /// Offers one received frame; true when it was one of these drives' (and was used).
   virtual bool take(const CanFrame& frame) noexcept = 0;
 
-  /// Every reply this tick waits for has come (the link stops waiting when all sets say so).
+  /// Every reply this tick waits for has come (the link stops waiting when all sets say so);
+  /// drives that missed kStopWaitingAfter ticks in a row are not waited for.
   virtual bool replies_complete() const noexcept = 0;
 
   /// Ends the tick: feedback that did not come is forgotten (table().forget_feedback), heartbeat

@@ -89,6 +89,7 @@ class Cia402Drives final : public CanDrives {
     std::int32_t target = 0;  ///< last target sent, counts
     bool driven = false;      ///< as of this tick's encode_tick
     bool tpdo_seen = false;   ///< this tick
+    std::uint32_t tpdo_misses = 0;  ///< ticks in a row without a TPDO
     bool heartbeat_seen = false;
     std::uint32_t silent_ticks = 0;
     bool lost = false;
