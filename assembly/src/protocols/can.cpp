@@ -17,6 +17,12 @@ namespace {
 
 constexpr const char* kBitrates = "10000, 20000, 50000, 100000, 125000, 250000, 500000, 800000, 1000000";
 
+/// "an ODrive", "a CiA 402 drive".
+std::string with_article(const char* name) {
+  const char c = name[0];
+  return std::string(c == 'A' || c == 'E' || c == 'I' || c == 'O' || c == 'U' || c == 'M' ? "an " : "a ") + name;
+}
+
 bool is_device_path(const std::string& port) { return port.rfind("/dev/", 0) == 0; }
 
 /// How a link reaches its bus: `interface` as written, else by the port's form.
@@ -74,7 +80,7 @@ void finish_can_actuator(const rig::Rig& rig, rig::ActuatorSpec& a) {
   for (std::string_view k : drive->keys()) keys.push_back(k);
   s.expect_only_keys(keys);
   if (const ScalarValue* n = s.find("node"))
-    integer_in(*n, std::string("the node id of a ") + drive->device_name, drive->node_low, drive->node_high);
+    integer_in(*n, "the node id of " + with_article(drive->device_name), drive->node_low, drive->node_high);
 
   const double gear = s.find("gear_ratio") ? number_in(*s.find("gear_ratio"), "gear_ratio (motor turns per output turn)", 1e-3, 1e4) : 1.0;
   double per_turn = 0;
@@ -116,7 +122,7 @@ void validate_can_actuators(const rig::Rig& rig, std::size_t link) {
     const CanDriveProtocol& drive = can_drive_of(a);
     const ScalarValue& node = *a.settings.find("node");
     if (!drive.accepts_bitrate(bus.bitrate))
-      node.fail(std::string("a ") + drive.device_name + " cannot run at the " + std::to_string(bus.bitrate) + " bit/s of link '" +
+      node.fail(with_article(drive.device_name) + " cannot run at the " + std::to_string(bus.bitrate) + " bit/s of link '" +
                 spec.name + "'; expected one of: " + drive.bitrates_text);
     ranges.clear();
     drive.can_ids(a, bus, ranges);
