@@ -120,9 +120,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "A simulated SLCAN (Lawicel) USB-CAN adapter with simulated drives on its bus; prints the port path, serves until Ctrl-C. "
       "Any SLCAN client can open it: avar (a rig link with port: /dev/pts/N), python-can's slcan interface, slcand");
   sim_slcan_cmd->add_flag("--pty", sim_slcan.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_slcan_cmd->add_option("--drive", sim_slcan.drive, "The drives on the bus: odrive (CAN Simple), cia402 (CANopen) or mit (default odrive)");
+  sim_slcan_cmd->add_option("--drive", sim_slcan.drive,
+                            "The drives on the bus: odrive (CAN Simple), cia402 (CANopen) or mit (default odrive)");
   sim_slcan_cmd->add_option("--ids", sim_slcan.ids, "Node ids of the drives, comma-separated (default 1)")->delimiter(',');
-  sim_slcan_cmd->add_option("--bitrate", sim_slcan.bitrate, "Bus bitrate in bit/s; open the adapter at the same rate (default 1000000)");
+  sim_slcan_cmd->add_option("--bitrate", sim_slcan.bitrate,
+                            "Bus bitrate in bit/s; open the adapter at the same rate (default 1000000)");
 
   try {
     app.parse(argc, argv);

@@ -270,10 +270,10 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const control::Fault& fault = controller.latched_fault();
   if (fault.cause != control::FaultCause::none) {
     const bool about_link = fault.cause == control::FaultCause::link_watchdog || fault.cause == control::FaultCause::link_failure;
-    const bool about_channel = fault.cause == control::FaultCause::tracking_error || fault.cause == control::FaultCause::non_finite ||
-                               fault.cause == control::FaultCause::device_overheat ||
-                               fault.cause == control::FaultCause::device_overload ||
-                               fault.cause == control::FaultCause::device_error || fault.cause == control::FaultCause::device_lost;
+    const bool about_channel =
+        fault.cause == control::FaultCause::tracking_error || fault.cause == control::FaultCause::non_finite ||
+        fault.cause == control::FaultCause::device_overheat || fault.cause == control::FaultCause::device_overload ||
+        fault.cause == control::FaultCause::device_error || fault.cause == control::FaultCause::device_lost;
     err << "fault at " << format_fixed(fault.time_s, 3) << " s while " << control::to_string(fault.from) << ": "
         << control::to_string(fault.cause);
     if (about_link) err << " on link " << rig.links[fault.index].name << " (" << to_string(fault.status) << ")";

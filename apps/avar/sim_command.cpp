@@ -202,8 +202,8 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
   if (!options.pty) return refuse_without_pty(err);
   const assembly::CanDriveProtocol* drive = assembly::find_can_drive(options.drive);
   if (!drive) {
-    err << "error: --drive: '" << options.drive << "' is not a CAN drive protocol; expected one of: " << assembly::can_drive_names()
-        << "\n";
+    err << "error: --drive: '" << options.drive
+        << "' is not a CAN drive protocol; expected one of: " << assembly::can_drive_names() << "\n";
     return kExitBadInput;
   }
   if (!firmware_iface::is_standard_can_bitrate(options.bitrate)) {
@@ -212,8 +212,8 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
     return kExitBadInput;
   }
   if (!drive->accepts_bitrate(options.bitrate)) {
-    err << "error: --bitrate: a " << drive->device_name << " cannot run at " << options.bitrate << "; expected one of: "
-        << drive->bitrates_text << "\n";
+    err << "error: --bitrate: a " << drive->device_name << " cannot run at " << options.bitrate
+        << "; expected one of: " << drive->bitrates_text << "\n";
     return kExitBadInput;
   }
   assembly::CanBusOptions bus;
@@ -227,7 +227,8 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
           << drive->node_high << "\n";
       return kExitBadInput;
     }
-    if (std::find(options.ids.begin(), options.ids.end(), id) != options.ids.begin() + static_cast<std::ptrdiff_t>(drives.size())) {
+    if (std::find(options.ids.begin(), options.ids.end(), id) !=
+        options.ids.begin() + static_cast<std::ptrdiff_t>(drives.size())) {
       err << "error: --ids: " << id << " is given twice; every drive on a bus needs its own node id\n";
       return kExitBadInput;
     }

@@ -42,7 +42,8 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
       if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
       // Drives that need their own time to come up (a heartbeat) run on the wall clock until
       // the first tick; every other simulator waits for the loop's stepped clock from the start.
-      const auto clock = protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
+      const auto clock =
+          protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
       entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
       port = entry->host->slave_path();
       // A simulated device answers from a thread of this process, which a busy machine may keep

@@ -14,8 +14,7 @@ namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
   static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(),
-                                                &ssc32_protocol(), &dmx_protocol(),
-                                                &can_protocol()};
+                                                &ssc32_protocol(),   &dmx_protocol(),       &can_protocol()};
   return all;
 }
 

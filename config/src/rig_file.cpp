@@ -117,8 +117,8 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
 }
 
 /// The keys every actuator may have, whatever its link.
-constexpr std::string_view kActuatorKeys[] = {"channel", "protocol", "link",   "device_channel", "id",      "address",
-                                              "fine",    "calibration", "speed", "acceleration", "failsafe"};
+constexpr std::string_view kActuatorKeys[] = {"channel", "protocol",    "link",  "device_channel", "id",      "address",
+                                              "fine",    "calibration", "speed", "acceleration",   "failsafe"};
 
 /// On a bus of drives, the keys its protocol interprets (everything but the common ones) go to
 /// a.settings as written; the protocol then checks them.
@@ -167,7 +167,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     if (auto cal = node.find("calibration"))
       cal->fail("actuators on " + protocol_name + " link '" + link_name +
                 "' take no calibration block; their gear_ratio, units_per_turn and zero map the channel to the motor");
-    if (auto fine = node.find("fine")) fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
+    if (auto fine = node.find("fine"))
+      fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
   } else if (auto protocol = node.find("protocol")) {
     const std::string p = protocol->as_string("the protocol of " + what);
     if (!assembly::find_protocol(p))

@@ -171,7 +171,8 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
     }
     if (t.faults & firmware_iface::kDeviceOverheat) fault(FaultCause::device_overheat, c, t.temperature_c, last_now_);
     if (t.faults & firmware_iface::kDeviceOverload) fault(FaultCause::device_overload, c, t.load, last_now_);
-    if (t.faults & ~std::uint32_t{firmware_iface::kDeviceOverheat | firmware_iface::kDeviceOverload | firmware_iface::kDeviceLost})
+    if (t.faults &
+        ~std::uint32_t{firmware_iface::kDeviceOverheat | firmware_iface::kDeviceOverload | firmware_iface::kDeviceLost})
       fault(FaultCause::device_error, c, static_cast<double>(t.faults), last_now_);
   }
 }

@@ -314,7 +314,8 @@ bool Cia402Drives::take(const CanFrame& frame) noexcept {
 }
 
 bool Cia402Drives::replies_complete() const noexcept {
-  return std::all_of(drives_.begin(), drives_.end(), [](const Drive& d) { return d.tpdo_seen || d.tpdo_misses >= kStopWaitingAfter; });
+  return std::all_of(drives_.begin(), drives_.end(),
+                     [](const Drive& d) { return d.tpdo_seen || d.tpdo_misses >= kStopWaitingAfter; });
 }
 
 Status Cia402Drives::settle() noexcept {

@@ -226,8 +226,9 @@ void OdriveDrives::take_heartbeat(std::size_t i, const od::Heartbeat& h) noexcep
 bool OdriveDrives::replies_complete() const noexcept {
   // An axis that missed its last two estimates is still asked but not waited for (a drive off
   // the bus must not stall every tick until its heartbeat budget runs out).
-  return std::all_of(axes_.begin(), axes_.end(),
-                     [](const Axis& a) { return !a.estimate_asked || a.estimate_taken || a.estimate_misses >= kStopWaitingAfter; });
+  return std::all_of(axes_.begin(), axes_.end(), [](const Axis& a) {
+    return !a.estimate_asked || a.estimate_taken || a.estimate_misses >= kStopWaitingAfter;
+  });
 }
 
 Status OdriveDrives::settle() noexcept {

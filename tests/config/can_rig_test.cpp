@@ -89,7 +89,8 @@ TEST(CanRig, RejectsDrivesWhoseIdentifiersCollideOnOneBus) {
             "expected a node whose identifiers are free");
   // Two CiA 402 drives share NMT and SYNC without conflict, but not a node.
   const std::string two = replace(kCanRig, "  - {channel: jaw, link: arm, protocol: mit",
-                                  "  - {channel: jaw, link: arm, protocol: cia402, node: 5, counts_per_turn: 100}\n  - {channel: jaw, link: arm, protocol: mit");
+                                  "  - {channel: jaw, link: arm, protocol: cia402, node: 5, counts_per_turn: 100}\n  - {channel: "
+                                  "jaw, link: arm, protocol: mit");
   EXPECT_NE(can_rig_error(two).find("CiA 402 drive node 5 uses CAN id 0x085, which the CiA 402 drive at node 5 (line 10)"),
             std::string::npos)
       << can_rig_error(two);

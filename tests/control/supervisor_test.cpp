@@ -66,9 +66,9 @@ double drive_to(Controller& c, Phase state, int& k) {
   return k * kDt;
 }
 
-const FaultCause kCauses[] = {FaultCause::estop,          FaultCause::link_watchdog,   FaultCause::link_failure,
-                              FaultCause::tracking_error, FaultCause::non_finite,      FaultCause::device_overheat,
-                              FaultCause::device_overload, FaultCause::device_error, FaultCause::device_lost,
+const FaultCause kCauses[] = {FaultCause::estop,           FaultCause::link_watchdog, FaultCause::link_failure,
+                              FaultCause::tracking_error,  FaultCause::non_finite,    FaultCause::device_overheat,
+                              FaultCause::device_overload, FaultCause::device_error,  FaultCause::device_lost,
                               FaultCause::deadline_budget};
 const Phase kStates[] = {Phase::disabled, Phase::homing, Phase::running, Phase::stopping};
 
@@ -177,12 +177,12 @@ TEST(Supervisor, DeviceTelemetryFaultsLatchWithTheirChannelAndFeedTracking) {
     FaultCause cause;
     double value;
   };
-  for (const Case& expected : {Case{firmware_iface::kDeviceOverheat, FaultCause::device_overheat, 81},
-                               Case{firmware_iface::kDeviceOverload, FaultCause::device_overload, 0.97},
-                               Case{firmware_iface::kDeviceEncoder, FaultCause::device_error,
-                                    static_cast<double>(firmware_iface::kDeviceEncoder)},
-                               Case{firmware_iface::kDeviceFaultState, FaultCause::device_error,
-                                    static_cast<double>(firmware_iface::kDeviceFaultState)}}) {
+  for (const Case& expected :
+       {Case{firmware_iface::kDeviceOverheat, FaultCause::device_overheat, 81},
+        Case{firmware_iface::kDeviceOverload, FaultCause::device_overload, 0.97},
+        Case{firmware_iface::kDeviceEncoder, FaultCause::device_error, static_cast<double>(firmware_iface::kDeviceEncoder)},
+        Case{firmware_iface::kDeviceFaultState, FaultCause::device_error,
+             static_cast<double>(firmware_iface::kDeviceFaultState)}}) {
     SCOPED_TRACE(to_string(expected.cause));
     RecordingLink link;
     Controller c(r, s, {&link}, {.tick_period_s = kDt});

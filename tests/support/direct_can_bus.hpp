@@ -17,7 +17,8 @@ namespace avar::test {
 
 class DirectCanBus final : public firmware_iface::FrameTransport {
  public:
-  explicit DirectCanBus(std::vector<sim::CanNode*> nodes, int bitrate = 1'000'000) : nodes_(std::move(nodes)), bitrate_(bitrate) {}
+  explicit DirectCanBus(std::vector<sim::CanNode*> nodes, int bitrate = 1'000'000)
+      : nodes_(std::move(nodes)), bitrate_(bitrate) {}
 
   Status send(std::span<const firmware_iface::CanFrame> frames) noexcept override {
     for (const auto& f : frames) {

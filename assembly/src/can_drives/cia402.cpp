@@ -37,15 +37,17 @@ const CanDriveProtocol& cia402_drive() {
         // Targets are 32-bit counts.
         if (std::max(std::abs(a.calibration.device_low()), std::abs(a.calibration.device_high())) > 2147483647.0)
           a.settings.find("counts_per_turn")
-              ->fail("the channel's range takes this drive beyond the 32-bit position range (±2147483647 counts); expected "
-                     "fewer counts_per_turn or a smaller gear_ratio");
+              ->fail(
+                  "the channel's range takes this drive beyond the 32-bit position range (±2147483647 counts); expected "
+                  "fewer counts_per_turn or a smaller gear_ratio");
       },
       counts_per_turn_of,
       [](const rig::ActuatorSpec& a, const CanBusOptions&, std::vector<CanIdRange>& out) {
         const auto node = static_cast<std::uint32_t>(a.device_channel);
         out.push_back({0x000, 0x000, true});  // NMT, from the host to every node
         out.push_back({0x080, 0x080, true});  // SYNC
-        for (std::uint32_t base : {0x080u, 0x180u, 0x200u, 0x280u, 0x300u, 0x380u, 0x400u, 0x480u, 0x500u, 0x580u, 0x600u, 0x700u})
+        for (std::uint32_t base :
+             {0x080u, 0x180u, 0x200u, 0x280u, 0x300u, 0x380u, 0x400u, 0x480u, 0x500u, 0x580u, 0x600u, 0x700u})
           out.push_back({base + node, base + node, false});
       },
       [](const rig::Rig&, std::span<const rig::ActuatorSpec* const> actuators,

@@ -43,17 +43,20 @@ void validate_can_settings(const rig::LinkSpec& link) {
   if (const ScalarValue* i = s.find("interface")) {
     const std::string kind = i->as_string("interface");
     if (kind != "slcan" && kind != "socketcan")
-      i->fail("unknown CAN interface " + i->describe() +
-              "; expected slcan (a serial adapter such as a CANable or USBtin) or socketcan (a Linux CAN interface such as can0)");
+      i->fail(
+          "unknown CAN interface " + i->describe() +
+          "; expected slcan (a serial adapter such as a CANable or USBtin) or socketcan (a Linux CAN interface such as can0)");
     if (!link.simulated() && kind == "socketcan" && is_device_path(link.port))
       i->fail("a SocketCAN interface is named like can0, not a device path; for the adapter on " + link.port +
               " write interface: slcan");
   }
   if (const ScalarValue* t = s.find("reply_timeout_ms")) integer_in(*t, "reply_timeout_ms", 1, 1000, "ms");
   int heartbeat = 100;
-  if (const ScalarValue* h = s.find("heartbeat_ms")) heartbeat = static_cast<int>(integer_in(*h, "heartbeat_ms", 10, 10000, "ms"));
+  if (const ScalarValue* h = s.find("heartbeat_ms"))
+    heartbeat = static_cast<int>(integer_in(*h, "heartbeat_ms", 10, 10000, "ms"));
   if (const ScalarValue* t = s.find("heartbeat_timeout_ms"))
-    integer_in(*t, "heartbeat_timeout_ms (longer than heartbeat_ms " + std::to_string(heartbeat) + ")", heartbeat + 1, 60000, "ms");
+    integer_in(*t, "heartbeat_timeout_ms (longer than heartbeat_ms " + std::to_string(heartbeat) + ")", heartbeat + 1, 60000,
+               "ms");
 }
 
 /// Channel units per output-shaft turn from the channel's unit, when it says.
@@ -71,8 +74,8 @@ void finish_can_actuator(const rig::Rig& rig, rig::ActuatorSpec& a) {
   const rig::ChannelSpec& ch = rig.channel(a.channel);
   const ScalarValue* protocol = s.find("protocol");
   if (!protocol)
-    ScalarValue{"", false, "nothing", a.where}.fail("expected the drive protocol of an actuator on CAN link '" + rig.link(a.link).name +
-                                                    "': protocol: " + can_drive_names());
+    ScalarValue{"", false, "nothing", a.where}.fail("expected the drive protocol of an actuator on CAN link '" +
+                                                    rig.link(a.link).name + "': protocol: " + can_drive_names());
   const CanDriveProtocol* drive = find_can_drive(protocol->as_string("protocol"));
   if (!drive) protocol->fail("unknown CAN drive protocol " + protocol->describe() + "; expected one of: " + can_drive_names());
   a.drive = drive->name;
@@ -82,12 +85,12 @@ void finish_can_actuator(const rig::Rig& rig, rig::ActuatorSpec& a) {
   if (const ScalarValue* n = s.find("node"))
     integer_in(*n, "the node id of " + with_article(drive->device_name), drive->node_low, drive->node_high);
 
-  const double gear = s.find("gear_ratio") ? number_in(*s.find("gear_ratio"), "gear_ratio (motor turns per output turn)", 1e-3, 1e4) : 1.0;
+  const double gear =
+      s.find("gear_ratio") ? number_in(*s.find("gear_ratio"), "gear_ratio (motor turns per output turn)", 1e-3, 1e4) : 1.0;
   double per_turn = 0;
   if (const ScalarValue* u = s.find("units_per_turn"))
     per_turn = number_in(*u, "units_per_turn (" + ch.unit + " per output turn)", 1e-9, 1e9);
-  else if (auto known = units_per_turn_of(ch.unit))
-    per_turn = *known;
+  else if (auto known = units_per_turn_of(ch.unit)) per_turn = *known;
   else
     ScalarValue{"", false, "nothing", a.where}.fail("channel '" + ch.name + "' is in '" + ch.unit +
                                                     "', which does not say how far one output turn goes: give units_per_turn (" +
@@ -132,9 +135,9 @@ void validate_can_actuators(const rig::Rig& rig, std::size_t link) {
         if (!overlap || (r.shared && u.range.shared && u.actuator->drive == a.drive)) continue;
         const std::uint32_t id = std::max(r.first, u.range.first);
         node.fail(std::string(drive.device_name) + " node " + std::to_string(a.device_channel) + " uses CAN id " + hex_id(id) +
-                  ", which the " + can_drive_of(*u.actuator).device_name + " at node " + std::to_string(u.actuator->device_channel) +
-                  " (line " + std::to_string(u.actuator->where.line) + ") also uses on link '" + spec.name +
-                  "'; expected a node whose identifiers are free");
+                  ", which the " + can_drive_of(*u.actuator).device_name + " at node " +
+                  std::to_string(u.actuator->device_channel) + " (line " + std::to_string(u.actuator->where.line) +
+                  ") also uses on link '" + spec.name + "'; expected a node whose identifiers are free");
       }
       uses.push_back({&a, r});
     }
@@ -170,9 +173,8 @@ firmware_iface::CanLinkConfig link_config(const rig::Rig& rig, std::size_t link,
 SimulatedDevice simulated_can(const rig::Rig& rig, std::size_t link) {
   auto device = std::make_unique<SimulatedCanBus>(rig, link);
   SimulatedCanBus* d = device.get();
-  return {std::move(device), [d, &rig](const rig::ActuatorSpec& a) {
-            return a.calibration.to_channel(d->device_position(index_on_link(rig, a)));
-          }};
+  return {std::move(device),
+          [d, &rig](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->device_position(index_on_link(rig, a))); }};
 }
 
 }  // namespace
@@ -181,13 +183,15 @@ CanBusOptions can_bus_options(const rig::Rig& rig, std::size_t link) {
   const rig::LinkSettings& s = rig.links[link].settings;
   CanBusOptions bus;
   if (const ScalarValue* b = s.find("bitrate")) bus.bitrate = static_cast<int>(b->as_integer("bitrate"));
-  if (const ScalarValue* t = s.find("reply_timeout_ms")) bus.reply_timeout_ms = static_cast<int>(t->as_integer("reply_timeout_ms"));
+  if (const ScalarValue* t = s.find("reply_timeout_ms"))
+    bus.reply_timeout_ms = static_cast<int>(t->as_integer("reply_timeout_ms"));
   if (const ScalarValue* h = s.find("heartbeat_ms")) bus.heartbeat_ms = static_cast<int>(h->as_integer("heartbeat_ms"));
   const double timeout_s =
       (s.find("heartbeat_timeout_ms") ? static_cast<double>(s.find("heartbeat_timeout_ms")->as_integer("heartbeat_timeout_ms"))
                                       : 3.0 * bus.heartbeat_ms) /
       1000.0;
-  if (const ScalarValue* m = s.find("mit_master_id")) bus.mit_master_id = static_cast<std::uint32_t>(m->as_integer("mit_master_id"));
+  if (const ScalarValue* m = s.find("mit_master_id"))
+    bus.mit_master_id = static_cast<std::uint32_t>(m->as_integer("mit_master_id"));
   bus.silent_ticks = std::max<std::uint32_t>(2, static_cast<std::uint32_t>(std::ceil(timeout_s * rig.rate_hz)));
   return bus;
 }
@@ -219,7 +223,8 @@ const Protocol& can_protocol() {
     c.finish_actuator = finish_can_actuator;
     c.validate_link_actuators = validate_can_actuators;
     c.port_is_serial = uses_slcan;
-    c.open_link = [](const rig::Rig& rig, std::size_t link, const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+    c.open_link = [](const rig::Rig& rig, std::size_t link,
+                     const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
       const CanBusOptions bus = can_bus_options(rig, link);
       auto transport = std::make_unique<firmware_iface::SocketCanTransport>(port, bus.bitrate);
       return std::make_unique<firmware_iface::CanLink>(std::move(transport), make_drive_sets(rig, link, bus),

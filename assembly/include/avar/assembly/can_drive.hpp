@@ -29,11 +29,11 @@ struct CanIdRange {
 
 /// The `can` settings of a link that every drive set needs.
 struct CanBusOptions {
-  int bitrate = 1'000'000;           ///< bit/s
-  int reply_timeout_ms = 5;          ///< longest a tick waits for the drives' replies
-  int heartbeat_ms = 100;            ///< heartbeat period the drives produce (where configurable)
-  std::uint32_t silent_ticks = 30;   ///< ticks without a heartbeat or reply before a drive is lost
-  std::uint32_t mit_master_id = 0;   ///< the id MIT-style motors reply to (their CAN_MASTER)
+  int bitrate = 1'000'000;          ///< bit/s
+  int reply_timeout_ms = 5;         ///< longest a tick waits for the drives' replies
+  int heartbeat_ms = 100;           ///< heartbeat period the drives produce (where configurable)
+  std::uint32_t silent_ticks = 30;  ///< ticks without a heartbeat or reply before a drive is lost
+  std::uint32_t mit_master_id = 0;  ///< the id MIT-style motors reply to (their CAN_MASTER)
 };
 
 /// A simulated drive for one actuator and its true position in the drive's own unit.
@@ -59,8 +59,8 @@ struct CanDriveProtocol {
   void (*can_ids)(const rig::ActuatorSpec& a, const CanBusOptions& bus, std::vector<CanIdRange>& out);
   /// The drive set for these actuators (all of this protocol, on one link of a validated rig).
   std::unique_ptr<firmware_iface::CanDrives> (*make_drives)(const rig::Rig& rig,
-                                                              std::span<const rig::ActuatorSpec* const> actuators,
-                                                              const CanBusOptions& bus);
+                                                            std::span<const rig::ActuatorSpec* const> actuators,
+                                                            const CanBusOptions& bus);
   /// A simulated drive at `node`, its position `position` (the drive's unit), set up as the
   /// owner of actuator `a` would have set up the real one (null: factory settings, for
   /// `avar sim slcan`).

@@ -84,8 +84,8 @@ struct Protocol {
   /// Opens a link whose port is no serial device (a SocketCAN interface) and makes its driver;
   /// nullptr: FigureLinks opens a SerialTransport on the port and calls make_link. Not called for
   /// simulated links.
-  std::unique_ptr<firmware_iface::ActuatorLink> (*open_link)(const rig::Rig& rig, std::size_t link, const std::string& port) =
-      nullptr;
+  std::unique_ptr<firmware_iface::ActuatorLink> (*open_link)(const rig::Rig& rig, std::size_t link,
+                                                             const std::string& port) = nullptr;
   /// Whether the link's port (as written or given with --port) is a serial device (make_link)
   /// rather than something open_link opens.
   bool (*port_is_serial)(const rig::LinkSpec& link, const std::string& port) = nullptr;

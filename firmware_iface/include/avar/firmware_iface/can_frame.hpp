@@ -17,21 +17,21 @@ inline constexpr std::size_t kCanMaxData = 8;
 
 /// Error classes of an error frame (CanFrame::error): in CanFrame::id, as bits.
 enum CanErrorClass : std::uint32_t {
-  kCanErrorProtocol = 1u << 0,  ///< a bit, stuff, form or CRC error seen on the bus
-  kCanErrorAck = 1u << 1,       ///< a frame nobody acknowledged (no other node on the bus)
-  kCanErrorWarning = 1u << 2,   ///< error counters passed the warning level (96)
-  kCanErrorPassive = 1u << 3,   ///< error passive (counters >= 128)
-  kCanErrorBusOff = 1u << 4,    ///< the controller left the bus (TX counter > 255)
-  kCanErrorOverrun = 1u << 5,   ///< a receive or transmit buffer overflowed: frames lost
-  kCanErrorRestarted = 1u << 6, ///< the controller is back on the bus after bus-off
+  kCanErrorProtocol = 1u << 0,   ///< a bit, stuff, form or CRC error seen on the bus
+  kCanErrorAck = 1u << 1,        ///< a frame nobody acknowledged (no other node on the bus)
+  kCanErrorWarning = 1u << 2,    ///< error counters passed the warning level (96)
+  kCanErrorPassive = 1u << 3,    ///< error passive (counters >= 128)
+  kCanErrorBusOff = 1u << 4,     ///< the controller left the bus (TX counter > 255)
+  kCanErrorOverrun = 1u << 5,    ///< a receive or transmit buffer overflowed: frames lost
+  kCanErrorRestarted = 1u << 6,  ///< the controller is back on the bus after bus-off
 };
 
 struct CanFrame {
-  std::uint32_t id = 0;     ///< 11-bit (standard) or 29-bit (extended) identifier; error frames: CanErrorClass bits
-  bool extended = false;    ///< 29-bit identifier
-  bool rtr = false;         ///< remote transmission request: dlc given, no data
-  bool error = false;       ///< an error frame reported by the controller (not sent on the wire)
-  std::uint8_t dlc = 0;     ///< 0..8
+  std::uint32_t id = 0;   ///< 11-bit (standard) or 29-bit (extended) identifier; error frames: CanErrorClass bits
+  bool extended = false;  ///< 29-bit identifier
+  bool rtr = false;       ///< remote transmission request: dlc given, no data
+  bool error = false;     ///< an error frame reported by the controller (not sent on the wire)
+  std::uint8_t dlc = 0;   ///< 0..8
   std::array<std::uint8_t, kCanMaxData> data{};
   /// Receive time on the transport's clock (FrameTransport::now()); 0 for frames to send.
   std::chrono::nanoseconds timestamp{0};

@@ -39,11 +39,11 @@ struct CanLinkConfig {
 
 /// What the link measured of its bus, for benchmarks and diagnostics.
 struct CanLinkStats {
-  std::uint64_t frames_sent = 0;      ///< by this link's send() and release()
-  std::uint64_t frames_taken = 0;     ///< received frames a drive set used
-  std::uint64_t frames_ignored = 0;   ///< received frames no drive set wanted
-  std::uint64_t bits_sent = 0;        ///< worst-case wire bits of the frames sent (can_frame_bits)
-  std::uint64_t bits_received = 0;    ///< worst-case wire bits of the frames received
+  std::uint64_t frames_sent = 0;     ///< by this link's send() and release()
+  std::uint64_t frames_taken = 0;    ///< received frames a drive set used
+  std::uint64_t frames_ignored = 0;  ///< received frames no drive set wanted
+  std::uint64_t bits_sent = 0;       ///< worst-case wire bits of the frames sent (can_frame_bits)
+  std::uint64_t bits_received = 0;   ///< worst-case wire bits of the frames received
   std::uint64_t error_frames = 0;
 };
 

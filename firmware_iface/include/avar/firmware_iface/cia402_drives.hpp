@@ -86,9 +86,9 @@ class Cia402Drives final : public CanDrives {
  private:
   struct Drive {
     std::uint8_t node = 1;
-    std::int32_t target = 0;  ///< last target sent, counts
-    bool driven = false;      ///< as of this tick's encode_tick
-    bool tpdo_seen = false;   ///< this tick
+    std::int32_t target = 0;        ///< last target sent, counts
+    bool driven = false;            ///< as of this tick's encode_tick
+    bool tpdo_seen = false;         ///< this tick
     std::uint32_t tpdo_misses = 0;  ///< ticks in a row without a TPDO
     bool heartbeat_seen = false;
     std::uint32_t silent_ticks = 0;

@@ -22,7 +22,7 @@ struct FrameCounters {
   std::uint64_t bus_off = 0;          ///< times the controller went bus-off
   std::uint64_t bytes_sent = 0;       ///< on the host link: SLCAN text, SocketCAN struct can_frame
   std::uint64_t bytes_received = 0;
-  std::uint64_t malformed = 0;        ///< received input that did not decode (SLCAN noise), skipped
+  std::uint64_t malformed = 0;  ///< received input that did not decode (SLCAN noise), skipped
 };
 
 class FrameTransport {

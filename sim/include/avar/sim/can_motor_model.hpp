@@ -9,10 +9,10 @@
 namespace avar::sim {
 
 struct CanMotorParams {
-  double inertia = 1e-3;               ///< rotor plus reflected load, kg·m² (> 0)
-  double max_velocity = 60;            ///< rad/s (> 0)
-  double max_torque = 2;               ///< N·m (> 0)
-  double viscous_friction = 1e-3;      ///< N·m per rad/s
+  double inertia = 1e-3;                   ///< rotor plus reflected load, kg·m² (> 0)
+  double max_velocity = 60;                ///< rad/s (> 0)
+  double max_torque = 2;                   ///< N·m (> 0)
+  double viscous_friction = 1e-3;          ///< N·m per rad/s
   double encoder_counts_per_turn = 16384;  ///< resolution of the reported position (> 0)
 };
 
