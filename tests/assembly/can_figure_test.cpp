@@ -16,6 +16,7 @@
 #include "avar/sim/sim_can_bus.hpp"
 #include "avar/sim/sim_cia402_drive.hpp"
 #include "avar/sim/sim_odrive_axis.hpp"
+#include "../support/stepped_figure_run.hpp"
 
 namespace avar {
 namespace {
@@ -40,7 +41,6 @@ struct CanRun {
   control::Fault fault;
   std::uint64_t ticks = 0;
   std::string problem;
-  double last_command_on_fault_channel = 0;
 };
 
 CanRun play_can(const char* rig_file, const char* show_file, std::uint64_t at,
@@ -53,19 +53,11 @@ CanRun play_can(const char* rig_file, const char* show_file, std::uint64_t at,
     EXPECT_EQ(s, Status::ok) << link->start_problem();
     if (s != Status::ok) return {};
   }
-  control::ControllerOptions options;
-  options.tick_period_s = 1.0 / rig.rate_hz;
-  options.stage_clock = nullptr;
-  options.positions = &figure;
-  control::Controller controller(rig, show, figure.links(), options);
-  controller.begin(0.0, rig.rest_frame());
-  control::RunOptions run{rig.rate_hz, control::ClockMode::stepped, {}};
-  run.plant = &figure;
+  testing::SteppedFigureRun play(rig, show, figure);
   CanFaultAt observer(figure, at, std::move(inject));
-  const std::atomic<int> no_interrupts{0};
-  const control::RunResult result = control::run_loop(controller, run, observer, no_interrupts);
+  const control::RunResult result = play.run(observer);
   CanRun out;
-  out.fault = controller.latched_fault();
+  out.fault = play.controller.latched_fault();
   out.ticks = result.ticks;
   out.problem = figure.channel_problem(out.fault.index);
   return out;

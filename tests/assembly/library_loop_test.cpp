@@ -13,6 +13,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/sim/sim_dynamixel.hpp"
+#include "../support/stepped_figure_run.hpp"
 
 namespace avar {
 namespace {
@@ -39,17 +40,10 @@ TEST(LibraryLoop, DynamixelExampleOnTheSimulatorFaultsWhenAServoOverheats) {
   assembly::FigureLinks figure(rig, selection);
   for (firmware_iface::ActuatorLink* link : figure.links()) ASSERT_EQ(link->start(), Status::ok);
 
-  control::ControllerOptions options;
-  options.tick_period_s = 1.0 / rig.rate_hz;
-  options.stage_clock = nullptr;
-  options.positions = &figure;
-  control::Controller controller(rig, show, figure.links(), options);
-  controller.begin(0.0, rig.rest_frame());
-  control::RunOptions run{rig.rate_hz, control::ClockMode::stepped, {}};
-  run.plant = &figure;
+  testing::SteppedFigureRun play(rig, show, figure);
   Unwatched nobody;
-  const std::atomic<int> no_interrupts{0};
-  const control::RunResult result = control::run_loop(controller, run, nobody, no_interrupts);
+  const control::RunResult result = play.run(nobody);
+  const control::Controller& controller = play.controller;
   EXPECT_LT(result.ticks, 2000u);  // the fault ended the run before the show's 8 s
 
   const control::Fault& fault = controller.latched_fault();
