@@ -8,6 +8,7 @@ packages=(cmake ninja-build g++ pkg-config make
           libserial-dev libyaml-cpp-dev libcli11-dev libeigen3-dev
           liburdfdom-dev libtinyxml-dev
           libgtest-dev libgmock-dev libbenchmark-dev
+          python3-can
           clang-format clang-tidy "$@")
 
 missing=()
