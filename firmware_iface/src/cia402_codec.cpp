@@ -99,32 +99,32 @@ const char* state_name(State state) noexcept {
   return "unknown state";
 }
 
-Transition next_state(State state, std::uint16_t cw, std::uint16_t previous) noexcept {
+Transition next_state(State state, std::uint16_t controlword, std::uint16_t previous_controlword) noexcept {
   switch (state) {
     case State::fault:
-      if ((cw & kCwFaultReset) && !(previous & kCwFaultReset)) return {State::switch_on_disabled, 15};
+      if ((controlword & kCwFaultReset) && !(previous_controlword & kCwFaultReset)) return {State::switch_on_disabled, 15};
       break;
     case State::switch_on_disabled:
-      if (is_shutdown(cw)) return {State::ready_to_switch_on, 2};
+      if (is_shutdown(controlword)) return {State::ready_to_switch_on, 2};
       break;
     case State::ready_to_switch_on:
-      if (is_disable_voltage(cw) || is_quick_stop(cw)) return {State::switch_on_disabled, 7};
-      if (is_switch_on(cw)) return {State::switched_on, 3};
+      if (is_disable_voltage(controlword) || is_quick_stop(controlword)) return {State::switch_on_disabled, 7};
+      if (is_switch_on(controlword)) return {State::switched_on, 3};
       break;
     case State::switched_on:
-      if (is_disable_voltage(cw) || is_quick_stop(cw)) return {State::switch_on_disabled, 10};
-      if (is_shutdown(cw)) return {State::ready_to_switch_on, 6};
-      if (is_enable_operation(cw)) return {State::operation_enabled, 4};
+      if (is_disable_voltage(controlword) || is_quick_stop(controlword)) return {State::switch_on_disabled, 10};
+      if (is_shutdown(controlword)) return {State::ready_to_switch_on, 6};
+      if (is_enable_operation(controlword)) return {State::operation_enabled, 4};
       break;
     case State::operation_enabled:
-      if (is_disable_voltage(cw)) return {State::switch_on_disabled, 9};
-      if (is_quick_stop(cw)) return {State::quick_stop_active, 11};
-      if (is_shutdown(cw)) return {State::ready_to_switch_on, 8};
-      if (is_disable_operation(cw)) return {State::switched_on, 5};
+      if (is_disable_voltage(controlword)) return {State::switch_on_disabled, 9};
+      if (is_quick_stop(controlword)) return {State::quick_stop_active, 11};
+      if (is_shutdown(controlword)) return {State::ready_to_switch_on, 8};
+      if (is_disable_operation(controlword)) return {State::switched_on, 5};
       break;
     case State::quick_stop_active:
-      if (is_disable_voltage(cw)) return {State::switch_on_disabled, 12};
-      if (is_enable_operation(cw)) return {State::operation_enabled, 16};
+      if (is_disable_voltage(controlword)) return {State::switch_on_disabled, 12};
+      if (is_enable_operation(controlword)) return {State::operation_enabled, 16};
       break;
     case State::not_ready_to_switch_on:
     case State::fault_reaction_active:

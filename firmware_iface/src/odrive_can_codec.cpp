@@ -251,15 +251,15 @@ const char* axis_error_name(std::uint32_t bit) noexcept {
   return nullptr;
 }
 
-std::uint32_t axis_error_faults(std::uint32_t e) noexcept {
+std::uint32_t axis_error_faults(std::uint32_t axis_error) noexcept {
   std::uint32_t faults = 0;
-  if (e & (kDcBusUnderVoltage | kDcBusOverVoltage)) faults |= kDeviceVoltage;
-  if (e & (kCurrentMeasurementTimeout | kBrakeResistorDisarmed | kMotorDisarmed | kMotorFailed | kDcBusUnderCurrent |
-           kDcBusOverCurrent))
+  if (axis_error & (kDcBusUnderVoltage | kDcBusOverVoltage)) faults |= kDeviceVoltage;
+  if (axis_error & (kCurrentMeasurementTimeout | kBrakeResistorDisarmed | kMotorDisarmed | kMotorFailed | kDcBusUnderCurrent |
+                    kDcBusOverCurrent))
     faults |= kDeviceElectrical;
-  if (e & (kSensorlessEstimatorFailed | kEncoderFailed)) faults |= kDeviceEncoder;
-  if (e & (kInvalidState | kControllerFailed | kPosCtrlDuringSensorless | kWatchdogTimerExpired | kMinEndstopPressed |
-           kMaxEndstopPressed | kEstopRequested | kHomingWithoutEndstop | ~0x3FFFFu))
+  if (axis_error & (kSensorlessEstimatorFailed | kEncoderFailed)) faults |= kDeviceEncoder;
+  if (axis_error & (kInvalidState | kControllerFailed | kPosCtrlDuringSensorless | kWatchdogTimerExpired | kMinEndstopPressed |
+                    kMaxEndstopPressed | kEstopRequested | kHomingWithoutEndstop | ~0x3FFFFu))
     faults |= kDeviceOther;
   return faults;
 }

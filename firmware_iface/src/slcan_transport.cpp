@@ -92,7 +92,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
   std::memcpy(tx_.data(), text.data(), text.size());
   tx_[text.size()] = slcan::kCr;
   if (const Status s = port_->write(std::span(tx_.data(), text.size() + 1)); s != Status::ok) return s;
-  counters_.add(counters_.bytes_sent, text.size() + 1);
+  AtomicFrameCounters::add(counters_.bytes_sent, text.size() + 1);
 
   const std::chrono::nanoseconds deadline = port_->now() + config_.reply_timeout;
   RawLine raw;
@@ -103,7 +103,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
       case Take::line: break;
     }
     if (raw.noise) {
-      counters_.add(counters_.malformed);
+      AtomicFrameCounters::add(counters_.malformed);
       continue;
     }
     if (raw.bell) {
@@ -129,7 +129,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
         hold(f);
       }
     } else if (line.kind == LineKind::malformed) {
-      counters_.add(counters_.malformed);
+      AtomicFrameCounters::add(counters_.malformed);
     }
   }
 }
@@ -184,7 +184,7 @@ SlcanTransport::Take SlcanTransport::take_line(std::chrono::nanoseconds deadline
     if (s == Status::timeout) return Take::none;
     if (s != Status::ok) return Take::io_error;
     rx_end_ += got;
-    counters_.add(counters_.bytes_received, got);
+    AtomicFrameCounters::add(counters_.bytes_received, got);
   }
 }
 
@@ -211,7 +211,7 @@ Status SlcanTransport::send(std::span<const CanFrame> frames) noexcept {
   const auto flush = [&]() noexcept {
     if (used == 0) return Status::ok;
     const Status s = port_->write(std::span(tx_.data(), used));
-    if (s == Status::ok) counters_.add(counters_.bytes_sent, used);
+    if (s == Status::ok) AtomicFrameCounters::add(counters_.bytes_sent, used);
     used = 0;
     return s;
   };
@@ -219,7 +219,7 @@ Status SlcanTransport::send(std::span<const CanFrame> frames) noexcept {
     if (tx_.size() - used < slcan::kMaxLineLength)
       if (const Status s = flush(); s != Status::ok) return s;
     used += slcan::encode_frame(std::span(tx_).subspan(used), f);
-    counters_.add(counters_.frames_sent);
+    AtomicFrameCounters::add(counters_.frames_sent);
   }
   return flush();
 }
@@ -240,7 +240,7 @@ Status SlcanTransport::receive(CanFrame* frame, std::chrono::nanoseconds deadlin
       case Take::line: break;
     }
     if (raw.noise) {
-      counters_.add(counters_.malformed);
+      AtomicFrameCounters::add(counters_.malformed);
       continue;
     }
     if (raw.bell) {
@@ -254,7 +254,7 @@ Status SlcanTransport::receive(CanFrame* frame, std::chrono::nanoseconds deadlin
         *frame = line.frame;
         accept(frame);
         return Status::ok;
-      case LineKind::malformed: counters_.add(counters_.malformed); break;
+      case LineKind::malformed: AtomicFrameCounters::add(counters_.malformed); break;
       default: break;  // acks, bare CRs, stray replies
     }
   }

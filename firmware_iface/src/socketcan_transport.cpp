@@ -149,8 +149,8 @@ Status SocketCanTransport::send(std::span<const CanFrame> frames) noexcept {
       }
       return Status::io_error;  // ENETDOWN (interface down, bus-off) and the like
     }
-    counters_.add(counters_.frames_sent);
-    counters_.add(counters_.bytes_sent, sizeof(k));
+    AtomicFrameCounters::add(counters_.frames_sent);
+    AtomicFrameCounters::add(counters_.bytes_sent, sizeof(k));
   }
   return Status::ok;
 }
@@ -182,11 +182,11 @@ Status SocketCanTransport::receive(CanFrame* frame, std::chrono::nanoseconds dea
         if (ago.count() > 0) frame->timestamp = read_at - std::chrono::duration_cast<std::chrono::nanoseconds>(ago);
       }
       counters_.count_received(*frame);
-      counters_.add(counters_.bytes_received, sizeof(k));
+      AtomicFrameCounters::add(counters_.bytes_received, sizeof(k));
       return Status::ok;
     }
     if (n >= 0) {  // a short frame: not a classic CAN frame
-      counters_.add(counters_.malformed);
+      AtomicFrameCounters::add(counters_.malformed);
       continue;
     }
     if (errno == EINTR) continue;

@@ -24,7 +24,7 @@ constexpr std::size_t kMaxInstantFrames = 1'000'000;
 
 }  // namespace
 
-SimCanBus::SimCanBus(SimCanBusConfig config, std::vector<CanNode*> nodes)
+SimCanBus::SimCanBus(SimCanBusConfig config, const std::vector<CanNode*>& nodes)
     : config_(config),
       tx_(std::max<std::size_t>(1, config.host_tx_capacity)),
       rx_(std::max<std::size_t>(1, config.host_rx_capacity)) {

@@ -297,8 +297,8 @@ std::uint32_t SimCia402Drive::validate(const ObjectEntry& e, std::uint32_t raw) 
     if (pdo_valid(comm)) return canopen::kSdoAbortDeviceState;
     if (e.sub == 0) {
       int bits = 0;
-      for (std::uint8_t s = 1; s <= raw; ++s) {
-        const std::uint32_t entry = od_.get(index, s);
+      for (std::uint32_t s = 1; s <= raw; ++s) {  // raw <= kCia402MaxMapped: the entry's range
+        const std::uint32_t entry = od_.get(index, static_cast<std::uint8_t>(s));
         if (entry == 0) return canopen::kSdoAbortValueRange;  // counting an entry never written
         bits += canopen::decode_pdo_mapping(entry).bits;
       }

@@ -8,7 +8,7 @@
 namespace avar::sim {
 namespace mit = firmware_iface::mit;
 
-SimMitMotor::SimMitMotor(SimMitMotorConfig config) : config_(std::move(config)), model_(config_.motor, config_.initial_position) {
+SimMitMotor::SimMitMotor(SimMitMotorConfig config) : config_(config), model_(config_.motor, config_.initial_position) {
   if (config_.id > firmware_iface::kCanMaxStandardId || config_.master_id > firmware_iface::kCanMaxStandardId ||
       config_.id == config_.master_id)
     throw std::invalid_argument("simulated MIT motor " + std::to_string(config_.id) +

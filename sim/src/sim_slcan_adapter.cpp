@@ -34,8 +34,8 @@ int tx_errors_of(std::uint32_t classes) {
 
 }  // namespace
 
-SimSlcanAdapter::SimSlcanAdapter(SimSlcanConfig config, std::vector<CanNode*> nodes)
-    : config_(std::move(config)), bus_(instant_bus(config_), std::move(nodes)), code_(config_.initial_code) {
+SimSlcanAdapter::SimSlcanAdapter(SimSlcanConfig config, const std::vector<CanNode*>& nodes)
+    : config_(std::move(config)), bus_(instant_bus(config_), nodes), code_(config_.initial_code) {
   bus_.set_host_online(false);  // closed until `O` or `L`
   line_.reserve(kMaxCommand);
 }

@@ -70,7 +70,7 @@ struct Line {
 /// Decodes one line (without its CR). A frame line with 4 more hex digits than its DLC needs
 /// carries a timestamp; one is accepted whether or not timestamps were switched on, since some
 /// adapters keep `Z1` across power cycles.
-Line parse_line(std::span<const std::uint8_t> line) noexcept;
+Line parse_line(std::span<const std::uint8_t> text) noexcept;
 
 /// Lawicel status flags (`F` reply) as CanErrorClass bits: bit 0 RX FIFO full and bit 3 data
 /// overrun -> overrun; bit 2 error warning -> warning; bit 5 error passive -> passive; bit 7 bus

@@ -93,7 +93,7 @@ class SlcanTransport final : public FrameTransport {
   bool open_sequence(std::string* problem);
   /// Sends a command and waits for its answer: a bare CR, a BEL or a line of kind `expect`.
   /// Frame lines in between are dropped when `hold` is false, else kept for receive().
-  Status command(std::string_view text, slcan::LineKind expect, bool hold, slcan::Line* answer, bool* bell) noexcept;
+  Status command(std::string_view text, slcan::LineKind expect, bool keep_frames, slcan::Line* answer, bool* bell) noexcept;
   /// Takes the next line from the input, reading until `deadline`.
   Take take_line(std::chrono::nanoseconds deadline, RawLine* line) noexcept;
   /// A received frame or error frame: counted, stamped, bus-off latched.

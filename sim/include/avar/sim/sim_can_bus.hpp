@@ -61,7 +61,7 @@ struct SimCanBusStatistics {
 class SimCanBus {
  public:
   /// Nodes are borrowed (null entries ignored) and must outlive the bus; all start attached.
-  explicit SimCanBus(SimCanBusConfig config = {}, std::vector<CanNode*> nodes = {});
+  explicit SimCanBus(SimCanBusConfig config = {}, const std::vector<CanNode*>& nodes = {});
 
   /// Adds a node (attached). Not real-time.
   void add_node(CanNode& node);

@@ -41,7 +41,7 @@ struct SimSlcanConfig {
 class SimSlcanAdapter final : public ByteDevice {
  public:
   /// nodes: borrowed simulated CAN devices on the bus (null entries ignored).
-  explicit SimSlcanAdapter(SimSlcanConfig config = {}, std::vector<CanNode*> nodes = {});
+  explicit SimSlcanAdapter(SimSlcanConfig config = {}, const std::vector<CanNode*>& nodes = {});
 
   void receive(std::span<const std::uint8_t> bytes) override;
   std::size_t take_replies(std::span<std::uint8_t> out) override;
