@@ -302,8 +302,9 @@ void can_rows() {
     const CanMeasured m = can_on_bus(d.make());
     std::printf("link,%s,actuators=%d,baud=%d,readback=1,achieved_hz=%.1f,limit_hz=%.1f\n", d.name, kCanDrives, kCanBitrate,
                 m.achieved_hz, limit_hz);
-    std::printf("#   %.1f frames and %.0f bits per tick (notes' arithmetic %.0f + heartbeats), bus load %.1f%%, %.1f%% of the limit\n",
-                m.frames_per_tick, m.bits_per_tick, shape.tick_bits, 100 * m.bus_load, 100.0 * m.achieved_hz / limit_hz);
+    std::printf(
+        "#   %.1f frames and %.0f bits per tick (notes' arithmetic %.0f + heartbeats), bus load %.1f%%, %.1f%% of the limit\n",
+        m.frames_per_tick, m.bits_per_tick, shape.tick_bits, 100 * m.bus_load, 100.0 * m.achieved_hz / limit_hz);
   }
   for (const auto& d : drives)
     // Serial rates at which the SLCAN text, not the CAN bus, is the bottleneck (a UART adapter;
@@ -317,8 +318,10 @@ void can_rows() {
       const double serial_limit_hz = baud / (10.0 * shape.tick_slcan_bytes);
       std::printf("link,slcan-%s,actuators=%d,baud=%d,readback=1,achieved_hz=%.1f,limit_hz=%.1f\n", d.name, kCanDrives, baud,
                   m.achieved_hz, serial_limit_hz);
-      std::printf("#   %.0f bytes of SLCAN text per tick (frames alone %.0f): %.1f%% of the serial limit; the CAN bus behind it allows %.1f Hz\n",
-                  m.bytes_per_tick, shape.tick_slcan_bytes, 100.0 * m.achieved_hz / serial_limit_hz, can_limit_hz);
+      std::printf(
+          "#   %.0f bytes of SLCAN text per tick (frames alone %.0f): %.1f%% of the serial limit; the CAN bus behind it allows "
+          "%.1f Hz\n",
+          m.bytes_per_tick, shape.tick_slcan_bytes, 100.0 * m.achieved_hz / serial_limit_hz, can_limit_hz);
     }
 }
 

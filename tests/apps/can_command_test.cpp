@@ -23,17 +23,19 @@ TEST(CanCommand, SimSlcanServesAnAdapterWithOdrivesThatAnswer) {
     // Node 2's encoder estimate on request (RTR), at its power-up position 0.
     firmware_iface::CanFrame answer;
     namespace od = firmware_iface::odrive;
-    ASSERT_EQ(firmware_iface::ask_frame(bus, od::encode_get_encoder_estimates(2), std::chrono::seconds(2),
-                                        [](const firmware_iface::CanFrame& f) { return f.id == od::can_id(2, od::kGetEncoderEstimates) && !f.rtr; },
-                                        &answer),
-              Status::ok);
+    ASSERT_EQ(
+        firmware_iface::ask_frame(
+            bus, od::encode_get_encoder_estimates(2), std::chrono::seconds(2),
+            [](const firmware_iface::CanFrame& f) { return f.id == od::can_id(2, od::kGetEncoderEstimates) && !f.rtr; }, &answer),
+        Status::ok);
     od::EncoderEstimates e;
     ASSERT_TRUE(od::decode_encoder_estimates(answer, &e));
     EXPECT_FLOAT_EQ(e.position, 0);
     // Node 1's cyclic heartbeat arrives on its own (every 100 ms).
-    ASSERT_EQ(firmware_iface::await_frame(bus, std::chrono::seconds(2),
-                                          [](const firmware_iface::CanFrame& f) { return f.id == od::can_id(1, od::kHeartbeat); }),
-              Status::ok);
+    ASSERT_EQ(
+        firmware_iface::await_frame(bus, std::chrono::seconds(2),
+                                    [](const firmware_iface::CanFrame& f) { return f.id == od::can_id(1, od::kHeartbeat); }),
+        Status::ok);
   }
   sim.signal(SIGINT);
   EXPECT_EQ(sim.wait(), 0) << sim.err();
@@ -51,9 +53,11 @@ TEST(CanCommand, SimSlcanRefusesNodesTheDriveCannotHave) {
 }
 
 TEST(CanCommand, PlaysBothCanExamplesOnTheSimulator) {
-  for (const auto& [show, rig] : {std::pair{"odrive-arm.yaml", "odrive-arm.yaml"}, std::pair{"turntable-tour.yaml", "cia402-turntable.yaml"}}) {
-    const testing::CliResult r = testing::run_avar({"play", std::string(AVAR_SOURCE_DIR "/examples/shows/") + show, "--rig",
-                                                 std::string(AVAR_SOURCE_DIR "/examples/rigs/") + rig, "--fast", "--no-progress"});
+  for (const auto& [show, rig] :
+       {std::pair{"odrive-arm.yaml", "odrive-arm.yaml"}, std::pair{"turntable-tour.yaml", "cia402-turntable.yaml"}}) {
+    const testing::CliResult r =
+        testing::run_avar({"play", std::string(AVAR_SOURCE_DIR "/examples/shows/") + show, "--rig",
+                           std::string(AVAR_SOURCE_DIR "/examples/rigs/") + rig, "--fast", "--no-progress"});
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("simulated CAN bus"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("0 timeouts"), std::string::npos) << r.out;
