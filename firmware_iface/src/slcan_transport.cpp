@@ -97,15 +97,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
   const std::chrono::nanoseconds deadline = port_->now() + config_.reply_timeout;
   RawLine raw;
   for (;;) {
-    switch (take_line(deadline, &raw)) {
-      case Take::none: return Status::timeout;
-      case Take::io_error: return Status::io_error;
-      case Take::line: break;
-    }
-    if (raw.noise) {
-      AtomicFrameCounters::add(counters_.malformed);
-      continue;
-    }
+    if (const Status s = next_line(deadline, &raw); s != Status::ok) return s;
     if (raw.bell) {
       *bell = true;
       return Status::ok;
@@ -131,6 +123,18 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
     } else if (line.kind == LineKind::malformed) {
       AtomicFrameCounters::add(counters_.malformed);
     }
+  }
+}
+
+Status SlcanTransport::next_line(std::chrono::nanoseconds deadline, RawLine* line) noexcept {
+  for (;;) {
+    switch (take_line(deadline, line)) {
+      case Take::none: return Status::timeout;
+      case Take::io_error: return Status::io_error;
+      case Take::line: break;
+    }
+    if (!line->noise) return Status::ok;
+    AtomicFrameCounters::add(counters_.malformed);
   }
 }
 
@@ -234,15 +238,7 @@ Status SlcanTransport::receive(CanFrame* frame, std::chrono::nanoseconds deadlin
   if (!open_) return Status::io_error;
   RawLine raw;
   for (;;) {
-    switch (take_line(deadline, &raw)) {
-      case Take::none: return Status::timeout;
-      case Take::io_error: return Status::io_error;
-      case Take::line: break;
-    }
-    if (raw.noise) {
-      AtomicFrameCounters::add(counters_.malformed);
-      continue;
-    }
+    if (const Status s = next_line(deadline, &raw); s != Status::ok) return s;
     if (raw.bell) {
       refused_.fetch_add(1, std::memory_order_relaxed);
       continue;

@@ -96,6 +96,8 @@ class SlcanTransport final : public FrameTransport {
   Status command(std::string_view text, slcan::LineKind expect, bool keep_frames, slcan::Line* answer, bool* bell) noexcept;
   /// Takes the next line from the input, reading until `deadline`.
   Take take_line(std::chrono::nanoseconds deadline, RawLine* line) noexcept;
+  /// The next line that is not noise (noise is counted as malformed): ok, timeout or io_error.
+  Status next_line(std::chrono::nanoseconds deadline, RawLine* line) noexcept;
   /// A received frame or error frame: counted, stamped, bus-off latched.
   void accept(CanFrame* frame) noexcept;
   void hold(const CanFrame& frame) noexcept;
