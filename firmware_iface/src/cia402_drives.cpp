@@ -305,7 +305,7 @@ bool Cia402Drives::take(const CanFrame& frame) noexcept {
       if (!canopen::decode_emcy(frame, &node, &emcy)) return false;
       if (emcy.error_code != 0) {
         d->emcy_code = emcy.error_code;
-        ++device_errors_;
+        device_errors_.fetch_add(1, std::memory_order_relaxed);
       }
       return true;
     }

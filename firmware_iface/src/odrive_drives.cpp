@@ -210,7 +210,7 @@ void OdriveDrives::take_heartbeat(std::size_t i, const od::Heartbeat& h) noexcep
   axis.last_heartbeat = h;
   axis.heartbeat_seen = true;
   axis.heartbeat_this_tick = true;
-  if (h.axis_error != 0) ++device_errors_;
+  if (h.axis_error != 0) device_errors_.fetch_add(1, std::memory_order_relaxed);
   std::uint32_t faults = 0;
   if (h.axis_error != 0)
     faults |= config_.heartbeat_layout == od::HeartbeatLayout::v0_5 ? od::axis_error_faults(h.axis_error) : kDeviceOther;

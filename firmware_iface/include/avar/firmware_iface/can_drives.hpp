@@ -85,7 +85,7 @@ class CanDrives {
   /// after a channel fault; empty when nothing is known. Not real-time.
   virtual std::string channel_problem(std::size_t channel) const = 0;
 
-  /// Replies that carried an error (counted into LinkCounters::device_errors).
+  /// Replies that carried an error (counted into LinkCounters::device_errors). Any thread.
   virtual std::uint64_t device_errors() const noexcept = 0;
 
   /// From the next encode_tick, stops driving this channel's actuators. Any thread.

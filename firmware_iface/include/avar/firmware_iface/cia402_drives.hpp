@@ -22,6 +22,7 @@
 // Units: each actuator's calibration maps channel units to position counts (the drive's user
 // units). Threads and real-time rules: those of CanDrives.
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -77,7 +78,7 @@ class Cia402Drives final : public CanDrives {
   /// "CiA 402 node 5: Fault (EMCY 0x7121)", "CiA 402 node 5: no heartbeat for 31 ticks".
   std::string channel_problem(std::size_t channel) const override;
   /// EMCY messages with a non-zero error code.
-  std::uint64_t device_errors() const noexcept override { return device_errors_; }
+  std::uint64_t device_errors() const noexcept override { return device_errors_.load(std::memory_order_relaxed); }
 
   /// The CiA 402 state drive i (config order) last reported; its NMT state from its heartbeat.
   cia402::State drive_state(std::size_t i) const noexcept { return drives_[i].state; }
@@ -118,7 +119,7 @@ class Cia402Drives final : public CanDrives {
 
   Cia402DrivesConfig config_;
   std::vector<Drive> drives_;
-  std::uint64_t device_errors_ = 0;
+  std::atomic<std::uint64_t> device_errors_{0};  ///< read from any thread (CanDrives contract)
   std::string start_problem_;
 };
 

@@ -17,6 +17,7 @@
 //
 // Threads and real-time rules: as CanDrives (can_drives.hpp).
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -76,7 +77,7 @@ class OdriveDrives final : public CanDrives {
   Status settle() noexcept override;
   void encode_release(CanOutbox& out) noexcept override;
   std::string channel_problem(std::size_t channel) const override;
-  std::uint64_t device_errors() const noexcept override { return device_errors_; }
+  std::uint64_t device_errors() const noexcept override { return device_errors_.load(std::memory_order_relaxed); }
 
   const OdriveDrivesConfig& config() const noexcept { return config_; }
 
@@ -105,7 +106,7 @@ class OdriveDrives final : public CanDrives {
   std::vector<Axis> axes_;
   int axis_of_node_[odrive::kMaxNode + 1];
   std::string start_problem_;
-  std::uint64_t device_errors_ = 0;
+  std::atomic<std::uint64_t> device_errors_{0};  ///< read from any thread (CanDrives contract)
 };
 
 }  // namespace avar::firmware_iface
