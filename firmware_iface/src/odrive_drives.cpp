@@ -95,6 +95,7 @@ Status OdriveDrives::start_axis(FrameTransport& bus, std::size_t i) {
     return s;
   // Hold where the axis is: closed loop starts without a jump.
   if (const Status s = send(od::encode_set_input_pos(a.node, present), "Set Input Pos"); s != Status::ok) return s;
+  axes_[i].last_turns = present;
   if (const Status s = send(od::encode_set_axis_state(a.node, od::AxisState::closed_loop_control), "Set Axis Requested State");
       s != Status::ok)
     return s;
@@ -170,12 +171,17 @@ void OdriveDrives::encode_tick(std::span<const double> frame, CanOutbox& out) no
     axis.estimate_asked = false;
     axis.estimate_taken = false;
     if (table().released(i)) {
+      axis.last_turns = std::numeric_limits<double>::quiet_NaN();
       if (table().release_pending(i) && out.push(od::encode_set_axis_state(axis.node, od::AxisState::idle)))
         table().set_release_told(i);
       continue;
     }
     const double turns = table().to_device(i, frame);
-    if (!out.push(od::encode_set_input_pos(axis.node, static_cast<float>(turns)))) continue;
+    const double vel_ff = config_.tick_period_s > 0 && std::isfinite(axis.last_turns)
+                              ? (turns - axis.last_turns) / config_.tick_period_s
+                              : 0.0;
+    axis.last_turns = turns;
+    if (!out.push(od::encode_set_input_pos(axis.node, static_cast<float>(turns), vel_ff))) continue;
     if (config_.readback == OdriveReadback::rtr) axis.estimate_asked = out.push(od::encode_get_encoder_estimates(axis.node));
   }
 }

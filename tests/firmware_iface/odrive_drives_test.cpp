@@ -409,5 +409,25 @@ TEST(OdriveDrives, ConfigIsChecked) {
   EXPECT_THROW(make([](OdriveDrivesConfig& c) { c.heartbeat_budget_ticks = 0; }), std::invalid_argument);
 }
 
+TEST(OdriveDrives, WithTheTickKnownEachSetInputPosCarriesTheMotionsVelocity) {
+  OdriveDrivesConfig config;
+  config.tick_period_s = std::chrono::duration<double>(kOdriveTick).count();
+  OdriveBench b({{1, 0.0}}, config);
+  ASSERT_EQ(b.drives->start(*b.bus), Status::ok) << b.drives->start_problem();
+  // From 0 to 36° (0.1 turn) in one tick: 10 turns/s; then holding: 0.
+  std::vector<od::InputPos> sent;
+  for (double degrees : {36.0, 36.0}) {
+    b.frame[0] = degrees;
+    const std::size_t from = b.bus->sent.size();
+    ASSERT_EQ(b.tick(), Status::ok);
+    for (const CanFrame& f : b.sent_to(1, from))
+      if (od::InputPos p; od::decode_set_input_pos(f, &p)) sent.push_back(p);
+  }
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_NEAR(sent[0].position, 0.1, 1e-6);
+  EXPECT_NEAR(sent[0].vel_ff, 10.0, 1e-3);
+  EXPECT_NEAR(sent[1].vel_ff, 0.0, 1e-3);
+}
+
 }  // namespace
 }  // namespace avar::firmware_iface

@@ -61,6 +61,7 @@ const CanDriveProtocol& odrive_drive() {
          const CanBusOptions& bus) -> std::unique_ptr<firmware_iface::CanDrives> {
         firmware_iface::OdriveDrivesConfig config;
         config.heartbeat_budget_ticks = bus.silent_ticks;
+        config.tick_period_s = 1.0 / rig.rate_hz;
         for (const rig::ActuatorSpec* a : actuators) {
           firmware_iface::OdriveActuator o;
           o.channel = a->channel.value;

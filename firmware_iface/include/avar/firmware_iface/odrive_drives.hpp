@@ -19,6 +19,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,10 @@ struct OdriveDrivesConfig {
   std::uint32_t heartbeat_budget_ticks = 30;
   /// start() and read_positions(): longest wait for an encoder estimate (transport clock).
   std::chrono::milliseconds reply_timeout{100};
+  /// The control loop's tick (s). When set, every Set Input Pos carries the velocity of the
+  /// commanded motion as its feed-forward ((this command - the last) / tick), so that the axis's
+  /// own position loop does not lag a moving curve; 0: no feed-forward.
+  double tick_period_s = 0;
   /// start(): longest wait for a heartbeat showing CLOSED_LOOP_CONTROL after the request
   /// (entering closed loop may take a while on some setups).
   std::chrono::milliseconds closed_loop_timeout{2000};
@@ -91,6 +96,7 @@ class OdriveDrives final : public CanDrives {
     bool estimate_asked = false;        ///< this tick
     bool estimate_taken = false;        ///< this tick
     std::uint32_t estimate_misses = 0;  ///< ticks in a row whose estimate did not come
+    double last_turns = std::numeric_limits<double>::quiet_NaN();  ///< last commanded position
   };
   static constexpr int kNoAxis = -1;
 
