@@ -177,9 +177,8 @@ void OdriveDrives::encode_tick(std::span<const double> frame, CanOutbox& out) no
       continue;
     }
     const double turns = table().to_device(i, frame);
-    const double vel_ff = config_.tick_period_s > 0 && std::isfinite(axis.last_turns)
-                              ? (turns - axis.last_turns) / config_.tick_period_s
-                              : 0.0;
+    const double vel_ff =
+        config_.tick_period_s > 0 && std::isfinite(axis.last_turns) ? (turns - axis.last_turns) / config_.tick_period_s : 0.0;
     axis.last_turns = turns;
     if (!out.push(od::encode_set_input_pos(axis.node, static_cast<float>(turns), vel_ff))) continue;
     if (config_.readback == OdriveReadback::rtr) axis.estimate_asked = out.push(od::encode_get_encoder_estimates(axis.node));

@@ -2,7 +2,7 @@
 #include "avar/assembly/simulated_can_bus.hpp"
 
 #include <cmath>
-#include <map>
+#include <cstdio>
 #include <numbers>
 
 #include "avar/assembly/can_drive.hpp"

@@ -93,9 +93,9 @@ class OdriveDrives final : public CanDrives {
     bool heartbeat_seen = false;       ///< ever, since start
     bool heartbeat_this_tick = false;
     std::uint32_t silent_ticks = 0;
-    bool estimate_asked = false;        ///< this tick
-    bool estimate_taken = false;        ///< this tick
-    std::uint32_t estimate_misses = 0;  ///< ticks in a row whose estimate did not come
+    bool estimate_asked = false;                                   ///< this tick
+    bool estimate_taken = false;                                   ///< this tick
+    std::uint32_t estimate_misses = 0;                             ///< ticks in a row whose estimate did not come
     double last_turns = std::numeric_limits<double>::quiet_NaN();  ///< last commanded position
   };
   static constexpr int kNoAxis = -1;
