@@ -116,7 +116,7 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
   std::vector<std::size_t> counted_links;
   for (std::size_t l = 0; l < rig.links.size(); ++l)
     if (figure.reports_telemetry(l)) counted_links.push_back(l);
-  csv << "seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us";
+  csv << "seconds,phase,wake_late_us,sample_us,ik_us,mix_us,limit_us,send_us";
   for (std::size_t i = 0; i < rig.channels.size(); ++i) {
     const std::string& c = rig.channels[i].name;
     csv << ',' << c << ".target," << c << ".command," << c << ".measured";

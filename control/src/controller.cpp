@@ -31,6 +31,7 @@ const char* to_string(Stage s) noexcept {
   switch (s) {
     case Stage::sample: return "sample";
     case Stage::ik: return "ik";
+    case Stage::mix: return "mix";
     case Stage::limit: return "limit";
     case Stage::send: return "send";
   }
@@ -256,6 +257,8 @@ void Controller::tick(double now_s) noexcept {
   lap(Stage::sample, mark);
   if (sampled_show && ik_) (void)ik_->apply(show_time_, target_);  // tallied in IkStage::stats
   lap(Stage::ik, mark);
+  if (sampled_show && options_.live) options_.live->apply(now_s, target_);
+  lap(Stage::mix, mark);
 
   if (limiter_.apply(target_, commanded_) != Status::ok) {
     std::size_t bad = 0;

@@ -24,6 +24,7 @@
 
 #include "avar/control/ik_stage.hpp"
 #include "avar/control/limiter.hpp"
+#include "avar/control/live_layer.hpp"
 #include "avar/control/plant.hpp"
 #include "avar/control/ramp.hpp"
 #include "avar/control/supervisor.hpp"
@@ -36,8 +37,8 @@
 namespace avar::control {
 
 /// The stages of a tick whose cost is measured.
-enum class Stage { sample, ik, limit, send };
-inline constexpr std::size_t kStageCount = 4;
+enum class Stage { sample, ik, mix, limit, send };
+inline constexpr std::size_t kStageCount = 5;
 const char* to_string(Stage s) noexcept;
 
 /// Cost of one stage: the last tick's and the worst so far, in nanoseconds.
@@ -62,6 +63,9 @@ struct ControllerOptions {
   /// Positions measured apart from the links (the simulator's ground truth, external encoders),
   /// read at the start of every tick; borrowed, must outlive the controller. nullptr: none.
   const PositionSource* positions = nullptr;
+  /// Live inputs mixed over the show while it runs (after inverse kinematics, before the
+  /// limiter); borrowed, must outlive the controller, called on the loop thread. nullptr: none.
+  LiveLayer* live = nullptr;
 };
 
 class Controller {

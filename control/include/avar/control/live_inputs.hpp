@@ -1,0 +1,99 @@
+#pragma once
+// Live puppeteering: named controls (from input devices, through a ControlMailbox) mapped onto
+// channels and mixed over the show (ControlMixer). Each mapping is one mixer layer:
+//  - absolute: the shaped control spans an output range of the channel (its limits unless
+//    stated): bipolar -1..1 -> low..high with 0 at the middle, unipolar 0..1 -> low..high;
+//  - relative: the shaped control is a speed (rate, channel units/s, at full deflection) that
+//    moves the channel from where it was when the control took it, within the channel's limits.
+// A mapping with a `hold` control is active only while that control reads 0.5 or more (a
+// dead-man button). Besides the mappings, every channel has a direct control `channel/NAME`
+// (OSC's /avar/channel/NAME), in channel units, above every mapping.
+//
+// Construction allocates; apply() is real-time safe (the mixer's, the shaping's and the
+// mailbox's reads only). One loop thread calls apply(); input threads post to sink().
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "avar/control/control_mailbox.hpp"
+#include "avar/control/control_mixer.hpp"
+#include "avar/control/control_shape.hpp"
+#include "avar/control/live_layer.hpp"
+
+namespace avar::control {
+
+enum class MappingMode { absolute, relative };
+
+struct ControlMapping {
+  std::string control;      ///< as input devices name it: "x", "ch1.cc7", "jaw"
+  std::size_t channel = 0;  ///< index into the frame
+  MappingMode mode = MappingMode::absolute;
+  ControlShape shape;
+  double low = 0, high = 1;  ///< absolute: the output range, channel units
+  double rate = 0;           ///< relative: channel units/s at full deflection
+  std::string hold;          ///< a control that must read >= 0.5 for the mapping to act; empty: none
+  int priority = 10;
+  Blend blend = Blend::override;
+  double crossfade_s = 0.3;
+  double timeout_s = 0;  ///< release after this long without a message (or, relative, deflection); 0 = never
+};
+
+/// A channel's name and limits, as the mappings need them.
+struct LiveChannel {
+  std::string name;
+  double min = 0, max = 1;
+};
+
+/// The direct channel controls' layer: above mappings, a short crossfade, released after 2 s of
+/// silence.
+inline constexpr int kDirectPriority = 1000;
+inline constexpr double kDirectCrossfadeS = 0.2;
+inline constexpr double kDirectTimeoutS = 2.0;
+
+class LiveInputs final : public LiveLayer {
+ public:
+  /// std::invalid_argument for a mapping whose channel is out of range.
+  LiveInputs(std::vector<LiveChannel> channels, std::vector<ControlMapping> mappings);
+
+  /// Where input devices post (borrowed by them; lives as long as this object).
+  ControlMailbox& sink() noexcept { return mailbox_; }
+  const ControlMailbox& mailbox() const noexcept { return mailbox_; }
+
+  void apply(double now_s, std::span<double> frame) noexcept override;
+
+  /// Every control's latest raw value as the last apply() read it (NaN: never moved), indexed
+  /// as mailbox(); for traces. Loop thread.
+  std::span<const double> control_values() const noexcept { return values_; }
+  const ControlMixer& mixer() const noexcept { return mixer_; }
+  const std::vector<ControlMapping>& mappings() const noexcept { return mappings_; }
+  /// The newest arrival time (CLOCK_MONOTONIC ns) among the messages the last apply() took
+  /// for the first time; 0 when it took none. For latency measurement.
+  std::int64_t newest_taken_ns() const noexcept { return newest_taken_ns_; }
+
+ private:
+  struct MappingState {
+    std::size_t slot = 0;
+    std::size_t hold_slot = 0;  ///< == mailbox size when none
+    std::uint64_t seen = 0;
+    double smoothed = 0;
+    double position = 0;  ///< relative: where the channel is driven to
+    bool started = false;
+  };
+  std::vector<LiveChannel> channels_;
+  std::vector<ControlMapping> mappings_;
+  ControlMailbox mailbox_;
+  ControlMixer mixer_;
+  std::vector<MappingState> state_;
+  std::vector<std::size_t> direct_slot_;  ///< per channel
+  std::vector<std::uint64_t> direct_seen_;
+  std::vector<double> values_;
+  std::vector<double> last_out_;  ///< the frame the last apply() produced
+  double last_now_ = 0;
+  bool applied_ = false;
+  std::int64_t newest_taken_ns_ = 0;
+};
+
+}  // namespace avar::control
