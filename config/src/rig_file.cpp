@@ -248,7 +248,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
 rig::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics"}, "the rig file");
+  // `inputs:` is read by load_input_map (input_map.hpp).
+  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "inputs"}, "the rig file");
 
   Rig rig;
   rig.file = path;

@@ -5,13 +5,7 @@
 #include <stdexcept>
 
 namespace avar::control {
-namespace {
-
-double smoothstep(double x) noexcept { return x * x * (3.0 - 2.0 * x); }
-
-}  // namespace
-
-const char* to_string(Blend b) noexcept { return b == Blend::additive ? "additive" : "override"; }
+using playback::smoothstep;
 
 ControlMixer::ControlMixer(std::size_t channels, std::vector<MixerLayer> layers)
     : layers_(std::move(layers)), order_(layers_.size()), state_(layers_.size()), channels_(channels) {
@@ -64,9 +58,7 @@ void ControlMixer::mix(std::span<double> frame, double now_s) noexcept {
       s.ramp = goal > s.ramp ? std::min(goal, s.ramp + step) : std::max(goal, s.ramp - step);
     }
     if (s.ramp <= 0 || l.channel >= frame.size()) continue;
-    const double w = smoothstep(s.ramp);
-    double& v = frame[l.channel];
-    v = l.blend == Blend::override ? v + w * (s.value - v) : v + w * s.value;
+    frame[l.channel] = playback::apply_blend(l.blend, frame[l.channel], s.value, smoothstep(s.ramp));
   }
 }
 

@@ -13,14 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "avar/playback/runtime/timeline.hpp"
+
 namespace avar::control {
 
-enum class Blend {
-  override,  ///< replaces what is below, weighted
-  additive,  ///< adds its value (an offset in channel units), weighted
-};
-
-const char* to_string(Blend b) noexcept;
+// Blending is the timeline's own (playback::Blend, apply_blend): a live layer composes like a
+// show's layer of clips.
+using playback::Blend;
 
 struct MixerLayer {
   std::string name;
