@@ -82,7 +82,7 @@ TEST(InputMap, LiveChannelsKeepInsideTheSoftMargins) {
 TEST(InputMap, RefusesEveryBadFieldWithItsLocation) {
   using testing::replace;
   EXPECT_NE(input_map_error("devices: []\n").find(":1:1: expected an inputs: section"), std::string::npos);
-  EXPECT_NE(input_map_error(replace(kInputs, "channel: jaw", "channel: nose")).find(":5:35: unknown channel 'nose'"),
+  EXPECT_NE(input_map_error(replace(kInputs, "channel: jaw", "channel: nose")).find(":4:35: unknown channel 'nose'"),
             std::string::npos)
       << input_map_error(replace(kInputs, "channel: jaw", "channel: nose"));
   EXPECT_NE(
