@@ -7,11 +7,76 @@
 #include "avar/check_command.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/fit_command.hpp"
+#include "avar/inputs_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
 
 namespace avar::app {
+
+namespace {
+
+/// The options play, puppet and record share, and their parsed values.
+struct RunCli {
+  PlayOptions options;
+  double rate = 0;
+  std::uint64_t loops = 0;
+  double duration = 0;
+  std::string port, trace, plot, record_out;
+  bool realtime_flag = false, no_progress = false, no_lock = false;
+  CLI::Option *port_opt = nullptr, *rate_opt = nullptr, *loops_opt = nullptr, *trace_opt = nullptr, *plot_opt = nullptr,
+              *duration_opt = nullptr;
+
+  PlayOptions& finish() {
+    if (port_opt && *port_opt) options.port = port;
+    if (*rate_opt) options.rate_hz = rate;
+    if (loops_opt && *loops_opt) options.loops = loops;
+    if (*trace_opt) options.trace_path = trace;
+    if (*plot_opt) options.plot_path = plot;
+    if (duration_opt && *duration_opt) options.duration_s = duration;
+    options.progress = !no_progress;
+    options.realtime.lock_memory = !no_lock;
+    return options;
+  }
+};
+
+void declare_run_options(CLI::App* cmd, RunCli& r, bool plays_show) {
+  PlayOptions& o = r.options;
+  cmd->add_option("--rig", o.rig_path, "Rig file (YAML: links, channels, actuators, optional inputs:)")->required();
+  r.port_opt = cmd->add_option("--port", r.port, "Serial port for the rig's link, e.g. /dev/ttyACM0 (overrides the rig)");
+  CLI::Option* sim_opt = cmd->add_flag("--sim", o.simulate, "Simulate every link, whatever ports the rig names");
+  r.port_opt->excludes(sim_opt);
+  r.rate_opt = cmd->add_option("--rate", r.rate, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)")
+                   ->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--input", o.inputs,
+                  "Live input device, repeatable: osc://HOST:PORT (UDP, default host 127.0.0.1), midi:NAME (a MIDI port "
+                  "whose name contains NAME, or its number), hid:VID:PID[:SERIAL] (hex ids); NAME=URI prefixes its controls "
+                  "with NAME.");
+  cmd->add_option("--inputs", o.inputs_path, "Inputs file (YAML with an inputs: section; default: the rig's own inputs:)");
+  if (plays_show) {
+    CLI::Option* rt_opt = cmd->add_flag("--realtime", r.realtime_flag, "Run on the wall clock (the default)");
+    CLI::Option* fast_opt =
+        cmd->add_flag("--fast", o.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
+    rt_opt->excludes(fast_opt);
+    r.loops_opt = cmd->add_option("--loops", r.loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
+  } else {
+    r.duration_opt =
+        cmd->add_option("--duration", r.duration, "Without a show: stop after this many seconds (default: at Ctrl-C)")
+            ->check(CLI::PositiveNumber);
+  }
+  r.trace_opt = cmd->add_option("--trace", r.trace, "Write every tick to this CSV file (live controls as input.NAME columns)");
+  r.plot_opt = cmd->add_option("--plot", r.plot, "Write an SVG plot of commanded vs simulated position per channel");
+  cmd->add_flag("--no-progress", r.no_progress, "Do not draw the progress line");
+  cmd->add_option("--priority", o.realtime.priority,
+                  "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
+      ->check(CLI::Range(0, 99));
+  cmd->add_option("--cpu", o.realtime.cpu, "Pin the loop thread to this CPU (default: any)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--deadline-budget", o.deadline_miss_budget,
+                  "Deadline misses allowed in one run before it faults (default: unlimited)");
+  cmd->add_flag("--no-lock-memory", r.no_lock, "Do not lock the process's memory against paging");
+}
+
+}  // namespace
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{"avar: play keyframed shows on animatronic figures, real or simulated"};
@@ -36,37 +101,45 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
   app.require_subcommand(1);
 
-  PlayOptions play;
-  double rate = 0;
-  std::uint64_t loops = 0;
-  std::string port, trace, plot;
-  bool realtime_flag = false;
-  bool no_progress = false;
+  RunCli play, puppet, record;
   CLI::App* play_cmd = app.add_subcommand("play", "Play a show on a rig: ease in from the present pose, play, ease out to rest");
-  play_cmd->add_option("show", play.show_path, "Show file (YAML: duration, loop, tracks of keys)")->required();
-  play_cmd->add_option("--rig", play.rig_path, "Rig file (YAML: links, channels, actuators)")->required();
-  CLI::Option* port_opt = play_cmd->add_option("--port", port, "Serial port for the rig's link, e.g. /dev/ttyACM0 (overrides the rig)");
-  CLI::Option* sim_opt = play_cmd->add_flag("--sim", play.simulate, "Simulate every link, whatever ports the rig names");
-  port_opt->excludes(sim_opt);
-  CLI::Option* rate_opt =
-      play_cmd->add_option("--rate", rate, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)")->check(CLI::Range(1.0, 1000.0));
-  CLI::Option* rt_opt = play_cmd->add_flag("--realtime", realtime_flag, "Run on the wall clock (the default)");
-  CLI::Option* fast_opt =
-      play_cmd->add_flag("--fast", play.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
-  rt_opt->excludes(fast_opt);
-  CLI::Option* loops_opt =
-      play_cmd->add_option("--loops", loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
-  CLI::Option* trace_opt = play_cmd->add_option("--trace", trace, "Write every tick to this CSV file");
-  CLI::Option* plot_opt = play_cmd->add_option("--plot", plot, "Write an SVG plot of commanded vs simulated position per channel");
-  play_cmd->add_flag("--no-progress", no_progress, "Do not draw the progress line");
-  play_cmd->add_option("--priority", play.realtime.priority,
-                       "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
-      ->check(CLI::Range(0, 99));
-  play_cmd->add_option("--cpu", play.realtime.cpu, "Pin the loop thread to this CPU (default: any)")->check(CLI::NonNegativeNumber);
-  play_cmd->add_option("--deadline-budget", play.deadline_miss_budget,
-                       "Deadline misses allowed in one run before it faults (default: unlimited)");
-  bool no_lock = false;
-  play_cmd->add_flag("--no-lock-memory", no_lock, "Do not lock the process's memory against paging");
+  play_cmd->add_option("show", play.options.show_path, "Show file (YAML: duration, loop, tracks of keys)")->required();
+  declare_run_options(play_cmd, play, true);
+  play_cmd->footer(
+      "Live inputs (--input, repeatable) mix over the show through the rig's inputs: mappings; the\n"
+      "limiter and supervisor still hold every channel to its limits. Examples:\n"
+      "  avar play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --fast --plot head.svg\n"
+      "  avar play SHOW --rig RIG --input osc://127.0.0.1:9000 --input pad=hid:054c:09cc --trace run.csv");
+
+  CLI::App* puppet_cmd =
+      app.add_subcommand("puppet", "Drive a figure live from input devices, with no show (Ctrl-C eases to rest)");
+  declare_run_options(puppet_cmd, puppet, false);
+  puppet_cmd->footer(
+      "Every channel holds its rest pose until a control mapped to it (the inputs: section of the rig\n"
+      "or of --inputs FILE) moves it. Without --input the devices listed in that section open.\n"
+      "OSC: /avar/control/NAME f V sets a control, /avar/channel/NAME f V a channel in its units.\n"
+      "Examples:\n"
+      "  avar puppet --rig examples/rigs/puppet-head.yaml --sim --input osc://127.0.0.1:9000\n"
+      "      then: oscsend localhost 9000 /avar/channel/jaw f 20\n"
+      "  avar puppet --rig RIG --inputs my-pad.yaml --input pad=hid:054c:09cc");
+
+  CLI::App* record_cmd = app.add_subcommand(
+      "record", "Record a live performance (the channels after mixing, every tick) as a show of editable keys");
+  record_cmd->add_option("--show", record.options.show_path, "Perform over this show (default: no show, live only)");
+  record_cmd->add_option("--out", record.record_out, "Show file to write the take to (YAML)")->required();
+  record_cmd
+      ->add_option("--tolerance", record.options.record_tolerance,
+                   "Largest difference of the keys from every recorded tick, channel units (default 0.25)")
+      ->check(CLI::PositiveNumber);
+  record_cmd->add_flag("--merge", record.options.record_merge,
+                       "Write a copy of --show with the take as a clip on a layer of its own ('take') over it");
+  declare_run_options(record_cmd, record, false);
+  record_cmd->footer(
+      "The take holds the channels a live control moved, as commanded (after mixing and limits), fitted\n"
+      "with few Bezier keys within --tolerance. Ctrl-C (or --duration, or the show's end) ends the take\n"
+      "and keeps it. Examples:\n"
+      "  avar record --rig RIG --sim --input osc://127.0.0.1:9000 --duration 20 --out take.yaml\n"
+      "  avar record --rig RIG --show SHOW --merge --input midi:nano --out show-with-take.yaml");
 
   std::string check_show, check_rig;
   CLI::App* check_cmd = app.add_subcommand("check", "Validate a show against a rig and report every problem, moving nothing");
@@ -80,6 +153,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
+
+  InputsOptions inputs;
+  const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
@@ -137,16 +213,18 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return kExitBadInput;
   }
 
-  if (*play_cmd) {
-    if (*port_opt) play.port = port;
-    if (*rate_opt) play.rate_hz = rate;
-    if (*loops_opt) play.loops = loops;
-    if (*trace_opt) play.trace_path = trace;
-    if (*plot_opt) play.plot_path = plot;
-    play.progress = !no_progress;
-    play.realtime.lock_memory = !no_lock;
-    return run_play(play, out, err);
+  if (*play_cmd) return run_play(play.finish(), out, err);
+  if (*puppet_cmd) {
+    puppet.options.live_only = true;
+    return run_play(puppet.finish(), out, err);
   }
+  if (*record_cmd) {
+    record.options.live_only = record.options.show_path.empty();
+    record.options.record_path = record.record_out;
+    return run_play(record.finish(), out, err);
+  }
+  if (*inputs_cmds.monitor) return run_inputs_monitor(inputs, out, err);
+  if (*inputs_cmds.learn) return run_inputs_learn(inputs, out, err);
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);

@@ -16,7 +16,7 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/playback/offline/curve_fit.hpp"
+#include "avar/fitted_track.hpp"
 #include "avar/playback/offline/smoothing.hpp"
 
 namespace avar::app {
@@ -130,13 +130,6 @@ double even_sample_rate(const Recording& r, const std::string& path) {
   return 1 / step;
 }
 
-double max_error(const playback::Curve& curve, const std::vector<double>& t, const std::vector<double>& v) {
-  double worst = 0;
-  playback::CurveCursor cursor;
-  for (std::size_t i = 0; i < t.size(); ++i) worst = std::max(worst, std::abs(curve.evaluate(t[i], cursor) - v[i]));
-  return worst;
-}
-
 }  // namespace
 
 CLI::App* add_fit_subcommand(CLI::App& app, FitOptions& o) {
@@ -191,27 +184,18 @@ int run_fit(const FitOptions& options, std::ostream& out, std::ostream& err) {
       targets.push_back(*method == playback::SmoothingMethod::none
                             ? recording.values[c]
                             : playback::smooth(recording.values[c], *method, rate, *options.cutoff_hz));
-      playback::CurveFitOptions fit_options;
-      // A hair inside the tolerance, so that the written decimal numbers cannot push a sample over.
-      fit_options.tolerance = options.tolerance * (1 - 1e-9);
-      fit_options.corner_angle_deg = options.corner_angle_deg;
-      const SourceLocation where{options.csv_path, 1, 1};
-      playback::Track track;
-      track.channel = recording.channels[c];
-      track.where = where;
-      track.raw = playback::fit_curve(recording.times, targets.back(), fit_options, where).curve;
-      track.curve = playback::Curve::build(track.raw);
-      show.tracks.push_back(std::move(track));
+      show.tracks.push_back(fit_track(recording.channels[c], recording.times, targets.back(), options.tolerance,
+                                      options.corner_angle_deg, {options.csv_path, 1, 1}));
     }
     config::write_show_file(options.out_path, show, "written by avar fit");
     const playback::Show written = config::load_show_file(options.out_path);
     for (std::size_t c = 0; c < written.tracks.size(); ++c) {
       const auto& track = written.tracks[c];
-      out << track.channel << ": " << recording.times.size() << " samples in, " << track.curve.key_count() << " keys out, max error "
-          << format_number(max_error(track.curve, recording.times, targets[c]));
+      out << track.channel << ": " << recording.times.size() << " samples in, " << track.curve.key_count()
+          << " keys out, max error " << format_number(max_fit_error(track.curve, recording.times, targets[c]));
       if (*method != playback::SmoothingMethod::none)
-        out << " against the smoothed samples, " << format_number(max_error(track.curve, recording.times, recording.values[c]))
-            << " against the input";
+        out << " against the smoothed samples, "
+            << format_number(max_fit_error(track.curve, recording.times, recording.values[c])) << " against the input";
       out << " (tolerance " << format_number(options.tolerance) << ")\n";
     }
     out << "wrote " << options.out_path << " (" << written.tracks.size() << " tracks, " << format_number(written.duration) << " s)\n";

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -18,7 +19,11 @@
 #include "avar/assembly/figure_links.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
+#include "avar/fitted_track.hpp"
+#include "avar/live_session.hpp"
 #include "avar/play_recorder.hpp"
+#include "avar/config/input_map.hpp"
+#include "avar/config/show_writer.hpp"
 #include "avar/svg_plot.hpp"
 #include "avar/core/format.hpp"
 
@@ -28,12 +33,27 @@ namespace {
 struct Loaded {
   rig::Rig rig;
   playback::Show show;
+  config::InputMap inputs;
 };
 
-/// Loads and validates both files whole. Prints every problem; returns nullopt on any error.
-std::optional<Loaded> load_and_check(const std::string& show_path, const std::string& rig_path, std::ostream& err) {
+/// What `avar puppet` plays: no tracks (every channel holds its rest pose under the live
+/// layers), for `duration` seconds or until stopped.
+playback::Show live_show(std::optional<double> duration) {
+  playback::Show show;
+  show.name = "live";
+  show.duration = duration.value_or(std::numeric_limits<double>::infinity());
+  return show;
+}
+
+/// Loads and validates the files whole (rig, show, inputs). Prints every problem; returns
+/// nullopt on any error.
+std::optional<Loaded> load_and_check(const PlayOptions& o, std::ostream& err) {
   try {
-    Loaded loaded{config::load_rig_file(rig_path), config::load_show_file(show_path)};
+    Loaded loaded{
+        config::load_rig_file(o.rig_path), o.live_only ? live_show(o.duration_s) : config::load_show_file(o.show_path), {}};
+    loaded.inputs = o.inputs_path ? config::load_input_map(loaded.rig, *o.inputs_path, true)
+                                  : config::load_input_map(loaded.rig, o.rig_path, false);
+    if (o.live_only) return loaded;
     const config::ShowCheck check = config::check_show_against_rig(loaded.show, loaded.rig);
     for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';
     for (const auto& e : check.errors) err << "error: " << e.to_string() << '\n';
@@ -47,10 +67,11 @@ std::optional<Loaded> load_and_check(const std::string& show_path, const std::st
 
 void print_summary(std::ostream& out, const Loaded& loaded, const assembly::FigureLinks& figure,
                    const control::Controller& controller, const PlayRecorder& recorder, const control::RunResult& run,
-                   bool realtime, double rate_hz) {
+                   bool realtime, double rate_hz, const LiveSession* live) {
   const rig::Rig& rig = loaded.rig;
   out << "\nplayed '" << loaded.show.name << "' on rig '" << rig.name << "' at " << rate_hz << " Hz, "
       << (realtime ? "real time" : "simulated time") << '\n';
+  if (live) live->describe(out);
   for (std::size_t i = 0; i < rig.links.size(); ++i) {
     out << "  link " << rig.links[i].name << ": " << figure.describe(i) << '\n';
     // Smart buses answer: report the health of the wire.
@@ -106,7 +127,8 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
   }
 }
 
-void write_trace(const std::string& path, const rig::Rig& rig, const assembly::FigureLinks& figure, const PlayRecorder& r) {
+void write_trace(const std::string& path, const rig::Rig& rig, const assembly::FigureLinks& figure, const PlayRecorder& r,
+                 const LiveSession* live) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
   // Channels on smart buses also get what their devices report; smart buses, their wire counters.
@@ -127,6 +149,9 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
     csv << ',' << name << ".replies," << name << ".crc_errors," << name << ".framing_errors," << name << ".timeouts," << name
         << ".retries," << name << ".reconnects";
   }
+  // Live controls: each one's raw value as the tick read it (empty before it first moved).
+  const std::size_t controls = live ? live->inputs().mailbox().size() : 0;
+  for (std::size_t k = 0; k < controls; ++k) csv << ",input." << live->inputs().mailbox().name(k);
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();
   for (std::size_t k = 0; k < r.seconds().size(); ++k) {
@@ -153,6 +178,10 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
       csv << ',' << w.replies << ',' << w.crc_errors << ',' << w.framing_errors << ',' << w.timeouts << ',' << w.retries << ','
           << w.reconnects;
     }
+    for (std::size_t j = 0; j < controls; ++j) {
+      csv << ',';
+      if (const double v = r.controls()[k * controls + j]; !std::isnan(v)) csv << v;
+    }
     csv << '\n';
   }
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
@@ -177,12 +206,85 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
   write_svg_plot_file(path, data);
 }
 
+/// The take of a recording run: every channel a live control touched, as the ticks of the
+/// running phase commanded it (after mixing and limits), fitted with keys within the
+/// tolerance; alone, or (--merge) as a clip on a layer of its own over a copy of the show.
+int write_take(const PlayOptions& options, const Loaded& loaded, const control::Controller& controller, const PlayRecorder& r,
+               const control::LiveInputs& live, std::ostream& out, std::ostream& err) {
+  const std::size_t n = loaded.rig.channels.size();
+  const double start = controller.show_start_time();
+  std::vector<double> times;
+  std::vector<std::vector<double>> values(n);
+  for (std::size_t k = 0; k < r.seconds().size(); ++k) {
+    if (r.phase_per_tick()[k] != control::Phase::running) continue;
+    times.push_back(r.seconds()[k] - start);
+    for (std::size_t c = 0; c < n; ++c) values[c].push_back(r.commands()[k * n + c]);
+  }
+  std::vector<std::size_t> performed;
+  for (std::size_t c = 0; c < n; ++c)
+    if (live.touched()[c]) performed.push_back(c);
+  if (times.size() < 2 || !(times.back() > 0) || performed.empty()) {
+    err << "error: nothing to keep: "
+        << (times.size() < 2 ? "the take ended before the figure ran" : "no control moved a channel") << "; "
+        << *options.record_path << " not written\n";
+    return kExitBadInput;
+  }
+  const double duration = times.back();
+  const SourceLocation where{*options.record_path, 1, 1};
+  std::vector<playback::Track> tracks;
+  for (const std::size_t c : performed)
+    tracks.push_back(fit_track(loaded.rig.channels[c].name, times, values[c], options.record_tolerance, 60, where));
+
+  playback::Show take;
+  if (options.record_merge) {
+    take = loaded.show;
+    playback::Clip clip{"take", duration, playback::ClipMode::hold, std::move(tracks), where};
+    take.clips.push_back(std::move(clip));
+    playback::Placement placed;
+    placed.clip = take.clips.size() - 1;
+    placed.end = std::min(duration, take.duration);
+    placed.where = where;
+    take.layers.push_back({"take", playback::Blend::override, 1.0, {}, {placed}, where});
+  } else {
+    take.name = std::filesystem::path(*options.record_path).stem().string();
+    take.duration = duration;
+    take.tracks = std::move(tracks);
+  }
+  config::write_show_file(*options.record_path, take, "recorded by avar record on rig '" + loaded.rig.name + "'");
+  // Read back what was written: the keys that will play, checked against every tick of the take.
+  const playback::Show written = config::load_show_file(*options.record_path);
+  const std::vector<playback::Track>& kept = options.record_merge ? written.clips.back().tracks : written.tracks;
+  out << "take: " << format_number(duration) << " s, " << times.size() << " ticks\n";
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    out << "  " << kept[i].channel << ": " << kept[i].curve.key_count() << " keys, max error "
+        << format_number(max_fit_error(kept[i].curve, times, values[performed[i]])) << " (tolerance "
+        << format_number(options.record_tolerance) << ")\n";
+  out << "wrote " << *options.record_path << (options.record_merge ? " (the show with the take on layer 'take')" : "") << '\n';
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
-  std::optional<Loaded> loaded = load_and_check(options.show_path, options.rig_path, err);
+  std::optional<Loaded> loaded = load_and_check(options, err);
   if (!loaded) return kExitBadInput;
   const rig::Rig& rig = loaded->rig;
+  const bool performs = options.live_only || options.record_path;
+  std::vector<std::string> uris = options.inputs;
+  if (uris.empty() && performs) uris = loaded->inputs.devices;
+  if (performs && uris.empty()) {
+    err << "error: no input device: give --input (osc://127.0.0.1:9000, midi:NAME, hid:VID:PID) or list devices: in the inputs: "
+           "section\n";
+    return kExitBadInput;
+  }
+  if (options.record_merge && options.live_only) {
+    err << "error: --merge puts the take on a layer over a show; give --show SHOW\n";
+    return kExitBadInput;
+  }
+  if (!uris.empty() && options.fast) {
+    err << "error: live inputs need the wall clock; drop --fast\n";
+    return kExitBadInput;
+  }
 
   const double rate = options.rate_hz.value_or(rig.rate_hz);
   if (!(rate >= 1 && rate <= 1000)) {
@@ -207,6 +309,17 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
+  // The input devices open before anything moves: a missing one stops the run here.
+  std::unique_ptr<LiveSession> live;
+  if (!uris.empty()) {
+    try {
+      live = std::make_unique<LiveSession>(rig, loaded->inputs, uris);
+    } catch (const std::exception& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitBadInput;
+    }
+  }
+
   const std::vector<firmware_iface::ActuatorLink*> links = figure->links();
   for (firmware_iface::ActuatorLink* link : links) {
     if (const Status s = link->start(); s != Status::ok) {
@@ -228,34 +341,49 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   if (options.fast) controller_options.stage_clock = nullptr;
   if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
   controller_options.positions = figure.get();  // the simulator's ground truth, for simulated links
+  if (live) controller_options.live = &live->inputs();
   control::Controller controller(rig, loaded->show, links, controller_options);
   controller.begin(0.0, start_pose);
 
-  const bool keep = options.trace_path || options.plot_path;
+  const bool keep = options.trace_path || options.plot_path || options.record_path;
   const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(controller_options.loops, 1)) : 1.0;
-  const auto expected_ticks = static_cast<std::size_t>((passes * loaded->show.duration + 10.0) * rate);
+  // A live run without an end reserves a minute; longer ones grow as they go.
+  const double planned_s = std::isfinite(loaded->show.duration) ? passes * loaded->show.duration : 60.0;
+  const auto expected_ticks = static_cast<std::size_t>((planned_s + 10.0) * rate);
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
   PlayRecorder recorder(*figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
                         ::isatty(STDERR_FILENO) == 1, &err);
+  if (live) recorder.watch(&live->inputs());
 
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
-  err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
-      << ") on '" << rig.name << "'" << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "")
-      << std::endl;
+  if (options.live_only)
+    err << "live on '" << rig.name << "'"
+        << (std::isfinite(loaded->show.duration) ? " for " + format_number(loaded->show.duration) + " s" : std::string())
+        << (options.record_path ? ", recording" : "") << "; Ctrl-C " << (options.record_path ? "ends the take and " : "")
+        << "eases to rest, twice releases; Ctrl-\\ is an e-stop" << std::endl;
+  else
+    err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
+        << ") on '" << rig.name << "'" << (options.record_path ? ", recording" : "")
+        << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "") << std::endl;
   control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
   run_options.deadline_miss_budget = options.deadline_miss_budget;
   run_options.estop = &interrupts.estop();
   run_options.plant = figure.get();
   const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
   recorder.finish();
+  if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
-  print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate);
+  print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate, live.get());
   try {
+    if (options.record_path) {
+      if (const int code = write_take(options, *loaded, controller, recorder, live->inputs(), out, err); code != kExitOk)
+        return code;
+    }
     if (options.trace_path) {
-      write_trace(*options.trace_path, rig, *figure, recorder);
+      write_trace(*options.trace_path, rig, *figure, recorder, live.get());
       out << "trace: " << *options.trace_path << '\n';
     }
     if (options.plot_path) {
@@ -291,7 +419,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   }
   if (run.interrupted) {
     err << "stopped: eased to rest after an interrupt\n";
-    return kExitInterrupted;
+    // Ctrl-C is how a take ends: the take is kept and that is success.
+    return options.record_path ? kExitOk : kExitInterrupted;
   }
   return kExitOk;
 }

@@ -1,11 +1,13 @@
 #pragma once
 // `avar play SHOW --rig RIG`: validate both files, open the links (real or simulated), ease in,
-// play, ease out to rest, and report.
+// play, ease out to rest, and report. With live inputs the controls mix over the show; `avar
+// puppet` is the same run with no show (live only) and `avar record` keeps the take as keys.
 
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "avar/control/realtime_setup.hpp"
 
@@ -26,6 +28,15 @@ struct PlayOptions {
   control::RealtimeRequest realtime{50, true, -1};
   /// More deadline misses than this in one run is a fault.
   std::uint64_t deadline_miss_budget = UINT64_MAX;
+
+  // Live inputs (play, puppet, record).
+  std::vector<std::string> inputs;         ///< --input URIs; none: play opens none, puppet/record the inputs section's devices
+  std::optional<std::string> inputs_path;  ///< --inputs FILE; default: the rig file's inputs: section
+  bool live_only = false;                  ///< no show: the figure holds its rest pose under the live layers
+  std::optional<double> duration_s;        ///< live only: stop after this long (default: until Ctrl-C)
+  std::optional<std::string> record_path;  ///< write the take (the mixed channels) as a show here
+  double record_tolerance = 0.25;          ///< the take's keys stay this close to every tick's value (channel units)
+  bool record_merge = false;               ///< write the take on its own layer over a copy of the show
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

@@ -75,6 +75,7 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double latene
       measured_rows_.push_back(known[i] ? measured_[i] : std::numeric_limits<double>::quiet_NaN());
     telemetry_rows_.insert(telemetry_rows_.end(), telemetry_.begin(), telemetry_.end());
     for (std::size_t l = 0; l < figure_.link_count(); ++l) counter_rows_.push_back(figure_.counters(l));
+    if (live_) control_rows_.insert(control_rows_.end(), live_->control_values().begin(), live_->control_values().end());
   }
   if (progress_ && now_s >= next_progress_s_) {
     draw_progress(now_s, controller);
@@ -92,9 +93,13 @@ void PlayRecorder::draw_progress(double now_s, const control::Controller& contro
   constexpr int kWidth = 24;
   const int filled = static_cast<int>(fraction * kWidth + 0.5);
   char line[160];
-  std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",
-                control::to_string(controller.phase()), within, duration, kWidth,
-                std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(fraction * 100 + 0.5), now_s);
+  if (std::isfinite(duration))
+    std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",
+                  control::to_string(controller.phase()), within, duration, kWidth,
+                  std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(fraction * 100 + 0.5), now_s);
+  else  // live only: no show to measure against
+    std::snprintf(line, sizeof line, "%-8s live %8.2f s  loop time %7.2f s", control::to_string(controller.phase()), show_t,
+                  now_s);
   if (terminal_)
     *progress_ << '\r' << line << "\033[K" << std::flush;
   else

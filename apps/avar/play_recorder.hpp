@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "avar/control/live_inputs.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/assembly/figure_links.hpp"
 #include "avar/tracking_stats.hpp"
@@ -27,6 +28,9 @@ class PlayRecorder final : public control::TickObserver {
   /// where to say that a stop was requested (nullptr for nowhere).
   PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples, std::size_t expected_ticks,
                std::ostream* progress, bool progress_is_terminal, std::ostream* notices);
+
+  /// Also keep every live control's value per tick (with kept samples); borrowed, nullptr: none.
+  void watch(const control::LiveInputs* live) { live_ = live; }
 
   void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& controller) override;
   /// Ends the progress line.
@@ -47,6 +51,9 @@ class PlayRecorder final : public control::TickObserver {
   const std::vector<std::int64_t>& stage_ns() const { return stage_rows_; }
   /// Device telemetry per tick, `channels` entries a tick (the newest report at that tick).
   const std::vector<firmware_iface::ChannelTelemetry>& telemetry() const { return telemetry_rows_; }
+  /// Live controls' raw values per tick (NaN before a control first moved), one block of
+  /// LiveInputs::mailbox().size() values a tick.
+  const std::vector<double>& controls() const { return control_rows_; }
   /// Wire counters per tick, one entry per link a tick.
   const std::vector<firmware_iface::LinkCounters>& link_counters() const { return counter_rows_; }
 
@@ -74,6 +81,8 @@ class PlayRecorder final : public control::TickObserver {
   std::vector<std::int64_t> stage_rows_;
   std::vector<firmware_iface::ChannelTelemetry> telemetry_rows_;
   std::vector<firmware_iface::LinkCounters> counter_rows_;
+  const control::LiveInputs* live_ = nullptr;
+  std::vector<double> control_rows_;
 };
 
 }  // namespace avar::app

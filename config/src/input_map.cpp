@@ -57,13 +57,28 @@ control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, s
     else if (s != "absolute")
       mode->fail("expected the mode of " + what + " to be absolute or relative, found " + mode->describe());
   }
+  if (auto blend = node.find("blend")) {
+    const std::string b = blend->as_string("the blend of " + what);
+    if (b == "additive") m.blend = control::Blend::additive;
+    else if (b != "override")
+      blend->fail("expected the blend of " + what + " to be override or additive, found " + blend->describe());
+  }
+  if (m.blend == control::Blend::additive) {
+    m.low = 0;  // an offset: none at rest, by default
+    m.high = c.max - c.min;
+  }
   if (auto range = node.find("range")) {
     if (m.mode == control::MappingMode::relative) range->fail(what + " is relative: it takes a rate, not a range");
     const auto [low, high] = number_pair(*range, "the range of " + what);
-    for (const double v : {low, high})
-      if (v < c.min || v > c.max)
+    const double span = c.max - c.min;
+    for (const double v : {low, high}) {
+      if (m.blend == control::Blend::additive && std::abs(v) > span)
+        range->fail("expected the range of additive " + what + " (an offset) within the span of channel '" + c.name + "' (±" +
+                    format_number(span) + "), found " + range->describe());
+      if (m.blend == control::Blend::override && (v < c.min || v > c.max))
         range->fail("expected the range of " + what + " inside the limits of channel '" + c.name + "' [" + format_number(c.min) +
                     ", " + format_number(c.max) + "], found " + range->describe());
+    }
     m.low = low;
     m.high = high;
   }
@@ -92,12 +107,6 @@ control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, s
       priority->fail("expected the priority of " + what + " from -999 to 999 (the direct channel controls sit at 1000), found " +
                      priority->describe());
     m.priority = static_cast<int>(p);
-  }
-  if (auto blend = node.find("blend")) {
-    const std::string b = blend->as_string("the blend of " + what);
-    if (b == "additive") m.blend = control::Blend::additive;
-    else if (b != "override")
-      blend->fail("expected the blend of " + what + " to be override or additive, found " + blend->describe());
   }
   if (auto fade = node.find("crossfade")) m.crossfade_s = in_range(*fade, "the crossfade of " + what + " (s)", 0, 60, false);
   if (auto timeout = node.find("timeout")) m.timeout_s = in_range(*timeout, "the timeout of " + what + " (s)", 0, 3600, false);

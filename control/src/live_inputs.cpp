@@ -40,7 +40,8 @@ LiveInputs::LiveInputs(std::vector<LiveChannel> channels, std::vector<ControlMap
       direct_slot_(channels_.size()),
       direct_seen_(channels_.size(), 0),
       values_(mailbox_.size(), std::numeric_limits<double>::quiet_NaN()),
-      last_out_(channels_.size(), 0) {
+      last_out_(channels_.size(), 0),
+      touched_(channels_.size(), 0) {
   for (std::size_t i = 0; i < mappings_.size(); ++i) {
     state_[i].slot = mailbox_.find(mappings_[i].control);
     state_[i].hold_slot = mappings_[i].hold.empty() ? mailbox_.size() : mailbox_.find(mappings_[i].hold);
@@ -109,6 +110,8 @@ void LiveInputs::apply(double now_s, std::span<double> frame) noexcept {
   }
 
   mixer_.mix(frame, now_s);
+  for (std::size_t i = 0; i < mixer_.size(); ++i)
+    if (mixer_.weight(i) > 0) touched_[mixer_.layer(i).channel] = 1;
   std::copy(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(std::min(frame.size(), last_out_.size())), last_out_.begin());
 }
 

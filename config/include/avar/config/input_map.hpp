@@ -10,6 +10,7 @@
 //         channel: jaw
 //         mode: absolute            # absolute (default) | relative
 //         range: [0, 35]            # absolute: output range in channel units; default the limits
+//                                   # (additive: an offset range, default [0, max - min])
 //         rate: 90                  # relative: channel units/s at full deflection (required)
 //         input: [0, 127]           # raw values that span the control (default: its normalised range)
 //         invert: false

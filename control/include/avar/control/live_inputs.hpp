@@ -68,6 +68,8 @@ class LiveInputs final : public LiveLayer {
   /// as mailbox(); for traces. Loop thread.
   std::span<const double> control_values() const noexcept { return values_; }
   const ControlMixer& mixer() const noexcept { return mixer_; }
+  /// Per channel: whether any live layer has had a weight above 0 on it so far (a take's channels).
+  std::span<const char> touched() const noexcept { return touched_; }
   const std::vector<ControlMapping>& mappings() const noexcept { return mappings_; }
   /// The newest arrival time (CLOCK_MONOTONIC ns) among the messages the last apply() took
   /// for the first time; 0 when it took none. For latency measurement.
@@ -91,6 +93,7 @@ class LiveInputs final : public LiveLayer {
   std::vector<std::uint64_t> direct_seen_;
   std::vector<double> values_;
   std::vector<double> last_out_;  ///< the frame the last apply() produced
+  std::vector<char> touched_;
   double last_now_ = 0;
   bool applied_ = false;
   std::int64_t newest_taken_ns_ = 0;
