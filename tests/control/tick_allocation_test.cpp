@@ -7,6 +7,7 @@
 
 
 #include "avar/control/controller.hpp"
+#include "avar/control/live_inputs.hpp"
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 #include "avar/kinematics/model_builder.hpp"
@@ -173,6 +174,44 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   EXPECT_GT(k, 3000);
   EXPECT_GT(transport.bytes_written(), 0u);
   EXPECT_EQ(after - before, 0) << "allocations during " << k << " ticks";
+}
+
+// Live inputs mixed every tick: controls moving (posted between ticks, as input threads do),
+// relative and held mappings, a direct channel, crossfades and timeouts; nothing allocates.
+TEST(TickAllocation, NoAllocationWithLiveInputsMixedOverTheShow) {
+  const Scene sc = scene();
+  CountingTransport transport;
+  firmware_iface::MaestroLink link(transport, sc.link_config);
+  std::vector<LiveChannel> channels;
+  for (const rig::ChannelSpec& c : sc.rig.channels) channels.push_back({c.name, c.min, c.max});
+  ControlMapping absolute, relative;
+  absolute.control = "x";
+  absolute.low = -45;
+  absolute.high = 45;
+  absolute.timeout_s = 0.2;
+  relative.control = "y";
+  relative.channel = 1;
+  relative.mode = MappingMode::relative;
+  relative.rate = 30;
+  relative.hold = "b";
+  relative.shape.smoothing_s = 0.05;
+  LiveInputs live(channels, {absolute, relative});
+  Controller controller(sc.rig, sc.show, {&link}, {.tick_period_s = 0.001, .live = &live});
+  controller.begin(0.0, sc.rig.rest_frame());
+  live.sink().post("b", 1, false, 0);  // the map's first insertions happen here, before counting
+
+  const long before = testing::allocations.load();
+  int k = 0;
+  for (; controller.active() && k < 6000; ++k) {
+    if (k % 7 == 0) live.sink().post("x", std::sin(k * 0.01), true, k);
+    if (k % 11 == 0) live.sink().post("y", 0.5, true, k);
+    if (k == 2000) live.sink().post("channel/ch2", 30, false, k);
+    controller.tick(k * 0.001);
+  }
+  const long after = testing::allocations.load();
+  EXPECT_EQ(after - before, 0) << "allocations during " << k << " ticks";
+  EXPECT_TRUE(live.touched()[0]);
+  EXPECT_TRUE(live.touched()[2]);
 }
 
 // The same through the I/O thread and its mailbox, with feedback, a tracking fault and every
