@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "avar/config/feasibility.hpp"
+#include "avar/config/input_map.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
@@ -15,6 +16,7 @@ int run_check(const std::string& show_path, const std::string& rig_path, const s
               std::ostream& err) {
   try {
     const rig::Rig rig = config::load_rig_file(rig_path);
+    (void)config::load_input_map(rig, rig_path, false);  // the rig's inputs: section, checked whole too
     const playback::Show show = config::load_show_file(show_path);
     const config::ShowCheck check = config::check_show_against_rig(show, rig);
     for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';
