@@ -45,11 +45,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* play_cmd = app.add_subcommand("play", "Play a show on a rig: ease in from the present pose, play, ease out to rest");
   play_cmd->add_option("show", play.show_path, "Show file (YAML: duration, loop, tracks of keys)")->required();
   play_cmd->add_option("--rig", play.rig_path, "Rig file (YAML: links, channels, actuators)")->required();
-  CLI::Option* port_opt = play_cmd->add_option("--port", port, "Serial port for the rig's link, e.g. /dev/ttyACM0 (overrides the rig)");
+  CLI::Option* port_opt =
+      play_cmd->add_option("--port", port, "Serial port for the rig's link, e.g. /dev/ttyACM0 (overrides the rig)");
   CLI::Option* sim_opt = play_cmd->add_flag("--sim", play.simulate, "Simulate every link, whatever ports the rig names");
   port_opt->excludes(sim_opt);
-  CLI::Option* rate_opt =
-      play_cmd->add_option("--rate", rate, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)")->check(CLI::Range(1.0, 1000.0));
+  CLI::Option* rate_opt = play_cmd->add_option("--rate", rate, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)")
+                              ->check(CLI::Range(1.0, 1000.0));
   CLI::Option* rt_opt = play_cmd->add_flag("--realtime", realtime_flag, "Run on the wall clock (the default)");
   CLI::Option* fast_opt =
       play_cmd->add_flag("--fast", play.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
@@ -57,12 +58,15 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::Option* loops_opt =
       play_cmd->add_option("--loops", loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
   CLI::Option* trace_opt = play_cmd->add_option("--trace", trace, "Write every tick to this CSV file");
-  CLI::Option* plot_opt = play_cmd->add_option("--plot", plot, "Write an SVG plot of commanded vs simulated position per channel");
+  CLI::Option* plot_opt =
+      play_cmd->add_option("--plot", plot, "Write an SVG plot of commanded vs simulated position per channel");
   play_cmd->add_flag("--no-progress", no_progress, "Do not draw the progress line");
-  play_cmd->add_option("--priority", play.realtime.priority,
-                       "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
+  play_cmd
+      ->add_option("--priority", play.realtime.priority,
+                   "SCHED_FIFO priority of the loop, 1 to 99 (default 50); 0 = normal scheduling")
       ->check(CLI::Range(0, 99));
-  play_cmd->add_option("--cpu", play.realtime.cpu, "Pin the loop thread to this CPU (default: any)")->check(CLI::NonNegativeNumber);
+  play_cmd->add_option("--cpu", play.realtime.cpu, "Pin the loop thread to this CPU (default: any)")
+      ->check(CLI::NonNegativeNumber);
   play_cmd->add_option("--deadline-budget", play.deadline_miss_budget,
                        "Deadline misses allowed in one run before it faults (default: unlimited)");
   bool no_lock = false;

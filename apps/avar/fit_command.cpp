@@ -207,8 +207,8 @@ int run_fit(const FitOptions& options, std::ostream& out, std::ostream& err) {
     const playback::Show written = config::load_show_file(options.out_path);
     for (std::size_t c = 0; c < written.tracks.size(); ++c) {
       const auto& track = written.tracks[c];
-      out << track.channel << ": " << recording.times.size() << " samples in, " << track.curve.key_count() << " keys out, max error "
-          << format_number(max_error(track.curve, recording.times, targets[c]));
+      out << track.channel << ": " << recording.times.size() << " samples in, " << track.curve.key_count()
+          << " keys out, max error " << format_number(max_error(track.curve, recording.times, targets[c]));
       if (*method != playback::SmoothingMethod::none)
         out << " against the smoothed samples, " << format_number(max_error(track.curve, recording.times, recording.values[c]))
             << " against the input";

@@ -59,7 +59,11 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::ifstream csv(trace);
   std::string header, line, last;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
+  EXPECT_EQ(
+      header.rfind(
+          "seconds,phase,wake_late_us,sample_us,ik_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0),
+      0u)
+      << header;
   int rows = 0;
   while (std::getline(csv, line)) {
     last = line;
