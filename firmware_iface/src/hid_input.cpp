@@ -1,15 +1,16 @@
 #include "avar/firmware_iface/hid_input.hpp"
 
 #include <hidapi/hidapi.h>
-#include <time.h>
 
 #include <atomic>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 #include "avar/firmware_iface/hid_report_decoder.hpp"
@@ -29,7 +30,8 @@ std::string narrow(const wchar_t* w) {
   std::string out;
   if (w == nullptr) return out;
   for (; *w != 0; ++w) {
-    const auto c = static_cast<std::uint32_t>(*w);
+    // wchar_t, not a signed char (clang-tidy 14 mistakes it for one).
+    const std::uint32_t c = static_cast<std::make_unsigned_t<wchar_t>>(*w);  // NOLINT(bugprone-signed-char-misuse)
     if (c < 0x80) {
       out += static_cast<char>(c);
     } else if (c < 0x800) {

@@ -183,9 +183,10 @@ class Parser {
                      " data bytes, only " + std::to_string(d_.size() - pos - 1) + " left; expected a complete item");
       std::uint32_t value = 0;
       for (std::size_t i = 0; i < size; ++i) value |= std::uint32_t{d_[pos + 1 + i]} << (8 * i);
+      // Sign extension from the item's own size: (v ^ sign) - sign.
       std::int32_t signed_value = static_cast<std::int32_t>(value);
-      if (size == 1) signed_value = static_cast<std::int8_t>(value);
-      if (size == 2) signed_value = static_cast<std::int16_t>(value);
+      if (size == 1) signed_value = static_cast<std::int32_t>(value ^ 0x80u) - 0x80;
+      if (size == 2) signed_value = static_cast<std::int32_t>(value ^ 0x8000u) - 0x8000;
       pos += 1 + size;
       item_ = Item{at, type, tag, size, value, signed_value};
       switch (type) {
