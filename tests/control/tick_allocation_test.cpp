@@ -5,7 +5,6 @@
 
 #include "../support/allocation_counter.hpp"
 
-
 #include "avar/control/controller.hpp"
 #include "avar/control/live_inputs.hpp"
 #include "avar/control/threaded_link.hpp"

@@ -3,13 +3,10 @@
 // real-time code allocates nothing. Replacement allocation functions may not be inline, so this
 // header defines them: include it in exactly one source file of a test binary.
 
-#include <atomic>
 #include <cstdlib>
 #include <new>
 
-namespace avar::testing {
-inline std::atomic<long> allocations{0};
-}
+#include "allocation_count.hpp"
 
 // These replace the global allocation functions (malloc underneath), so free() is the right
 // partner; GCC cannot see that and warns in some builds.
