@@ -151,15 +151,22 @@ firmware_iface::MaestroUsbLinkConfig maestro_usb_config(const rig::Rig& rig, std
 }
 
 std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& rig, std::size_t link) {
-  const MaestroOptions options = maestro_options(rig.links[link]);
+  const rig::LinkSpec& spec = rig.links[link];
+  const MaestroOptions options = maestro_options(spec);
+  const ScalarValue& usb_setting = *spec.settings.find("usb");
   namespace usb = firmware_iface::maestro_usb;
   firmware_iface::UsbDeviceQuery query{
       usb::kVendorId, {usb::kProductIds.begin(), usb::kProductIds.end()}, options.usb_serial, "Maestro"};
-  auto transport = std::make_unique<firmware_iface::LibusbControlTransport>(std::move(query));
+  std::unique_ptr<firmware_iface::LibusbControlTransport> transport;
+  try {
+    transport = std::make_unique<firmware_iface::LibusbControlTransport>(std::move(query));
+  } catch (const std::runtime_error& e) {
+    usb_setting.fail("link '" + spec.name + "': " + e.what());
+  }
   const int found = usb::channels_for_product_id(transport->product_id());
   if (found != options.channel_count)
-    throw std::runtime_error(std::string("the Maestro with serial ") + transport->serial() + " is a " + model_name(found) +
-                             ", but link '" + rig.links[link].name + "' says model: " + model_name(options.channel_count));
+    usb_setting.fail("link '" + spec.name + "': the Maestro with serial " + transport->serial() + " is a " + model_name(found) +
+                     ", but the link says model: " + model_name(options.channel_count));
   return std::make_unique<firmware_iface::MaestroUsbLink>(std::move(transport), maestro_usb_config(rig, link, DriverTuning{}));
 }
 

@@ -26,8 +26,9 @@ MaestroOptions maestro_options(const rig::LinkSpec& link);
 firmware_iface::MaestroLinkConfig maestro_config(const rig::Rig& rig, std::size_t link);
 /// The same for the native USB driver.
 firmware_iface::MaestroUsbLinkConfig maestro_usb_config(const rig::Rig& rig, std::size_t link, const DriverTuning& tuning);
-/// Finds the link's Maestro on USB (throws std::runtime_error naming what is missing, or a
-/// Maestro of another model than the rig's) and makes its driver.
+/// Finds the link's Maestro on USB and makes its driver. Throws InputError at the link's usb
+/// setting naming what is missing ("no Maestro with serial 00012345 on USB (found: none)",
+/// "libusb: no USB on this machine (...)") or a Maestro of another model than the link's.
 std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& rig, std::size_t link);
 const Protocol& maestro_protocol();
 
