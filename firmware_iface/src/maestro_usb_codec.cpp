@@ -61,14 +61,14 @@ SetupPacket get_positions(int channel_count) noexcept {
   return is_micro(channel_count) ? get_variables(channel_count) : get_servo_settings(channel_count);
 }
 
-void encode_servo_status(std::span<std::uint8_t> out, const ServoStatus& s) noexcept {
-  out[0] = static_cast<std::uint8_t>(s.position & 0xFF);
-  out[1] = static_cast<std::uint8_t>(s.position >> 8);
-  out[2] = static_cast<std::uint8_t>(s.target & 0xFF);
-  out[3] = static_cast<std::uint8_t>(s.target >> 8);
-  out[4] = static_cast<std::uint8_t>(s.speed & 0xFF);
-  out[5] = static_cast<std::uint8_t>(s.speed >> 8);
-  out[6] = s.acceleration;
+void encode_servo_status(std::span<std::uint8_t> out, const ServoStatus& status) noexcept {
+  out[0] = static_cast<std::uint8_t>(status.position & 0xFF);
+  out[1] = static_cast<std::uint8_t>(status.position >> 8);
+  out[2] = static_cast<std::uint8_t>(status.target & 0xFF);
+  out[3] = static_cast<std::uint8_t>(status.target >> 8);
+  out[4] = static_cast<std::uint8_t>(status.speed & 0xFF);
+  out[5] = static_cast<std::uint8_t>(status.speed >> 8);
+  out[6] = status.acceleration;
 }
 
 bool decode_servo_status(std::span<const std::uint8_t> reply, int channel_count, int channel, ServoStatus* out) noexcept {
