@@ -38,7 +38,7 @@ AddressRule maestro_address(const rig::LinkSpec& link, bool) {
 
 /// The serial number string a usb setting names: letters and digits, as a Maestro's are.
 std::string usb_serial(const ScalarValue& v) {
-  const std::string text = v.as_string("usb");
+  std::string text = v.as_string("usb");
   if (text == "any") return {};
   const bool plain = text.size() <= 32 && std::all_of(text.begin(), text.end(), [](char c) {
                        return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
