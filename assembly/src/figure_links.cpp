@@ -8,6 +8,7 @@
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/pty_device_host.hpp"
+#include "avar/sim/usb_device_host.hpp"
 
 namespace avar::assembly {
 
@@ -15,7 +16,8 @@ struct FigureLinks::Entry {
   std::size_t link_index = 0;
   bool simulated = false;
   SimulatedDevice device;
-  std::unique_ptr<sim::PtyDeviceHost> host;
+  std::unique_ptr<sim::PtyDeviceHost> host;                    ///< a simulated device behind a serial port
+  std::unique_ptr<sim::UsbDeviceHost> usb_host;                ///< a simulated device on USB
   std::unique_ptr<firmware_iface::SerialTransport> transport;  ///< null for links that are no serial port
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
@@ -37,26 +39,32 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     std::string port = selection.port.value_or(rig.links[i].port);
     entry->simulated = selection.simulate_all || port == "sim";
     DriverTuning tuning;
-    if (entry->simulated) {
-      entry->device = protocol.make_simulated(rig, i);
-      if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
-      // Drives that need their own time to come up (a heartbeat) run on the wall clock until
-      // the first tick; every other simulator waits for the loop's stepped clock from the start.
-      const auto clock =
-          protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
-      entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
-      port = entry->host->slave_path();
-      // A simulated device answers from a thread of this process, which a busy machine may keep
-      // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
-      // saturated 2-core machine under the sanitizers): give it a second (it answers at once
-      // when it runs, so only a lost reply would ever wait this long).
-      tuning.min_reply_timeout_ms = 1000;
-    }
-    if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
-      entry->link = protocol.open_link(rig, i, port);
+    if (entry->simulated) entry->device = protocol.make_simulated(rig, i);
+    if (entry->device.usb_device) {
+      // A simulated USB device answers the real driver's control transfers in this process.
+      entry->usb_host = std::make_unique<sim::UsbDeviceHost>(*entry->device.usb_device, entry->device.usb_name);
+      entry->link = protocol.make_usb_link(rig, i, entry->usb_host->connect(), tuning);
     } else {
-      entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-      entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+      if (entry->simulated) {
+        if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
+        // Drives that need their own time to come up (a heartbeat) run on the wall clock until
+        // the first tick; every other simulator waits for the loop's stepped clock from the start.
+        const auto clock =
+            protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
+        entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
+        port = entry->host->slave_path();
+        // A simulated device answers from a thread of this process, which a busy machine may keep
+        // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
+        // saturated 2-core machine under the sanitizers): give it a second (it answers at once
+        // when it runs, so only a lost reply would ever wait this long).
+        tuning.min_reply_timeout_ms = 1000;
+      }
+      if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
+        entry->link = protocol.open_link(rig, i, port);
+      } else {
+        entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
+        entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+      }
     }
     if (selection.threaded_rate_hz > 0) {
       const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
@@ -72,6 +80,7 @@ FigureLinks::~FigureLinks() {
     e->threaded.reset();
     e->link.reset();
     e->transport.reset();
+    e->usb_host.reset();
   }
 }
 
@@ -102,8 +111,14 @@ bool FigureLinks::reports_telemetry(std::size_t link) const {
 
 void FigureLinks::with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f) {
   const Entry& e = *entries_.at(link);
-  if (!e.simulated) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated");
+  if (!e.host) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated behind a serial port");
   e.host->with_device([&](sim::ByteDevice& d) { f(d); });
+}
+
+void FigureLinks::with_simulated_usb(std::size_t link, const std::function<void(sim::UsbDeviceHost&)>& f) {
+  const Entry& e = *entries_.at(link);
+  if (!e.usb_host) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated on USB");
+  f(*e.usb_host);
 }
 
 std::string FigureLinks::channel_problem(std::size_t channel) const {
@@ -116,17 +131,23 @@ std::string FigureLinks::channel_problem(std::size_t channel) const {
 void FigureLinks::advance(double dt_s) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
-    e->host->set_clock(sim::PtyDeviceHost::Clock::stepped);
-    // Everything sent this tick must have reached the device before its time moves on, so
-    // a run on the stepped clock is deterministic.
-    e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
-    e->host->with_device([&](sim::ByteDevice& device) {
+    const auto step = [&](auto& device) {
       device.advance(dt_s);
       for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
         truth_[a.channel.value] = e->device.true_position(a);
         truth_known_[a.channel.value] = 1;
       }
-    });
+    };
+    if (e->usb_host) {
+      // Control transfers are answered as they are made: nothing is in flight.
+      e->usb_host->with_device(step);
+      continue;
+    }
+    e->host->set_clock(sim::PtyDeviceHost::Clock::stepped);
+    // Everything sent this tick must have reached the device before its time moves on, so
+    // a run on the stepped clock is deterministic.
+    e->host->wait_consumed(e->transport->bytes_written(), std::chrono::seconds(2));
+    e->host->with_device(step);
   }
 }
 

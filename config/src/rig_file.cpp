@@ -85,7 +85,9 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
   LinkSpec link;
   link.name = name;
   link.where = node.where();
-  link.port = node.at("port", what).as_string("the port of " + what + " (a device path such as /dev/ttyACM0, or sim)");
+  const std::string port_what = "the port of " + what + " (a device path such as /dev/ttyACM0, or sim)";
+  const auto port = node.find("port");
+  if (port) link.port = port->as_string(port_what);
 
   // The protocol is the one settings block the link has: maestro: {...}, dynamixel: {} ...
   std::optional<YamlRef> settings;
@@ -112,6 +114,8 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
     link.watchdog_s = ms / 1000.0;
   }
   link.settings = read_settings(*settings, "the " + link.protocol + " settings of " + what);
+  // A link whose device is found otherwise (a Maestro on USB by its serial number) needs no port.
+  if (!port && !(protocol->port_optional && protocol->port_optional(link))) node.at("port", what).as_string(port_what);
   protocol->validate_settings(link);
   return link;
 }

@@ -3,22 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <stdexcept>
 
 namespace avar::firmware_iface {
 
 MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
     : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
   const std::size_t n = config_.actuators.size();
-  std::vector<bool> used(static_cast<std::size_t>(config_.channel_count), false);
-  for (const MaestroActuator& a : config_.actuators) {
-    if (a.device_channel < 0 || a.device_channel >= config_.channel_count)
-      throw std::invalid_argument("Maestro channel " + std::to_string(a.device_channel) + " is outside 0.." +
-                                  std::to_string(config_.channel_count - 1));
-    if (used[static_cast<std::size_t>(a.device_channel)])
-      throw std::invalid_argument("Maestro channel " + std::to_string(a.device_channel) + " is used twice");
-    used[static_cast<std::size_t>(a.device_channel)] = true;
-  }
+  check_maestro_channels(config_.actuators, config_.channel_count);
   slots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) slots_[i] = i;
   std::sort(slots_.begin(), slots_.end(), [&](std::size_t a, std::size_t b) {
@@ -64,13 +55,9 @@ Status MaestroLink::start() {
   std::array<std::uint8_t, maestro::kMaxPacketSize> packet{};
   for (const MaestroActuator& a : config_.actuators) {
     const auto ch = static_cast<std::uint8_t>(a.device_channel);
-    // 0 means "no limit" to the Maestro, which is also what an absent limit means here.
-    const std::uint16_t speed = a.speed_us_per_s ? maestro::speed_units_from_us_per_s(*a.speed_us_per_s) : 0;
-    const std::uint16_t accel =
-        a.acceleration_us_per_s2 ? maestro::acceleration_units_from_us_per_s2(*a.acceleration_us_per_s2) : 0;
-    std::size_t len = maestro::encode_set_speed(packet, config_.framing, ch, speed);
+    std::size_t len = maestro::encode_set_speed(packet, config_.framing, ch, maestro_speed_units(a));
     if (const Status s = transport_.write(std::span(packet.data(), len)); s != Status::ok) return s;
-    len = maestro::encode_set_acceleration(packet, config_.framing, ch, accel);
+    len = maestro::encode_set_acceleration(packet, config_.framing, ch, maestro_acceleration_units(a));
     if (const Status s = transport_.write(std::span(packet.data(), len)); s != Status::ok) return s;
   }
   return Status::ok;
@@ -92,9 +79,7 @@ Status MaestroLink::read_positions(std::span<double> frame, std::span<bool> know
 
 Status MaestroLink::send(std::span<const double> frame) noexcept {
   for (std::size_t s = 0; s < slots_.size(); ++s) {
-    const std::size_t i = slots_[s];
-    // Target 0 stops the pulses of a released actuator.
-    targets_[s] = table_.released(i) ? std::uint16_t{0} : maestro::quarter_us_from_us(table_.to_device(i, frame));
+    targets_[s] = maestro_target(table_, slots_[s], frame);
   }
   return write_targets();
 }

@@ -1,7 +1,8 @@
 #pragma once
-// The links of a rig, opened for playing: each one a real serial port or a simulated device
-// behind a pseudo-terminal (the real serial driver talks to it exactly as to hardware). Drivers
-// and simulated devices come from the protocol registry (protocol.hpp).
+// The links of a rig, opened for playing: each one a real serial port (or USB device, or CAN
+// interface) or a simulated device behind a pseudo-terminal (the real serial driver talks to it
+// exactly as to hardware) or at the USB control-transfer seam (the real USB driver makes its
+// transfers to it). Drivers and simulated devices come from the protocol registry (protocol.hpp).
 
 #include <functional>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "avar/control/plant.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/rig/rig.hpp"
+#include "avar/sim/usb_device_host.hpp"
 
 namespace avar::assembly {
 
@@ -23,8 +25,8 @@ struct LinkSelection {
   /// Serve each link from its own I/O thread with a watchdog (real time), at this tick rate;
   /// 0: send on the loop thread (stepped time, deterministic).
   double threaded_rate_hz = 0;
-  /// Called once for each simulated device before anything talks to it (a test heating a servo,
-  /// loading a horn); empty: none.
+  /// Called once for each simulated device behind a serial port before anything talks to it (a
+  /// test heating a servo, loading a horn); empty: none.
   std::function<void(std::size_t link, sim::ByteDevice& device)> prepare_simulated;
 };
 
@@ -60,6 +62,10 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   /// while it runs (a drive dropping off the bus mid-show). Throws std::invalid_argument for a
   /// link that is not simulated.
   void with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f);
+  /// The same for a link simulated on USB: f gets the device's host (with_device to reach the
+  /// device under its lock, set_plugged to unplug it). Throws std::invalid_argument for a link
+  /// that is not simulated on USB.
+  void with_simulated_usb(std::size_t link, const std::function<void(sim::UsbDeviceHost&)>& f);
   /// One link's wire counters (ActuatorLink::counters), any thread.
   firmware_iface::LinkCounters counters(std::size_t link) const;
   /// What the device driving `channel` said of its fault (ActuatorLink::channel_problem); after

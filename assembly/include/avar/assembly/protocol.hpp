@@ -14,8 +14,10 @@
 
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/sim/byte_device.hpp"
+#include "avar/sim/usb_control_device.hpp"
 
 namespace avar::assembly {
 
@@ -33,8 +35,13 @@ struct AddressRule {
 /// A simulated device for one link of a rig, and how to read an actuator's true position off it
 /// (channel units: the ground truth the simulator knows and a real figure never tells).
 struct SimulatedDevice {
+  /// A device behind a serial port: served on a pseudo-terminal to the driver of make_link.
   std::unique_ptr<sim::ByteDevice> device;
   std::function<double(const rig::ActuatorSpec&)> true_position;
+  /// Instead of `device`, a device driven by USB control transfers: served in this process to
+  /// the driver of make_usb_link, its connection named usb_name ("USB (serial 00012345)").
+  std::unique_ptr<sim::UsbControlDevice> usb_device = nullptr;
+  std::string usb_name = {};
 };
 
 /// What the assembly asks of a driver beyond the rig.
@@ -81,14 +88,22 @@ struct Protocol {
   /// a bitrate a drive cannot run at). Replaces the one-address-one-actuator check. Throws
   /// InputError at the offending actuator.
   void (*validate_link_actuators)(const rig::Rig& rig, std::size_t link) = nullptr;
-  /// Opens a link whose port is no serial device (a SocketCAN interface) and makes its driver;
-  /// nullptr: FigureLinks opens a SerialTransport on the port and calls make_link. Not called for
-  /// simulated links.
+  /// Opens a link whose port is no serial device (a SocketCAN interface, a Maestro on USB) and
+  /// makes its driver; nullptr: FigureLinks opens a SerialTransport on the port and calls
+  /// make_link. Not called for simulated links.
   std::unique_ptr<firmware_iface::ActuatorLink> (*open_link)(const rig::Rig& rig, std::size_t link,
                                                              const std::string& port) = nullptr;
   /// Whether the link's port (as written or given with --port) is a serial device (make_link)
   /// rather than something open_link opens.
   bool (*port_is_serial)(const rig::LinkSpec& link, const std::string& port) = nullptr;
+  /// Whether the link may leave out its port because the device is found otherwise (a Maestro
+  /// on USB by its serial number); the link's port is then "". Asked before validate_settings.
+  bool (*port_optional)(const rig::LinkSpec& link) = nullptr;
+  /// The driver of a link whose device is reached by USB control transfers, over `transport`
+  /// (owned): the real device (from open_link) or a simulated one (SimulatedDevice::usb_device).
+  std::unique_ptr<firmware_iface::ActuatorLink> (*make_usb_link)(const rig::Rig& rig, std::size_t link,
+                                                                 std::unique_ptr<firmware_iface::UsbControlTransport> transport,
+                                                                 const DriverTuning& tuning) = nullptr;
   /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;

@@ -5,26 +5,17 @@
 
 #include <chrono>
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/maestro_actuators.hpp"
 #include "avar/firmware_iface/maestro_codec.hpp"
-#include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
-
-struct MaestroActuator {
-  std::size_t channel = 0;  ///< rig channel index (position in the frames the loop sends)
-  int device_channel = 0;   ///< Maestro channel, 0..channel_count-1
-  LinearCalibration calibration;
-  std::optional<double> speed_us_per_s;       ///< device-side speed limit
-  std::optional<double> acceleration_us_per_s2;  ///< device-side acceleration limit
-};
 
 struct MaestroLinkConfig {
   maestro::Framing framing;

@@ -70,7 +70,7 @@ struct LinkSettings {
 struct LinkSpec {
   std::string name;
   std::string protocol;  ///< a protocol's name in the registry: maestro, dynamixel, feetech...
-  std::string port;
+  std::string port;      ///< "" for a device found otherwise (a Maestro on USB by its serial number)
   int baud = 0;
   double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
   LinkSettings settings;

@@ -19,38 +19,14 @@
 // Units: targets and output pulses in quarter-µs (0 = no pulses), configuration in µs, time in
 // seconds. Not thread-safe: a host (PtyDeviceHost) serialises every call.
 
-#include <array>
 #include <cstdint>
 #include <deque>
 #include <vector>
 
 #include "avar/sim/byte_device.hpp"
-#include "avar/sim/servo_model.hpp"
+#include "avar/sim/maestro_servos.hpp"
 
 namespace avar::sim {
-
-/// One channel's device settings ("Channel Settings" in the Maestro's configuration).
-struct SimMaestroChannel {
-  double min_us = 992;                ///< targets are clamped to [min_us, max_us]
-  double max_us = 2000;
-  double home_us = 0;                 ///< Go Home and errors go here; 0 = "Off" (stop pulses)
-  bool home_ignore = false;           ///< home mode "Ignore": Go Home and errors leave the channel alone
-  double neutral_us = 1500;           ///< Mini SSC target8 127
-  double range_us = 476.25;           ///< Mini SSC target8 0 and 254 are neutral -/+ this
-  double initial_position_us = 1500;  ///< where the servo horn is at power-up
-};
-
-struct SimMaestroConfig {
-  int channel_count = 24;            ///< 6 (Micro: no Set Multiple Targets, no Set PWM), 12, 18 or 24
-  std::uint8_t device_number = 12;   ///< 0..127, for the Pololu form
-  std::uint8_t mini_ssc_offset = 0;  ///< Mini SSC address of channel 0, 0..254
-  bool crc = false;                  ///< expect a CRC-7 byte after every command but Mini SSC
-  bool baud_detect = false;          ///< "UART, detect baud rate": bytes before the first 0xAA are
-                                     ///< line noise; that 0xAA may stand alone or begin a Pololu packet
-  std::size_t log_limit = 0;         ///< keep up to this many decoded commands in log() (0 = none)
-  ServoParams servo;
-  std::array<SimMaestroChannel, 24> channels{};  ///< only the first channel_count are used
-};
 
 /// One decoded command, as the device understood it.
 struct MaestroCommand {
@@ -83,19 +59,19 @@ class SimMaestro final : public ByteDevice {
 
   // Inspection. Precondition: 0 <= channel < channel_count.
   /// Target in quarter-µs after clamping (0 = no pulses).
-  std::uint16_t target(int channel) const { return channels_[channel].target_q; }
+  std::uint16_t target(int channel) const { return servos_.target(channel); }
   /// Pulse being output now, quarter-µs (0 = none); Get Position answers it rounded.
-  double output_pulse(int channel) const { return channels_[channel].output_q; }
+  double output_pulse(int channel) const { return servos_.output_pulse(channel); }
   /// Where the simulated servo horn is, µs of pulse width.
-  double servo_position_us(int channel) const { return channels_[channel].servo.position_us(); }
+  double servo_position_us(int channel) const { return servos_.servo_position_us(channel); }
   /// Speed limit in device units of 25 µs/s (0 = unlimited).
-  std::uint16_t speed(int channel) const { return channels_[channel].speed; }
+  std::uint16_t speed(int channel) const { return servos_.speed(channel); }
   /// Acceleration limit in device units of 312.5 µs/s² (0 = unlimited).
-  std::uint16_t acceleration(int channel) const { return channels_[channel].acceleration; }
+  std::uint16_t acceleration(int channel) const { return servos_.acceleration(channel); }
   /// True while some channel's output pulse has not reached its target (Get Moving State).
-  bool moving() const;
+  bool moving() const { return servos_.moving(); }
   /// The error register without clearing it (Get Errors clears it).
-  std::uint16_t errors() const { return errors_; }
+  std::uint16_t errors() const { return servos_.errors(); }
   /// Reply bytes not yet taken.
   std::size_t pending_replies() const { return replies_.size(); }
   /// The last log_limit decoded commands, oldest first.
@@ -103,14 +79,6 @@ class SimMaestro final : public ByteDevice {
   const SimMaestroConfig& config() const { return config_; }
 
  private:
-  struct Channel {
-    std::uint16_t target_q = 0;
-    double output_q = 0;
-    double velocity_q = 0;  ///< quarter-µs per second, signed; carried between steps for acceleration
-    std::uint16_t speed = 0;
-    std::uint16_t acceleration = 0;
-    ServoModel servo;
-  };
   enum class State { idle, skip, pololu_device, pololu_command, payload, mini_ssc };
 
   void take(std::uint8_t b);
@@ -122,16 +90,12 @@ class SimMaestro final : public ByteDevice {
   void finish_packet();
   void execute();
   void record(MaestroCommand command);
-  void set_target(int channel, std::uint16_t quarter_us);
-  void go_home();
-  void raise(std::uint16_t error_bits);
+  void raise(std::uint16_t error_bits) { servos_.raise(error_bits); }
   void reply(std::uint8_t byte) { replies_.push_back(byte); }
   std::uint16_t value14(std::size_t at) const;
-  static void move_output(Channel& c, double dt_s);
 
   SimMaestroConfig config_;
-  std::vector<Channel> channels_;
-  std::uint16_t errors_ = 0;
+  MaestroServos servos_;
   std::uint64_t bytes_received_ = 0;
   bool baud_locked_ = false;
   std::deque<std::uint8_t> replies_;
