@@ -17,12 +17,30 @@ struct FigureLinks::Entry {
   SimulatedDevice device;
   std::unique_ptr<sim::PtyDeviceHost> host;
   std::unique_ptr<firmware_iface::SerialTransport> transport;  ///< null for links that are no serial port
+  std::shared_ptr<firmware_iface::GpioChip> chip;              ///< a gpio link's chip
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
     return threaded ? static_cast<firmware_iface::ActuatorLink*>(threaded.get()) : link.get();
   }
 };
+
+namespace {
+
+/// A gpio link: its chip (simulated for port sim or --sim), shared through the selection's chips.
+void open_on_chip(const rig::Rig& rig, std::size_t i, const Protocol& protocol, const std::string& port,
+                  const LinkSelection& selection, FigureLinks::Entry& entry, std::shared_ptr<GpioChips>& chips) {
+  if (!chips) chips = selection.gpio_chips ? selection.gpio_chips : std::make_shared<GpioChips>(selection.simulate_all);
+  const rig::LinkSpec& spec = rig.links[i];
+  try {
+    entry.chip = chips->open(port, entry.simulated);
+    entry.link = protocol.make_chip_link(rig, i, entry.chip);
+  } catch (const std::runtime_error& e) {
+    throw InputError({rig.file, spec.where.line, spec.where.column}, "link '" + spec.name + "': " + e.what());
+  }
+}
+
+}  // namespace
 
 FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     : rig_(rig), truth_(rig.channels.size(), 0.0), truth_known_(rig.channels.size(), 0) {
@@ -37,7 +55,9 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     std::string port = selection.port.value_or(rig.links[i].port);
     entry->simulated = selection.simulate_all || port == "sim";
     DriverTuning tuning;
-    if (entry->simulated) {
+    if (protocol.make_chip_link) {
+      open_on_chip(rig, i, protocol, port, selection, *entry, gpio_chips_);
+    } else if (entry->simulated) {
       entry->device = protocol.make_simulated(rig, i);
       if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
       // Drives that need their own time to come up (a heartbeat) run on the wall clock until
@@ -52,7 +72,9 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
       // when it runs, so only a lost reply would ever wait this long).
       tuning.min_reply_timeout_ms = 1000;
     }
-    if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
+    if (protocol.make_chip_link) {
+      // (opened above)
+    } else if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
       entry->link = protocol.open_link(rig, i, port);
     } else {
       entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
@@ -72,6 +94,7 @@ FigureLinks::~FigureLinks() {
     e->threaded.reset();
     e->link.reset();
     e->transport.reset();
+    e->chip.reset();
   }
 }
 
@@ -91,7 +114,8 @@ bool FigureLinks::all_simulated() const {
 
 std::string FigureLinks::describe(std::size_t link) const {
   const Entry& e = *entries_[link];
-  return (e.simulated ? "simulated " : "") + e.link->describe();
+  // (A simulated chip says so itself.)
+  return (e.simulated && !e.chip ? "simulated " : "") + e.link->describe();
 }
 
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
@@ -102,7 +126,7 @@ bool FigureLinks::reports_telemetry(std::size_t link) const {
 
 void FigureLinks::with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f) {
   const Entry& e = *entries_.at(link);
-  if (!e.simulated) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated");
+  if (!e.simulated || !e.host) throw std::invalid_argument("link " + std::to_string(link) + " is not simulated");
   e.host->with_device([&](sim::ByteDevice& d) { f(d); });
 }
 
@@ -116,6 +140,16 @@ std::string FigureLinks::channel_problem(std::size_t channel) const {
 void FigureLinks::advance(double dt_s) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
+    if (e->chip) {
+      // A simulated chip's lines change as they are set: read what each output drives.
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        bool on = false;
+        if (e->chip->get(static_cast<unsigned>(a.device_channel), on) != Status::ok) continue;
+        truth_[a.channel.value] = a.calibration.to_channel(on ? 1.0 : 0.0);
+        truth_known_[a.channel.value] = 1;
+      }
+      continue;
+    }
     e->host->set_clock(sim::PtyDeviceHost::Clock::stepped);
     // Everything sent this tick must have reached the device before its time moves on, so
     // a run on the stepped clock is deterministic.
