@@ -112,8 +112,14 @@ InputCounters GpioInputs::counters() const noexcept {
 }
 
 bool GpioInputs::reset_estop() noexcept {
-  for (const auto& in : inputs_)
-    if (in->config.role == GpioInputRole::estop && in->settled.load(std::memory_order_relaxed)) return false;
+  for (const auto& in : inputs_) {
+    if (in->config.role != GpioInputRole::estop) continue;
+    // Settled inactive is not enough: a press may be inside its window. Ask the line too.
+    bool active = true;
+    if (in->settled.load(std::memory_order_relaxed) || in->config.chip->get(in->config.request.line, active) != Status::ok ||
+        active)
+      return false;
+  }
   estop_.store(false, std::memory_order_relaxed);
   return true;
 }

@@ -68,7 +68,8 @@ class GpioInputs final : public InputSource {
   /// The e-stop, for control::RunOptions::estop: true from the first active reading of any estop
   /// input (or a failing chip that has one) until reset_estop(). Any thread.
   const std::atomic<bool>& estop() const noexcept { return estop_; }
-  /// Clears the e-stop when no estop input is active any more; returns whether it did.
+  /// Clears the e-stop when no estop input is active any more (settled, nor read now); returns
+  /// whether it did. Any thread.
   bool reset_estop() noexcept;
   /// Presses of start inputs since start(). Any thread.
   std::uint64_t start_presses() const noexcept { return start_presses_.load(std::memory_order_relaxed); }
