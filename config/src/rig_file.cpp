@@ -29,7 +29,7 @@ double positive(const YamlRef& node, std::string_view what) {
 }
 
 constexpr std::string_view kMotionKeys[] = {"max_velocity", "max_acceleration", "max_jerk",
-                                           "soft_margin",  "ramp_velocity",    "tracking_tolerance"};
+                                            "soft_margin",  "ramp_velocity",    "tracking_tolerance"};
 
 /// A digital channel: 0 (off) or 1 (on), switching at once: no motion limits.
 ChannelSpec read_digital_channel(const std::string& name, const YamlRef& node) {
@@ -55,7 +55,8 @@ ChannelSpec read_digital_channel(const std::string& name, const YamlRef& node) {
   c.max = 1;
   if (auto rest = node.find("rest")) {
     c.rest = rest->as_double("rest of " + what);
-    if (c.rest != 0 && c.rest != 1) rest->fail("expected rest of " + what + " to be 0 (off) or 1 (on), found " + rest->describe());
+    if (c.rest != 0 && c.rest != 1)
+      rest->fail("expected rest of " + what + " to be 0 (off) or 1 (on), found " + rest->describe());
   }
   const double inf = std::numeric_limits<double>::infinity();
   c.max_velocity = c.max_acceleration = c.max_jerk = c.ramp_velocity = inf;
@@ -269,7 +270,9 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   if (!rule.cal_min)
     if (auto cal = node.find("calibration"))
       cal->fail("actuators on " + protocol_name + " link '" + link_name + "' take no calibration block" +
-                (link_protocol.actuator_keys.empty() ? "" : "; their keys are: " + std::string(rule.key) + ", " + own_keys(link_protocol)));
+                (link_protocol.actuator_keys.empty()
+                     ? ""
+                     : "; their keys are: " + std::string(rule.key) + ", " + own_keys(link_protocol)));
   // A DMX dimmer spans its whole range by default; servos must be calibrated.
   const auto cal_node =
       link_protocol.needs_calibration ? std::optional<YamlRef>(node.at("calibration", what)) : node.find("calibration");
@@ -333,7 +336,8 @@ rig::DigitalInputSpec read_digital_input(const std::string& name, const YamlRef&
     else if (b == "disabled") in.bias = firmware_iface::GpioBias::disabled;
     else if (b == "pull_up") in.bias = firmware_iface::GpioBias::pull_up;
     else if (b == "pull_down") in.bias = firmware_iface::GpioBias::pull_down;
-    else bias->fail("unknown bias " + bias->describe() + " of " + what + "; expected one of: as_is, disabled, pull_up, pull_down");
+    else
+      bias->fail("unknown bias " + bias->describe() + " of " + what + "; expected one of: as_is, disabled, pull_up, pull_down");
   }
   if (auto d = node.find("debounce_ms")) {
     const double ms = d->as_double("debounce_ms of " + what);

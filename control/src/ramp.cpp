@@ -19,7 +19,8 @@ void Ramp::plan(std::span<const double> from, std::span<const double> to, std::s
     from_[i] = from[i];
     to_[i] = to[i];
     const double distance = std::abs(to[i] - from[i]);
-    if (peak_velocity[i] > 0 && !at_once_[i]) duration = std::max(duration, std::numbers::pi * distance / (2.0 * peak_velocity[i]));
+    if (peak_velocity[i] > 0 && !at_once_[i])
+      duration = std::max(duration, std::numbers::pi * distance / (2.0 * peak_velocity[i]));
   }
   duration_ = duration;
 }

@@ -80,8 +80,8 @@ void GpioInputs::start(ControlSink& sink) {
   for (const auto& in : inputs_) {
     bool v = false;
     if (!read(*in, v))
-      throw std::runtime_error("GPIO input '" + in->config.name + "': cannot read line " + std::to_string(in->config.request.line) +
-                               " of " + in->config.chip->describe());
+      throw std::runtime_error("GPIO input '" + in->config.name + "': cannot read line " +
+                               std::to_string(in->config.request.line) + " of " + in->config.chip->describe());
     in->debouncer = Debouncer(in->config.debounce.count(), v);
     in->settled.store(v, std::memory_order_relaxed);
     if (in->config.role == GpioInputRole::control) sink_->post(in->config.name, v ? 1.0 : 0.0, false, now);

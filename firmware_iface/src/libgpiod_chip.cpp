@@ -63,8 +63,8 @@ class LibgpiodChip final : public GpioChip {
 
   void request_output(const GpioOutputRequest& request) override {
     gpiod_line* line = line_for(request.line);
-    if (gpiod_line_request_output_flags(line, kConsumer, flags_of(request.active_low, GpioBias::as_is), request.initial ? 1 : 0) !=
-        0)
+    if (gpiod_line_request_output_flags(line, kConsumer, flags_of(request.active_low, GpioBias::as_is),
+                                        request.initial ? 1 : 0) != 0)
       fail_request(request.line, "as an output");
     lines_.push_back({request.line, line, true, -1});
   }

@@ -15,8 +15,7 @@ std::int64_t monotonic_now_ns() noexcept {
 
 }  // namespace
 
-SimGpioChip::SimGpioChip(std::string name, unsigned lines)
-    : describe_("simulated GPIO chip '" + name + "'"), lines_(lines) {}
+SimGpioChip::SimGpioChip(std::string name, unsigned lines) : describe_("simulated GPIO chip '" + name + "'"), lines_(lines) {}
 
 SimGpioChip::Line& SimGpioChip::checked(unsigned line, const char* what) {
   if (line >= lines_.size())

@@ -131,7 +131,8 @@ class GpioEstopPress final : public control::TickObserver {
       pressed_at_s = now;
       chip_.set_level(kEstopLine, false);  // a button to ground, active-low
       const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-      while (!estop_.load() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      while (!estop_.load() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     if (tick == at_ + 1) fog_after_press = chip_.level(kFogLine);
   }

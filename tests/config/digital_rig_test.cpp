@@ -86,7 +86,8 @@ TEST(DigitalRig, RejectsEachBadEntryWithWhereAndWhat) {
             ":10:58: actuators on gpio link 'props' take no calibration block; their keys are: line, active_low");
   EXPECT_EQ(digital_rig_error(replace(rig, "line: 17}", "line: 1024}")),
             ":10:41: expected line from 0 to 1023 on gpio link 'props', found '1024'");
-  EXPECT_EQ(digital_rig_error(replace(rig, "line: 27,", "line: 17,")), ":11:40: line 17 of gpio link 'props' is used by two actuators");
+  EXPECT_EQ(digital_rig_error(replace(rig, "line: 27,", "line: 17,")),
+            ":11:40: line 17 of gpio link 'props' is used by two actuators");
   EXPECT_EQ(digital_rig_error(replace(rig, "line: 17}", "line: 17, active_low: maybe}")),
             ":10:57: expected active_low to be true or false, found 'maybe'");
   EXPECT_EQ(digital_rig_error(replace(rig, "line: 17}", "device_channel: 17}")),
@@ -106,8 +107,9 @@ TEST(DigitalRig, RejectsEachBadEntryWithWhereAndWhat) {
             ":16:25: line 17 of chip 'sim' is already the output of channel 'relay' on link 'props' (line 10)");
   EXPECT_EQ(digital_rig_error(replace(rig, "{chip: sim, line: 6, role: start}", "{chip: sim, line: 6}")),
             ":16:7: missing field 'role' in digital input 'go'");
-  EXPECT_EQ(digital_rig_error(replace(rig, "{chip: sim, line: 6,", "{chip: sim, pin: 6,")),
-            ":16:19: unknown field 'pin' in digital input 'go'; expected one of: chip, line, active_low, bias, debounce_ms, role");
+  EXPECT_EQ(
+      digital_rig_error(replace(rig, "{chip: sim, line: 6,", "{chip: sim, pin: 6,")),
+      ":16:19: unknown field 'pin' in digital input 'go'; expected one of: chip, line, active_low, bias, debounce_ms, role");
 }
 
 TEST(DigitalRig, FeasibilitySkipsDigitalChannels) {

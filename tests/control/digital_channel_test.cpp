@@ -87,12 +87,28 @@ TEST(DigitalRamp, SwitchedChannelsAreOnTheirGoalFromTheStartAndSetNoDuration) {
 Rig relay_and_jaw_rig() {
   Rig rig;
   rig.name = "prop";
-  ChannelSpec relay{.name = "relay", .unit = "", .kind = rig::ChannelKind::digital, .min = 0, .max = 1, .rest = 0,
-                    .max_velocity = kDigitalInf, .max_acceleration = kDigitalInf, .max_jerk = kDigitalInf,
-                    .ramp_velocity = kDigitalInf, .where = {}};
+  ChannelSpec relay{.name = "relay",
+                    .unit = "",
+                    .kind = rig::ChannelKind::digital,
+                    .min = 0,
+                    .max = 1,
+                    .rest = 0,
+                    .max_velocity = kDigitalInf,
+                    .max_acceleration = kDigitalInf,
+                    .max_jerk = kDigitalInf,
+                    .ramp_velocity = kDigitalInf,
+                    .where = {}};
   rig.channels.push_back(relay);
-  rig.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 200,
-                          .max_acceleration = 2000, .max_jerk = 20000, .ramp_velocity = 20, .where = {}});
+  rig.channels.push_back({.name = "jaw",
+                          .unit = "deg",
+                          .min = 0,
+                          .max = 30,
+                          .rest = 0,
+                          .max_velocity = 200,
+                          .max_acceleration = 2000,
+                          .max_jerk = 20000,
+                          .ramp_velocity = 20,
+                          .where = {}});
   rig.links.emplace_back().name = "props";
   for (std::size_t c = 0; c < 2; ++c) {
     ActuatorSpec a;
@@ -123,8 +139,7 @@ playback::Show relay_show() {
   playback::Show show;
   show.name = "relay";
   show.duration = 3.0;
-  show.tracks.push_back(
-      digital_track("relay", {{0.0, 1.0}, {1.0, 0.0}, {1.5, 1.0}, {3.0, 1.0}}, playback::Interpolation::step));
+  show.tracks.push_back(digital_track("relay", {{0.0, 1.0}, {1.0, 0.0}, {1.5, 1.0}, {3.0, 1.0}}, playback::Interpolation::step));
   show.tracks.push_back(digital_track("jaw", {{0.0, 0.0}, {1.5, 20.0}, {3.0, 0.0}}, playback::Interpolation::linear));
   return show;
 }
@@ -180,7 +195,7 @@ TEST(DigitalController, AFaultSwitchesToRestOnItsTickWhileTheJawEases) {
   c.fault(FaultCause::estop, 0, 0, k * dt);
   c.tick(k * dt);
   ++k;
-  EXPECT_EQ(link.frames.back()[0], 0.0);  // off on the fault's own tick
+  EXPECT_EQ(link.frames.back()[0], 0.0);               // off on the fault's own tick
   EXPECT_GT(link.frames.back()[1], 0.9 * jaw_before);  // the jaw eases, it does not snap
   for (; c.active(); ++k) c.tick(k * dt);
   EXPECT_EQ(c.latched_fault().cause, FaultCause::estop);

@@ -71,8 +71,8 @@ TEST(Debouncer, SettlesOnlyOnValuesHeldForTheWholeWindowAndOnEveryLongHold) {
 
 TEST(Debouncer, AGlitchShorterThanTheWindowNeverShows) {
   Debouncer d(5'000'000, false);
-  d.disturbed(0);           // up
-  d.disturbed(1'000'000);   // and down again 1 ms later
+  d.disturbed(0);          // up
+  d.disturbed(1'000'000);  // and down again 1 ms later
   EXPECT_FALSE(d.due(5'999'999));
   ASSERT_TRUE(d.due(6'000'000));
   EXPECT_FALSE(d.settle(false));  // the window ended on the settled value: a glitch

@@ -139,8 +139,9 @@ TEST(GpioInputs, StartButtonsCountPresses) {
     ASSERT_TRUE(gpio_eventually([&] { return !inputs.value(0); }));
   }
   EXPECT_FALSE(inputs.estop().load());  // another line, untouched
-  EXPECT_EQ(inputs.describe(),
-            "GPIO inputs start (simulated GPIO chip 'sim' line 9, start button), estop (simulated GPIO chip 'sim' line 4, e-stop)");
+  EXPECT_EQ(
+      inputs.describe(),
+      "GPIO inputs start (simulated GPIO chip 'sim' line 9, start button), estop (simulated GPIO chip 'sim' line 4, e-stop)");
 }
 
 TEST(GpioInputs, LinesAreRequestedForTheirLifetimeAndBusyLinesAreNamed) {

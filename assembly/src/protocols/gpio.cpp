@@ -11,8 +11,8 @@ constexpr long long kMaxLine = 1023;
 void check_gpio_actuator(const rig::Rig& rig, const rig::ActuatorSpec& a) {
   const rig::ChannelSpec& ch = rig.channel(a.channel);
   if (!ch.digital())
-    ScalarValue{"", false, "an analog channel", a.where}.fail(
-        "a gpio line switches a digital channel, but channel '" + ch.name + "' is analog; give it kind: digital (0 off, 1 on)");
+    ScalarValue{"", false, "an analog channel", a.where}.fail("a gpio line switches a digital channel, but channel '" + ch.name +
+                                                              "' is analog; give it kind: digital (0 off, 1 on)");
   if (const ScalarValue* low = a.settings.find("active_low")) (void)low->as_bool("active_low");
   if (a.speed_limit || a.acceleration_limit)
     ScalarValue{"", false, "a speed or acceleration limit", a.where}.fail(

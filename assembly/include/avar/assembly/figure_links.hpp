@@ -38,8 +38,8 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
  public:
   /// Opens every link: starts simulated devices first, then opens each port with the real
   /// serial transport (or, for a protocol that opens its own, such as a SocketCAN interface,
-  /// through the protocol; a gpio link on its chip from LinkSelection::gpio_chips). Throws InputError naming the port when one cannot be opened or the
-  /// selection does not fit the rig (for example --port on a rig with several links).
+  /// through the protocol; a gpio link on its chip from LinkSelection::gpio_chips). Throws InputError naming the port when one
+  /// cannot be opened or the selection does not fit the rig (for example --port on a rig with several links).
   FigureLinks(const rig::Rig& rig, const LinkSelection& selection);
   ~FigureLinks() override;
   FigureLinks(const FigureLinks&) = delete;

@@ -43,8 +43,8 @@ struct GpioOutputRequest {
 /// An edge seen on an input line requested with edge_events.
 struct GpioEdge {
   unsigned line = 0;
-  bool rising = false;        ///< the line's logical value became 1
-  std::int64_t time_ns = 0;   ///< when it happened, as the chip stamps it
+  bool rising = false;       ///< the line's logical value became 1
+  std::int64_t time_ns = 0;  ///< when it happened, as the chip stamps it
 };
 
 class GpioChip {

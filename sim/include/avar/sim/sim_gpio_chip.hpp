@@ -66,8 +66,8 @@ class SimGpioChip final : public firmware_iface::GpioChip {
     bool active_low = false;
     firmware_iface::GpioBias bias = firmware_iface::GpioBias::as_is;
     bool edge_events = false;
-    bool driven = false;               ///< output: the level driven
-    std::optional<bool> outside;       ///< input: a level put on it from outside
+    bool driven = false;          ///< output: the level driven
+    std::optional<bool> outside;  ///< input: a level put on it from outside
     std::uint64_t output_changes = 0;
   };
 
