@@ -16,6 +16,7 @@
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
+#include "avar/assembly/digital_inputs.hpp"
 #include "avar/assembly/figure_links.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
@@ -297,9 +298,13 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   }
 
   std::unique_ptr<assembly::FigureLinks> figure;
+  // GPIO chips are shared by the gpio links and the digital inputs (the e-stop).
+  const auto gpio_chips = std::make_shared<assembly::GpioChips>(options.simulate);
+  std::unique_ptr<firmware_iface::GpioInputs> digital_inputs;
   try {
     figure = std::make_unique<assembly::FigureLinks>(
-        rig, assembly::LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate, {}});
+        rig, assembly::LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate, {}, gpio_chips});
+    digital_inputs = assembly::open_digital_inputs(rig, *gpio_chips);
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
@@ -370,6 +375,15 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
   run_options.deadline_miss_budget = options.deadline_miss_budget;
   run_options.estop = &interrupts.estop();
+  if (digital_inputs) {
+    try {
+      digital_inputs->start();
+    } catch (const std::runtime_error& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitFault;
+    }
+    run_options.estop_input = &digital_inputs->estop();
+  }
   run_options.plant = figure.get();
   const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
   recorder.finish();

@@ -19,12 +19,30 @@ struct FigureLinks::Entry {
   std::unique_ptr<sim::PtyDeviceHost> host;                    ///< a simulated device behind a serial port
   std::unique_ptr<sim::UsbDeviceHost> usb_host;                ///< a simulated device on USB
   std::unique_ptr<firmware_iface::SerialTransport> transport;  ///< null for links that are no serial port
+  std::shared_ptr<firmware_iface::GpioChip> chip;              ///< a gpio link's chip
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
     return threaded ? static_cast<firmware_iface::ActuatorLink*>(threaded.get()) : link.get();
   }
 };
+
+namespace {
+
+/// A gpio link: its chip (simulated for port sim or --sim), shared through the selection's chips.
+void open_on_chip(const rig::Rig& rig, std::size_t i, const Protocol& protocol, const std::string& port,
+                  const LinkSelection& selection, FigureLinks::Entry& entry, std::shared_ptr<GpioChips>& chips) {
+  if (!chips) chips = selection.gpio_chips ? selection.gpio_chips : std::make_shared<GpioChips>(selection.simulate_all);
+  const rig::LinkSpec& spec = rig.links[i];
+  try {
+    entry.chip = chips->open(port, entry.simulated);
+    entry.link = protocol.make_chip_link(rig, i, entry.chip);
+  } catch (const std::runtime_error& e) {
+    throw InputError({rig.file, spec.where.line, spec.where.column}, "link '" + spec.name + "': " + e.what());
+  }
+}
+
+}  // namespace
 
 FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     : rig_(rig), truth_(rig.channels.size(), 0.0), truth_known_(rig.channels.size(), 0) {
@@ -39,31 +57,35 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     std::string port = selection.port.value_or(rig.links[i].port);
     entry->simulated = selection.simulate_all || port == "sim";
     DriverTuning tuning;
-    if (entry->simulated) entry->device = protocol.make_simulated(rig, i);
-    if (entry->device.usb_device) {
-      // A simulated USB device answers the real driver's control transfers in this process.
-      entry->usb_host = std::make_unique<sim::UsbDeviceHost>(*entry->device.usb_device, entry->device.usb_name);
-      entry->link = protocol.make_usb_link(rig, i, entry->usb_host->connect(), tuning);
+    if (protocol.make_chip_link) {
+      open_on_chip(rig, i, protocol, port, selection, *entry, gpio_chips_);
     } else {
-      if (entry->simulated) {
-        if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
-        // Drives that need their own time to come up (a heartbeat) run on the wall clock until
-        // the first tick; every other simulator waits for the loop's stepped clock from the start.
-        const auto clock =
-            protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
-        entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
-        port = entry->host->slave_path();
-        // A simulated device answers from a thread of this process, which a busy machine may keep
-        // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
-        // saturated 2-core machine under the sanitizers): give it a second (it answers at once
-        // when it runs, so only a lost reply would ever wait this long).
-        tuning.min_reply_timeout_ms = 1000;
-      }
-      if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
-        entry->link = protocol.open_link(rig, i, port);
+      if (entry->simulated) entry->device = protocol.make_simulated(rig, i);
+      if (entry->device.usb_device) {
+        // A simulated USB device answers the real driver's control transfers in this process.
+        entry->usb_host = std::make_unique<sim::UsbDeviceHost>(*entry->device.usb_device, entry->device.usb_name);
+        entry->link = protocol.make_usb_link(rig, i, entry->usb_host->connect(), tuning);
       } else {
-        entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-        entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+        if (entry->simulated) {
+          if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
+          // Drives that need their own time to come up (a heartbeat) run on the wall clock until
+          // the first tick; every other simulator waits for the loop's stepped clock from the start.
+          const auto clock =
+              protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
+          entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
+          port = entry->host->slave_path();
+          // A simulated device answers from a thread of this process, which a busy machine may keep
+          // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
+          // saturated 2-core machine under the sanitizers): give it a second (it answers at once
+          // when it runs, so only a lost reply would ever wait this long).
+          tuning.min_reply_timeout_ms = 1000;
+        }
+        if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
+          entry->link = protocol.open_link(rig, i, port);
+        } else {
+          entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
+          entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
+        }
       }
     }
     if (selection.threaded_rate_hz > 0) {
@@ -81,6 +103,7 @@ FigureLinks::~FigureLinks() {
     e->link.reset();
     e->transport.reset();
     e->usb_host.reset();
+    e->chip.reset();
   }
 }
 
@@ -100,7 +123,8 @@ bool FigureLinks::all_simulated() const {
 
 std::string FigureLinks::describe(std::size_t link) const {
   const Entry& e = *entries_[link];
-  return (e.simulated ? "simulated " : "") + e.link->describe();
+  // (A simulated chip says so itself.)
+  return (e.simulated && !e.chip ? "simulated " : "") + e.link->describe();
 }
 
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
@@ -131,6 +155,16 @@ std::string FigureLinks::channel_problem(std::size_t channel) const {
 void FigureLinks::advance(double dt_s) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
+    if (e->chip) {
+      // A simulated chip's lines change as they are set: read what each output drives.
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        bool on = false;
+        if (e->chip->get(static_cast<unsigned>(a.device_channel), on) != Status::ok) continue;
+        truth_[a.channel.value] = a.calibration.to_channel(on ? 1.0 : 0.0);
+        truth_known_[a.channel.value] = 1;
+      }
+      continue;
+    }
     const auto step = [&](auto& device) {
       device.advance(dt_s);
       for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {

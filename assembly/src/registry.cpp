@@ -6,6 +6,7 @@
 #include "avar/assembly/dmx_protocol.hpp"
 #include "avar/assembly/dynamixel_protocol.hpp"
 #include "avar/assembly/feetech_protocol.hpp"
+#include "avar/assembly/gpio_protocol.hpp"
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/assembly/ssc32_protocol.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
@@ -14,7 +15,8 @@ namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
   static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(),
-                                                &ssc32_protocol(),   &dmx_protocol(),       &can_protocol()};
+                                                &ssc32_protocol(),   &dmx_protocol(),       &can_protocol(),
+                                                &gpio_protocol()};
   return all;
 }
 

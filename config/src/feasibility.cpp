@@ -164,6 +164,7 @@ std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, c
     fill(b[i] - kJumpProbe, before);
     fill(b[i] + kJumpProbe, after);
     for (std::size_t c = 0; c < n; ++c) {
+      if (rig.channels[c].digital()) continue;  // switches: its jumps are what it is for
       const double jump = std::abs(after[c] - before[c]);
       // Ten times what the channel could move at its top speed across the probe is no smooth motion.
       if (jump > 20 * kJumpProbe * rig.channels[c].max_velocity)
@@ -175,6 +176,7 @@ std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, c
     const double t0 = b[i], t1 = b[i + 1];
     const std::vector<Demand> demand = measure_values(n, fill, t0 + 1e-9 * (t1 - t0), t1);
     for (std::size_t c = 0; c < n; ++c) {
+      if (rig.channels[c].digital()) continue;
       std::vector<Infeasible> piece;
       const Infeasible base{Infeasible::Kind::speed, names[c], rig.channels[c].unit, t0, t1, 0, 0,
                             composed_source(show, names[c], 0.5 * (t0 + t1))};
@@ -245,6 +247,8 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig:
     const auto ci = rig.find_channel(track.channel);
     if (!ci) continue;
     const rig::ChannelSpec& c = rig.channels[*ci];
+    // A digital channel switches at once: no speed, acceleration or jump to check.
+    if (c.digital()) continue;
     const auto& keys = track.raw.keys;
     for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
       const double t0 = keys[k].time, t1 = keys[k + 1].time;
@@ -277,7 +281,7 @@ playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
     std::vector<TimeWarp::Span> spans;
     for (const playback::Track& track : out.tracks) {
       const auto ci = rig.find_channel(track.channel);
-      if (!ci) continue;
+      if (!ci || rig.channels[*ci].digital()) continue;
       const auto& keys = track.raw.keys;
       for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
         if (keys[k].interpolation == playback::Interpolation::step) continue;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include "rig_kinematics.hpp"
@@ -18,18 +19,61 @@ using rig::ChannelSpec;
 using rig::LinkSpec;
 using rig::Rig;
 
+/// The highest GPIO line offset a rig may name (chips are checked when opened).
+constexpr long long kMaxGpioLine = 1023;
+
 double positive(const YamlRef& node, std::string_view what) {
   const double v = node.as_double(what);
   if (v <= 0) node.fail("expected " + std::string(what) + " to be greater than 0, found " + format_number(v));
   return v;
 }
 
+constexpr std::string_view kMotionKeys[] = {"max_velocity", "max_acceleration", "max_jerk",
+                                            "soft_margin",  "ramp_velocity",    "tracking_tolerance"};
+
+/// A digital channel: 0 (off) or 1 (on), switching at once: no motion limits.
+ChannelSpec read_digital_channel(const std::string& name, const YamlRef& node) {
+  const std::string what = "digital channel '" + name + "'";
+  for (std::string_view key : kMotionKeys)
+    if (auto k = node.find(key))
+      k->fail("a digital channel switches at once, so " + std::string(key) + " does not apply to " + what +
+              "; remove it (or make the channel analog)");
+  node.expect_only_keys({"kind", "unit", "min", "max", "rest"}, what);
+  ChannelSpec c;
+  c.name = name;
+  c.where = node.where();
+  c.kind = rig::ChannelKind::digital;
+  c.unit = node.find("unit") ? node.at("unit", what).as_string("the unit of " + what) : "";
+  const auto fixed = [&](const char* key, double wanted) {
+    if (auto k = node.find(key); k && k->as_double(std::string(key) + " of " + what) != wanted)
+      k->fail("expected " + std::string(key) + " of " + what + " to be " + format_number(wanted) +
+              " (a digital channel is 0, off, or 1, on), found " + k->describe());
+  };
+  fixed("min", 0);
+  fixed("max", 1);
+  c.min = 0;
+  c.max = 1;
+  if (auto rest = node.find("rest")) {
+    c.rest = rest->as_double("rest of " + what);
+    if (c.rest != 0 && c.rest != 1)
+      rest->fail("expected rest of " + what + " to be 0 (off) or 1 (on), found " + rest->describe());
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  c.max_velocity = c.max_acceleration = c.max_jerk = c.ramp_velocity = inf;
+  return c;
+}
+
 ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
+  if (auto kind = node.find("kind")) {
+    const std::string k = kind->as_string("the kind of channel '" + name + "'");
+    if (k == "digital") return read_digital_channel(name, node);
+    if (k != "analog")
+      kind->fail("unknown channel kind " + kind->describe() + "; expected analog (moves within limits) or digital (0 off, 1 on)");
+  }
   const std::string what = "channel '" + name + "'";
-  node.expect_only_keys(
-      {"unit", "min", "max", "rest", "max_velocity", "max_acceleration", "max_jerk", "soft_margin", "ramp_velocity",
-       "tracking_tolerance"},
-      what);
+  node.expect_only_keys({"kind", "unit", "min", "max", "rest", "max_velocity", "max_acceleration", "max_jerk", "soft_margin",
+                         "ramp_velocity", "tracking_tolerance"},
+                        what);
   ChannelSpec c;
   c.name = name;
   c.where = node.where();
@@ -140,6 +184,13 @@ void read_drive_settings(const YamlRef& node, const std::string& what, const ass
   }
 }
 
+/// "active_low" for messages: the keys a protocol's actuators take of their own.
+std::string own_keys(const assembly::Protocol& p) {
+  std::string list;
+  for (std::string_view k : p.actuator_keys) list += (list.empty() ? "" : ", ") + std::string(k);
+  return list;
+}
+
 ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t index) {
   const std::string what = "actuator " + std::to_string(index + 1);
   ActuatorSpec a;
@@ -165,8 +216,18 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   const assembly::Protocol& link_protocol = assembly::protocol_of(spec);
   const std::string& protocol_name = spec.protocol;
   const bool drive_bus = link_protocol.finish_actuator != nullptr;
-  // A bus of drives takes keys of its own, which its protocol checks (finish_actuator).
-  if (!drive_bus) node.expect_only_keys(kActuatorKeys, what);
+  // A bus of drives takes keys of its own, which its protocol checks (finish_actuator); other
+  // protocols may name a few of their own (actuator_keys) besides their address key.
+  if (!drive_bus) {
+    std::vector<std::string_view> keys(std::begin(kActuatorKeys), std::end(kActuatorKeys));
+    const std::string_view address_key = link_protocol.address_rule(spec, false).key;
+    if (std::find(keys.begin(), keys.end(), address_key) == keys.end()) keys.push_back(address_key);
+    keys.insert(keys.end(), link_protocol.actuator_keys.begin(), link_protocol.actuator_keys.end());
+    node.expect_only_keys(keys, what);
+  }
+  if (drive_bus && ch.digital())
+    channel.fail("channel '" + ch.name + "' is digital (0 off, 1 on); a drive on " + protocol_name + " link '" + spec.name +
+                 "' needs an analog channel");
   if (drive_bus) {
     if (auto cal = node.find("calibration"))
       cal->fail("actuators on " + protocol_name + " link '" + link_name +
@@ -210,6 +271,12 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
              " " + rule.unit + ", found " + n.describe());
     return v;
   };
+  if (!rule.cal_min)
+    if (auto cal = node.find("calibration"))
+      cal->fail("actuators on " + protocol_name + " link '" + link_name + "' take no calibration block" +
+                (link_protocol.actuator_keys.empty()
+                     ? ""
+                     : "; their keys are: " + std::string(rule.key) + ", " + own_keys(link_protocol)));
   // A DMX dimmer spans its whole range by default; servos must be calibrated.
   const auto cal_node =
       link_protocol.needs_calibration ? std::optional<YamlRef>(node.at("calibration", what)) : node.find("calibration");
@@ -243,8 +310,71 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   if (drive_bus) {
     read_drive_settings(node, what, rule, a);
     link_protocol.finish_actuator(rig, a);
+  } else if (!link_protocol.actuator_keys.empty()) {
+    a.settings.where = node.where();
+    a.settings.what = "the settings of " + what;
+    for (std::string_view key : link_protocol.actuator_keys)
+      if (auto k = node.find(key)) a.settings.entries.push_back({std::string(key), k->where(), k->scalar()});
   }
+  if (link_protocol.check_actuator) link_protocol.check_actuator(rig, a);
   return a;
+}
+
+/// One entry of `digital_inputs:`.
+rig::DigitalInputSpec read_digital_input(const std::string& name, const YamlRef& node) {
+  const std::string what = "digital input '" + name + "'";
+  node.expect_only_keys({"chip", "line", "active_low", "bias", "debounce_ms", "role"}, what);
+  rig::DigitalInputSpec in;
+  in.name = name;
+  in.where = node.where();
+  in.chip = node.at("chip", what).as_string("the chip of " + what + " (gpiochip0, a chip's label or path, or sim)");
+  const YamlRef line = node.at("line", what);
+  const long long offset = line.as_integer("the line of " + what);
+  if (offset < 0 || offset > kMaxGpioLine)
+    line.fail("expected the line of " + what + " from 0 to " + std::to_string(kMaxGpioLine) + ", found " + line.describe());
+  in.line = static_cast<unsigned>(offset);
+  if (auto low = node.find("active_low")) in.active_low = low->as_bool("active_low of " + what);
+  if (auto bias = node.find("bias")) {
+    const std::string b = bias->as_string("the bias of " + what);
+    if (b == "as_is") in.bias = firmware_iface::GpioBias::as_is;
+    else if (b == "disabled") in.bias = firmware_iface::GpioBias::disabled;
+    else if (b == "pull_up") in.bias = firmware_iface::GpioBias::pull_up;
+    else if (b == "pull_down") in.bias = firmware_iface::GpioBias::pull_down;
+    else
+      bias->fail("unknown bias " + bias->describe() + " of " + what + "; expected one of: as_is, disabled, pull_up, pull_down");
+  }
+  if (auto d = node.find("debounce_ms")) {
+    const double ms = d->as_double("debounce_ms of " + what);
+    if (ms < 0 || ms > 1000) d->fail("expected debounce_ms of " + what + " from 0 to 1000 milliseconds, found " + d->describe());
+    in.debounce_s = ms / 1000.0;
+  }
+  const YamlRef role = node.at("role", what);
+  const std::string r = role.as_string("the role of " + what);
+  if (r == "estop") in.role = rig::InputRole::estop;
+  else if (r == "control") in.role = rig::InputRole::control;
+  else if (r == "start") in.role = rig::InputRole::start;
+  else
+    role.fail("unknown role " + role.describe() + " of " + what +
+              "; expected one of: estop (stops the figure), control (a live input), start (a show start button)");
+  return in;
+}
+
+/// A line is one input or one output, never both.
+void check_gpio_lines(const Rig& rig, const std::vector<YamlRef>& input_nodes) {
+  for (std::size_t i = 0; i < rig.digital_inputs.size(); ++i) {
+    const rig::DigitalInputSpec& in = rig.digital_inputs[i];
+    const YamlRef line = input_nodes[i].at("line", "");
+    for (std::size_t j = 0; j < i; ++j)
+      if (rig.digital_inputs[j].chip == in.chip && rig.digital_inputs[j].line == in.line)
+        line.fail("line " + std::to_string(in.line) + " of chip '" + in.chip + "' is already digital input '" +
+                  rig.digital_inputs[j].name + "' (line " + std::to_string(rig.digital_inputs[j].where.line) + ")");
+    for (const rig::ActuatorSpec& a : rig.actuators) {
+      const LinkSpec& link = rig.link(a.link);
+      if (link.protocol == "gpio" && link.port == in.chip && a.device_channel == static_cast<int>(in.line))
+        line.fail("line " + std::to_string(in.line) + " of chip '" + in.chip + "' is already the output of channel '" +
+                  rig.channel(a.channel).name + "' on link '" + link.name + "' (line " + std::to_string(a.where.line) + ")");
+    }
+  }
 }
 
 }  // namespace
@@ -253,7 +383,8 @@ rig::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
-  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "inputs"}, "the rig file");
+  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs"},
+                        "the rig file");
 
   Rig rig;
   rig.file = path;
@@ -304,6 +435,18 @@ rig::Rig load_rig_file(const std::string& path) {
   for (std::size_t i = 0; i < rig.links.size(); ++i)
     if (const auto check = assembly::protocol_of(rig.links[i]).validate_link_actuators) check(rig, i);
   if (auto kin = root.find("kinematics")) rig.kinematics = read_rig_kinematics(rig, *kin);
+  if (auto inputs = root.find("digital_inputs")) {
+    inputs->expect_map("digital_inputs (a map of input name to its chip, line and role)");
+    std::vector<YamlRef> nodes;
+    for (auto it = inputs->node.begin(); it != inputs->node.end(); ++it) {
+      const std::string name = it->first.Scalar();
+      for (const rig::DigitalInputSpec& other : rig.digital_inputs)
+        if (other.name == name) YamlRef{it->first, &path}.fail("digital input '" + name + "' is defined twice");
+      nodes.push_back(YamlRef{it->second, &path});
+      rig.digital_inputs.push_back(read_digital_input(name, nodes.back()));
+    }
+    check_gpio_lines(rig, nodes);
+  }
   return rig;
 }
 

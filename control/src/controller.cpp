@@ -21,8 +21,15 @@ std::vector<ChannelLimits> limits_of(const rig::Rig& rig) {
   std::vector<ChannelLimits> limits;
   limits.reserve(rig.channels.size());
   for (const rig::ChannelSpec& c : rig.channels)
-    limits.push_back({c.min, c.max, c.max_velocity, c.max_acceleration, c.max_jerk, c.soft_margin});
+    limits.push_back({c.min, c.max, c.max_velocity, c.max_acceleration, c.max_jerk, c.soft_margin, c.digital()});
   return limits;
+}
+
+/// Channels that switch rather than move: the soft stop and the fail-safe switch them at once.
+std::vector<char> switched_channels(const rig::Rig& rig) {
+  std::vector<char> at_once;
+  for (const rig::ChannelSpec& c : rig.channels) at_once.push_back(c.digital() ? 1 : 0);
+  return at_once;
 }
 
 }  // namespace
@@ -52,7 +59,7 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       options_(options),
       sampler_(show, channel_names_of(rig), rig.rest_frame()),
       limiter_(limits_of(rig), options.tick_period_s),
-      ramp_(rig.channels.size()),
+      ramp_(rig.channels.size(), switched_channels(rig)),
       rest_(rig.rest_frame()),
       supervisor_(rig, links_.size()),
       failsafe_goal_(rig.channels.size()),

@@ -9,6 +9,13 @@ namespace avar::control {
 Limiter::Limiter(std::vector<ChannelLimits> limits, double dt_s) : dt_s_(dt_s), plans_(limits.size()), last_(limits.size(), 0.0) {
   if (!(dt_s > 0)) throw std::invalid_argument("the limiter needs a positive tick period");
   for (const ChannelLimits& l : limits) {
+    if (l.digital) {
+      if (!(l.max > l.min)) throw std::invalid_argument("a digital channel needs max > min");
+      Channel c;
+      c.limits = l;
+      channels_.push_back(c);
+      continue;
+    }
     if (!(l.max > l.min) || !(l.max_velocity > 0) || !(l.max_acceleration > 0) || !(l.max_jerk > 0) || !(l.soft_margin >= 0))
       throw std::invalid_argument("channel limits must be positive, with max > min");
     Channel c;
@@ -27,7 +34,7 @@ void Limiter::reset(std::span<const double> pose) noexcept {
   for (std::size_t i = 0; i < channels_.size() && i < pose.size(); ++i) {
     if (!std::isfinite(pose[i])) continue;
     Channel& c = channels_[i];
-    const double p = std::clamp(pose[i], c.limits.min, c.limits.max);
+    const double p = c.limits.digital ? switched(c.limits, pose[i]) : std::clamp(pose[i], c.limits.min, c.limits.max);
     c.goal = last_[i] = p;
     c.state = {p, 0, 0};
     c.peak_velocity = 0;
@@ -45,11 +52,15 @@ double Limiter::goal_of(const ChannelLimits& l, double target) noexcept {
   return std::clamp(target, std::min(l.min + l.soft_margin, mid), std::max(l.max - l.soft_margin, mid));
 }
 
+double Limiter::switched(const ChannelLimits& l, double target) noexcept {
+  return target >= 0.5 * (l.min + l.max) ? l.max : l.min;
+}
+
 double Limiter::glide_duration(std::span<const double> goal, std::span<const double> peak_speed, double min_duration_s) const noexcept {
   double duration = min_duration_s;
   for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
     const Channel& c = channels_[i];
-    if (!std::isfinite(goal[i])) continue;
+    if (!std::isfinite(goal[i]) || c.limits.digital) continue;
     const double d = std::abs(goal_of(c.limits, goal[i]) - c.state.p);
     const double speed = i < peak_speed.size() && peak_speed[i] > 0 ? std::min(peak_speed[i], c.limits.max_velocity) : c.limits.max_velocity;
     // Peak speed 2d/T, peak acceleration 8d/T², jerk 32d/T³, each within its limit.
@@ -63,7 +74,7 @@ void Limiter::glide_to(std::span<const double> goal, double duration_s) noexcept
   const double cube = duration_s * duration_s * duration_s;
   for (std::size_t i = 0; i < channels_.size() && i < goal.size(); ++i) {
     Channel& c = channels_[i];
-    if (!std::isfinite(goal[i]) || c.state.v != 0 || c.state.a != 0) continue;
+    if (!std::isfinite(goal[i]) || c.limits.digital || c.state.v != 0 || c.state.a != 0) continue;
     const double to = goal_of(c.limits, goal[i]);
     const double jerk = std::min(32 * std::abs(to - c.state.p) / cube, c.limits.max_jerk);
     if (!(jerk > 0)) continue;
@@ -83,7 +94,7 @@ double Limiter::heading(std::size_t channel) const noexcept {
 void Limiter::warm(std::span<const double> target) noexcept {
   for (std::size_t i = 0; i < channels_.size() && i < target.size(); ++i) {
     Channel& c = channels_[i];
-    if (!std::isfinite(target[i]) || c.state.v != 0 || c.state.a != 0) continue;
+    if (!std::isfinite(target[i]) || c.limits.digital || c.state.v != 0 || c.state.a != 0) continue;
     const double goal = goal_of(c.limits, target[i]);
     if (goal == c.state.p) continue;
     // (Into the channel's stored plan, which a channel at rest never follows: it plans again.)
@@ -167,6 +178,19 @@ Status Limiter::apply(std::span<const double> target, std::span<double> out) noe
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     Channel& c = channels_[i];
     const ChannelLimits& l = c.limits;
+    if (l.digital) {
+      // Switches on the tick the target crosses the middle; a non-finite target keeps its goal.
+      if (std::isfinite(target[i])) {
+        if (target[i] < l.min || target[i] > l.max) ++c.clamped;
+        c.goal = switched(l, target[i]);
+      } else {
+        status = Status::not_finite;
+      }
+      c.state = {c.goal, 0, 0};
+      c.evaluations = 0;
+      last_[i] = out[i] = c.goal;
+      continue;
+    }
     if (std::isfinite(target[i])) {
       const double goal = goal_of(l, target[i]);
       if (goal != target[i]) ++c.clamped;

@@ -11,6 +11,23 @@ const char* to_string(Failsafe f) noexcept {
   return "unknown";
 }
 
+const char* to_string(ChannelKind k) noexcept {
+  switch (k) {
+    case ChannelKind::analog: return "analog";
+    case ChannelKind::digital: return "digital";
+  }
+  return "unknown";
+}
+
+const char* to_string(InputRole r) noexcept {
+  switch (r) {
+    case InputRole::estop: return "estop";
+    case InputRole::control: return "control";
+    case InputRole::start: return "start";
+  }
+  return "unknown";
+}
+
 const ScalarValue* LinkSettings::find(std::string_view key) const {
   for (const LinkSetting& e : entries)
     if (e.key == key) return &e.value;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "avar/assembly/gpio_chips.hpp"
 #include "avar/assembly/protocol.hpp"
 #include "avar/control/plant.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
@@ -28,6 +29,9 @@ struct LinkSelection {
   /// Called once for each simulated device behind a serial port before anything talks to it (a
   /// test heating a servo, loading a horn); empty: none.
   std::function<void(std::size_t link, sim::ByteDevice& device)> prepare_simulated;
+  /// The GPIO chips that gpio links open, shared with the rig's digital inputs (so a simulated
+  /// chip's buttons and relays are one set of lines); null: FigureLinks keeps its own.
+  std::shared_ptr<GpioChips> gpio_chips;
 };
 
 /// The figure's links, and for simulated ones the plant the loop advances (control::Plant) and
@@ -36,8 +40,8 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
  public:
   /// Opens every link: starts simulated devices first, then opens each port with the real
   /// serial transport (or, for a protocol that opens its own, such as a SocketCAN interface,
-  /// through the protocol). Throws InputError naming the port when one cannot be opened or the
-  /// selection does not fit the rig (for example --port on a rig with several links).
+  /// through the protocol; a gpio link on its chip from LinkSelection::gpio_chips). Throws InputError naming the port when one
+  /// cannot be opened or the selection does not fit the rig (for example --port on a rig with several links).
   FigureLinks(const rig::Rig& rig, const LinkSelection& selection);
   ~FigureLinks() override;
   FigureLinks(const FigureLinks&) = delete;
@@ -53,7 +57,8 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   /// device has taken in all bytes sent so far, advances its servos by dt_s, and keeps their
   /// true positions for measure().
   void advance(double dt_s) override;
-  /// The simulated actuators' true positions as of the last advance(), in channel units.
+  /// The simulated actuators' true positions as of the last advance(), in channel units (a
+  /// simulated GPIO line: the channel value its level stands for).
   /// Channels on real links are left unknown. Real-time safe.
   void measure(std::span<double> measured, std::span<bool> known) const noexcept override;
 
@@ -84,6 +89,7 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   std::vector<std::unique_ptr<Entry>> entries_;
   std::vector<double> truth_;      ///< per channel, as of the last advance()
   std::vector<char> truth_known_;  ///< per channel
+  std::shared_ptr<GpioChips> gpio_chips_;
 };
 
 }  // namespace avar::assembly

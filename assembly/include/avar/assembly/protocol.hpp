@@ -14,6 +14,7 @@
 
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/sim/byte_device.hpp"
@@ -107,6 +108,21 @@ struct Protocol {
   /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;
+
+  /// Keys an actuator on this protocol's links takes besides the common ones and its address key
+  /// (gpio: active_low), as written into ActuatorSpec::settings. Not for buses of drives.
+  std::vector<std::string_view> actuator_keys = {};
+  /// Checks one actuator once read (its channel's kind, its own keys); throws InputError at the
+  /// key. nullptr: nothing more to check.
+  void (*check_actuator)(const rig::Rig& rig, const rig::ActuatorSpec& a) = nullptr;
+
+  // Lines of a GPIO chip only; nullptr for every other protocol.
+
+  /// The driver of a link whose port names a GPIO chip, over that chip (opened by FigureLinks
+  /// through its GpioChips: real, or simulated for port sim). Replaces make_link, open_link and
+  /// make_simulated.
+  std::unique_ptr<firmware_iface::ActuatorLink> (*make_chip_link)(const rig::Rig& rig, std::size_t link,
+                                                                  std::shared_ptr<firmware_iface::GpioChip> chip) = nullptr;
 };
 
 /// Every protocol avar speaks, in the order messages list them.

@@ -27,7 +27,7 @@ struct Infeasible {
 /// Every segment of every track that needs more speed or acceleration (measured on the curve
 /// between its keys), or more range, than its channel allows, plus step keys that jump (the
 /// limiter shapes jumps; they are listed, not retimed). Tracks for unknown channels are skipped
-/// (check_show_against_rig reports them).
+/// (check_show_against_rig reports them), and so are digital channels (they switch at once).
 ///
 /// A layered show is checked on its composed motion, channel by channel, as the sampler plays it
 /// on this rig (rest pose under channels without a show track): the show is cut at every time

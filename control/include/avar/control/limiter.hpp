@@ -17,6 +17,10 @@
 // Single-threaded: one owner calls apply(). Sized once; apply() is real-time safe (no
 // allocation, exception or lock) and bounded per channel: at most one plan, typically 1-6
 // evaluations of a closed form, at most JerkProfile::kMaxEvaluations.
+//
+// A digital channel (a relay, a valve, an LED) does not move, it switches: its command is max
+// while the target is at or above the middle of [min, max] and min below it, on the tick the
+// target crosses, with no motion limits, margins, glides or intermediate values.
 
 #include <cstdint>
 #include <span>
@@ -34,12 +38,15 @@ struct ChannelLimits {
   double max_acceleration = 1;  ///< units/s², > 0
   double max_jerk = 1;          ///< units/s³, > 0
   double soft_margin = 0;       ///< targets stay this far inside [min, max], units, >= 0
+  /// Switches between min and max (see above); the motion limits and the margin are not used
+  /// (any value, infinity included, is accepted).
+  bool digital = false;
 };
 
 class Limiter {
  public:
   /// dt_s: the tick period every apply() will use. Throws std::invalid_argument for
-  /// non-positive limits or period.
+  /// non-positive limits (of analog channels) or period, or max <= min.
   Limiter(std::vector<ChannelLimits> limits, double dt_s);
 
   /// Sets the present pose, at rest, and makes it every channel's goal. Values are clamped into
@@ -66,7 +73,8 @@ class Limiter {
   /// jerk limit, so apply() with `goal` as the target plans it once and follows it. The lower
   /// limit lasts while the target stays on the goal; any other target ends
   /// the glide at once and the channel's own limits apply again (raising limits is safe from
-  /// any state within them). Channels in motion, and those already on their goal, do not glide.
+  /// any state within them). Channels in motion, those already on their goal and digital ones
+  /// (which switch on the next apply()) do not glide.
   void glide_to(std::span<const double> goal, double duration_s) noexcept;
 
   /// Brings the limiter into cache for its first apply() toward `target`, as the soft start's
@@ -129,6 +137,8 @@ class Limiter {
 
   /// A target clamped into the range less the soft margins: the goal it makes.
   static double goal_of(const ChannelLimits& l, double target) noexcept;
+  /// A digital channel's command for a target: min or max.
+  static double switched(const ChannelLimits& l, double target) noexcept;
   static JerkLimits own_limits(const ChannelLimits& l) noexcept { return {l.max_velocity, l.max_acceleration, l.max_jerk}; }
   /// The peak velocity the channel's next plan tries first (see JerkProfile::plan's hint).
   static double first_guess(const Channel& c) noexcept;

@@ -1,6 +1,7 @@
 #pragma once
 // Soft stop and fail-safe moves: every channel eases from one pose to another along a half-cosine
-// (zero speed at both ends), all channels arriving together. Planning may allocate (it runs
+// (zero speed at both ends), all channels arriving together; switched channels (digital ones)
+// are on their goal from the start. Planning may allocate (it runs
 // at set-up or reuses the buffers sized by the constructor); sampling is real-time safe.
 
 #include <span>
@@ -10,7 +11,9 @@ namespace avar::control {
 
 class Ramp {
  public:
-  explicit Ramp(std::size_t channels);
+  /// at_once[channel] != 0: the channel switches (a digital channel): it samples its goal from
+  /// the move's start and takes no part in its duration. Empty: none.
+  explicit Ramp(std::size_t channels, std::vector<char> at_once = {});
 
   /// Plans a move from `from` to `to`. The duration is the shortest for which no channel's
   /// peak speed exceeds its peak_velocity (units/s), and at least min_duration_s. The peak
@@ -26,6 +29,7 @@ class Ramp {
  private:
   std::vector<double> from_;
   std::vector<double> to_;
+  std::vector<char> at_once_;
   double duration_ = 0;
 };
 

@@ -26,6 +26,9 @@ struct RunOptions {
   std::uint64_t deadline_miss_budget = UINT64_MAX;
   /// The e-stop input: when it reads true the controller faults (nullptr: none).
   const std::atomic<bool>* estop = nullptr;
+  /// A second e-stop, watched the same way (the rig's GPIO e-stop input beside the keyboard's;
+  /// nullptr: none).
+  const std::atomic<bool>* estop_input = nullptr;
   /// The simulated figure, advanced by each tick's period after the tick (nullptr: none).
   Plant* plant = nullptr;
 };

@@ -15,6 +15,7 @@
 #include "avar/core/index.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/core/scalar_value.hpp"
+#include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/kinematics/model.hpp"
 
@@ -25,10 +26,22 @@ using ChannelIndex = Index<struct ChannelTag>;
 /// Index into Rig::links.
 using LinkIndex = Index<struct LinkTag>;
 
+/// How a channel moves.
+enum class ChannelKind {
+  analog,   ///< any value in [min, max], reached within the motion limits
+  digital,  ///< off (min) or on (max): a relay, valve or LED switches at once, no motion limits
+};
+
+const char* to_string(ChannelKind k) noexcept;
+
 /// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
 struct ChannelSpec {
   std::string name;
   std::string unit;             ///< free text: deg, mm, % ...
+  /// digital: min 0, max 1, every command is 0 or 1 (a value at or above the middle of the range
+  /// is on), so a step key switches on its tick; the motion limits below are infinite and the
+  /// soft start, soft stop and fail-safe moves switch it at once.
+  ChannelKind kind = ChannelKind::analog;
   double min = 0;               ///< hard lower limit (channel units); no command goes below
   double max = 1;               ///< hard upper limit (channel units), > min
   double rest = 0;              ///< rest pose, inside [min, max]: soft stop and faults go here
@@ -41,6 +54,8 @@ struct ChannelSpec {
   /// (channel units); 0 = not checked.
   double tracking_tolerance = 0;
   SourceLocation where;
+
+  bool digital() const noexcept { return kind == ChannelKind::digital; }
 };
 
 /// One setting of a link's protocol block (`maestro: {model: mini12}`): its key, where the key
@@ -162,6 +177,30 @@ class ActuatorsOnLink {
   LinkIndex link_;
 };
 
+/// What a digital input does.
+enum class InputRole {
+  estop,    ///< active: the e-stop (a fault source of the supervisor, latching FaultCause::estop)
+  control,  ///< a named control (0 or 1) delivered to the live inputs' sink under the input's name
+  start,    ///< a show start button: each debounced press is counted
+};
+
+const char* to_string(InputRole r) noexcept;
+
+/// A digital input on a GPIO line (`digital_inputs:` in a rig file): an e-stop, a limit switch,
+/// a start button.
+struct DigitalInputSpec {
+  std::string name;
+  std::string chip;  ///< gpiochip0, a chip's label or path, or "sim" (a simulated chip)
+  unsigned line = 0;
+  bool active_low = false;  ///< the input is active (1) while the line is low
+  firmware_iface::GpioBias bias = firmware_iface::GpioBias::as_is;
+  double debounce_s = 0.01;  ///< a change counts once the line stayed put this long
+  InputRole role = InputRole::control;
+  SourceLocation where;
+
+  bool simulated() const { return chip == "sim"; }
+};
+
 struct Rig {
   std::string name;
   std::string file;
@@ -170,6 +209,7 @@ struct Rig {
   std::vector<LinkSpec> links;
   std::vector<ActuatorSpec> actuators;
   std::optional<RigKinematics> kinematics;  ///< when the rig file has a kinematics section
+  std::vector<DigitalInputSpec> digital_inputs;
 
   std::optional<std::size_t> find_channel(std::string_view wanted) const;
   std::optional<std::size_t> find_link(std::string_view wanted) const;
