@@ -74,6 +74,8 @@ void declare_run_options(CLI::App* cmd, RunCli& r, bool plays_show) {
   cmd->add_option("--deadline-budget", o.deadline_miss_budget,
                   "Deadline misses allowed in one run before it faults (default: unlimited)");
   cmd->add_flag("--no-lock-memory", r.no_lock, "Do not lock the process's memory against paging");
+  cmd->add_flag("--wait-start", o.wait_start,
+                "Wait for a press of the rig's start button (digital_inputs: with role: start) before moving anything");
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <filesystem>
 #include <cstdio>
 #include <fstream>
@@ -207,6 +210,37 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
   write_svg_plot_file(path, data);
 }
 
+bool has_control_inputs(const rig::Rig& rig) {
+  return std::any_of(rig.digital_inputs.begin(), rig.digital_inputs.end(),
+                     [](const rig::DigitalInputSpec& d) { return d.role == rig::InputRole::control; });
+}
+
+/// --wait-start: blocks until a start button of the rig is pressed (or Ctrl-C). Nothing has
+/// been commanded yet; the GPIO e-stop is already watched.
+int wait_for_start_button(const rig::Rig& rig, const firmware_iface::GpioInputs* inputs, std::ostream& err) {
+  std::string names;
+  for (const rig::DigitalInputSpec& d : rig.digital_inputs)
+    if (d.role == rig::InputRole::start) names += (names.empty() ? "'" : ", '") + d.name + "'";
+  if (!inputs || names.empty()) {
+    err << "error: --wait-start needs a digital input with role: start in the rig (digital_inputs:)\n";
+    return kExitBadInput;
+  }
+  InterruptCounter interrupts;
+  err << "waiting for start button " << names << "; Ctrl-C gives up" << std::endl;
+  while (inputs->start_presses() == 0) {
+    if (interrupts.count().load() > 0) {
+      err << "stopped before the start button was pressed; nothing moved\n";
+      return kExitInterrupted;
+    }
+    if (inputs->estop().load()) {
+      err << "e-stop is pressed; release it and reset before starting\n";
+      return kExitFault;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return kExitOk;
+}
+
 /// The take of a recording run: every channel a live control touched, as the ticks of the
 /// running phase commanded it (after mixing and limits), fitted with keys within the
 /// tolerance; alone, or (--merge) as a clip on a layer of its own over a copy of the show.
@@ -273,7 +307,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const bool performs = options.live_only || options.record_path;
   std::vector<std::string> uris = options.inputs;
   if (uris.empty() && performs) uris = loaded->inputs.devices;
-  if (performs && uris.empty()) {
+  if (performs && uris.empty() && !has_control_inputs(rig)) {
     err << "error: no input device: give --input (osc://127.0.0.1:9000, midi:NAME, hid:VID:PID) or list devices: in the inputs: "
            "section\n";
     return kExitBadInput;
@@ -314,15 +348,34 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
-  // The input devices open before anything moves: a missing one stops the run here.
+  // The input devices open before anything moves: a missing one stops the run here. Digital
+  // inputs of the rig with the control role feed the mappings too.
   std::unique_ptr<LiveSession> live;
-  if (!uris.empty()) {
+  const bool gpio_controls = !loaded->inputs.mappings.empty() && has_control_inputs(rig);
+  if (!uris.empty() || gpio_controls) {
     try {
       live = std::make_unique<LiveSession>(rig, loaded->inputs, uris);
     } catch (const std::exception& e) {
       err << "error: " << e.what() << '\n';
       return kExitBadInput;
     }
+  }
+
+  // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
+  // live mixer, start buttons for --wait-start.
+  if (digital_inputs) {
+    try {
+      if (live)
+        digital_inputs->start(live->inputs().sink());
+      else
+        digital_inputs->start();
+    } catch (const std::runtime_error& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitFault;
+    }
+  }
+  if (options.wait_start) {
+    if (const int code = wait_for_start_button(rig, digital_inputs.get(), err); code != kExitOk) return code;
   }
 
   const std::vector<firmware_iface::ActuatorLink*> links = figure->links();
@@ -375,15 +428,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
   run_options.deadline_miss_budget = options.deadline_miss_budget;
   run_options.estop = &interrupts.estop();
-  if (digital_inputs) {
-    try {
-      digital_inputs->start();
-    } catch (const std::runtime_error& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitFault;
-    }
-    run_options.estop_input = &digital_inputs->estop();
-  }
+  if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
   run_options.plant = figure.get();
   const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
   recorder.finish();

@@ -28,6 +28,8 @@ struct PlayOptions {
   control::RealtimeRequest realtime{50, true, -1};
   /// More deadline misses than this in one run is a fault.
   std::uint64_t deadline_miss_budget = UINT64_MAX;
+  /// Wait for a start button (a digital input with role start) before moving anything.
+  bool wait_start = false;
 
   // Live inputs (play, puppet, record).
   std::vector<std::string> inputs;         ///< --input URIs; none: play opens none, puppet/record the inputs section's devices
