@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "avar/firmware_iface/hid_input.hpp"
 #include "avar/firmware_iface/midi_input.hpp"
 #include "avar/firmware_iface/osc_input.hpp"
 #include "avar/firmware_iface/prefixed_input_source.hpp"
@@ -13,8 +14,8 @@ namespace avar::firmware_iface {
 
 const std::string_view kInputSourceForms =
     "osc://HOST:PORT (osc://:9000 listens on 127.0.0.1 port 9000, osc://0.0.0.0:9000 on every interface), "
-    "midi:PORT (part of the port's name or its number: midi:nano, midi:1), either optionally named NAME=URI "
-    "(pad=osc://:9000 names its controls pad.*)";
+    "midi:PORT (part of the port's name or its number: midi:nano, midi:1), hid:VID:PID[:SERIAL] (hex ids: "
+    "hid:054c:09cc), each optionally named NAME=URI (pad=hid:054c:09cc names its controls pad.*)";
 
 namespace {
 
@@ -58,6 +59,13 @@ std::unique_ptr<InputSource> make_unnamed(std::string_view full, std::string_vie
     const std::string_view port = uri.substr(5);
     if (port.empty()) bad_uri(full, "which MIDI port? (`aconnect -i` lists them)");
     return std::make_unique<MidiInput>(std::string(port));
+  }
+  if (uri.starts_with("hid:")) {
+    try {
+      return make_hid_input(uri.substr(4));
+    } catch (const std::invalid_argument& e) {
+      bad_uri(full, e.what());
+    }
   }
   bad_uri(full, "unknown kind of input");
 }

@@ -38,6 +38,7 @@ InputCounters PrefixedInputSource::counters() const noexcept {
 }
 
 void PrefixedInputSource::post(std::string_view control, double value, bool bipolar, std::int64_t arrived_ns) noexcept {
+  if (control.starts_with(kOscChannelControlPrefix)) return sink_->post(control, value, bipolar, arrived_ns);
   std::array<char, kMaxName> name;
   if (prefix_.size() + 1 + control.size() > name.size()) {
     too_long_.fetch_add(1, std::memory_order_relaxed);

@@ -87,9 +87,9 @@ TEST(MidiInputAlsa, OpensAPortOrSaysWhatIsMissing) {
   input.stop();
   const auto posts = sink.posts();
   ASSERT_EQ(posts.size(), 2u);
-  EXPECT_EQ(posts[0].control, "ch1.cc7");
+  EXPECT_EQ(posts[0].name, "ch1.cc7");
   EXPECT_EQ(posts[0].value, 1.0);
-  EXPECT_EQ(posts[1].control, "ch2.bend");
+  EXPECT_EQ(posts[1].name, "ch2.bend");
   EXPECT_EQ(posts[1].value, 0.0);
   EXPECT_TRUE(posts[1].bipolar);
   EXPECT_EQ(input.counters().ignored, 1u);

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/osc_sender.hpp"
 #include "../support/recording_control_sink.hpp"
 
 #include <cmath>
@@ -22,6 +23,7 @@ namespace avar::firmware_iface {
 namespace {
 
 using avar::testing::eventually;
+using avar::testing::OscSender;
 using avar::testing::PostedControl;
 using avar::testing::RecordingControlSink;
 
@@ -55,7 +57,7 @@ TEST(OscPacket, GoldenBytesFromTheSpecification) {
   InputCounters counters;
   const auto posts = osc_posts_of(packet, &counters);
   ASSERT_EQ(posts.size(), 1u);
-  EXPECT_EQ(posts[0].control, "jaw");
+  EXPECT_EQ(posts[0].name, "jaw");
   EXPECT_EQ(posts[0].value, 0.5);
   EXPECT_FALSE(posts[0].bipolar);
   EXPECT_EQ(posts[0].arrived_ns, 42);
@@ -68,7 +70,7 @@ TEST(OscPacket, GoldenBytesFromTheSpecification) {
   channel.insert(channel.end(), {0, 0, ',', 'd', 0, 0, 0xC0, 0x28, 0x80, 0, 0, 0, 0, 0});
   const auto channel_posts = osc_posts_of(channel, &counters);
   ASSERT_EQ(channel_posts.size(), 1u);
-  EXPECT_EQ(channel_posts[0].control, "channel/neck");
+  EXPECT_EQ(channel_posts[0].name, "channel/neck");
   EXPECT_EQ(channel_posts[0].value, -12.25);
 }
 
@@ -111,11 +113,11 @@ TEST(OscPacket, BundlesAreUnpackedNestedAndChecked) {
   InputCounters counters;
   auto posts = osc_posts_of(packet, &counters);
   ASSERT_EQ(posts.size(), 3u);
-  EXPECT_EQ(posts[0].control, "a");
+  EXPECT_EQ(posts[0].name, "a");
   EXPECT_FLOAT_EQ(static_cast<float>(posts[0].value), 0.1f);
-  EXPECT_EQ(posts[1].control, "c");
+  EXPECT_EQ(posts[1].name, "c");
   EXPECT_EQ(posts[1].value, 3.0);
-  EXPECT_EQ(posts[2].control, "channel/d");
+  EXPECT_EQ(posts[2].name, "channel/d");
   EXPECT_EQ(posts[2].value, -4.5);
   EXPECT_EQ(counters.messages, 4u);
   EXPECT_EQ(counters.ignored, 1u);
@@ -127,19 +129,6 @@ TEST(OscPacket, BundlesAreUnpackedNestedAndChecked) {
   EXPECT_EQ(counters.messages, 3u);
   EXPECT_EQ(counters.ignored, 2u);
 }
-
-/// Sends OSC to 127.0.0.1:port with liblo.
-class OscTestSender {
- public:
-  explicit OscTestSender(std::uint16_t port) : address_(lo_address_new("127.0.0.1", std::to_string(port).c_str())) {}
-  ~OscTestSender() { lo_address_free(address_); }
-  OscTestSender(const OscTestSender&) = delete;
-  OscTestSender& operator=(const OscTestSender&) = delete;
-  lo_address address() const { return address_; }
-
- private:
-  lo_address address_;
-};
 
 /// Sends raw bytes to 127.0.0.1:port from a plain UDP socket.
 void osc_send_raw(std::uint16_t port, const std::string& bytes) {
@@ -167,7 +156,7 @@ TEST(OscInputLoopback, DeliversExactlyTheGoodMessagesInOrder) {
   EXPECT_EQ(input.describe(), "OSC on udp 127.0.0.1:" + std::to_string(port));
 
   const std::int64_t before = osc_test_now_ns();
-  const OscTestSender to(port);
+  const OscSender to(port);
   ASSERT_EQ(lo_send(to.address(), "/avar/control/jaw", "f", 0.5f), 28);
   lo_send(to.address(), "/avar/control/jaw", "s", "half");  // not a number
   lo_send(to.address(), "/avar/channel/neck", "d", -12.5);
@@ -200,7 +189,7 @@ TEST(OscInputLoopback, DeliversExactlyTheGoodMessagesInOrder) {
   ASSERT_EQ(posts.size(), expected.size());
   std::int64_t previous = before;
   for (std::size_t i = 0; i < posts.size(); ++i) {
-    EXPECT_EQ(posts[i].control, expected[i].first);
+    EXPECT_EQ(posts[i].name, expected[i].first);
     EXPECT_EQ(posts[i].value, expected[i].second);
     EXPECT_FALSE(posts[i].bipolar);
     EXPECT_GE(posts[i].arrived_ns, previous);  // CLOCK_MONOTONIC, in arrival order
@@ -251,7 +240,7 @@ TEST(OscInputLoopback, StartAndStopAreIdempotent) {
   EXPECT_EQ(input.bound_port(), port);
   EXPECT_THROW(input.start(other), std::logic_error);
   {
-    const OscTestSender to(port);
+    const OscSender to(port);
     lo_send(to.address(), "/avar/control/a", "f", 0.25f);
     ASSERT_TRUE(eventually([&] { return input.counters().messages == 1; }));
   }
@@ -261,11 +250,11 @@ TEST(OscInputLoopback, StartAndStopAreIdempotent) {
 
   // Started again, it listens again (port 0: wherever the system says now).
   input.start(other);
-  const OscTestSender to(input.bound_port());
+  const OscSender to(input.bound_port());
   lo_send(to.address(), "/avar/control/b", "i", 1);
   ASSERT_TRUE(eventually([&] { return input.counters().messages == 2; }));
   ASSERT_EQ(other.posts().size(), 1u);
-  EXPECT_EQ(other.posts()[0].control, "b");
+  EXPECT_EQ(other.posts()[0].name, "b");
   EXPECT_EQ(sink.posts().size(), 1u);
 }
 
@@ -278,7 +267,7 @@ TEST(OscInputLoopback, ManySendersAtOnce) {
   std::vector<std::thread> senders;
   for (int s = 0; s < kSenders; ++s)
     senders.emplace_back([&, s] {
-      const OscTestSender to(input.bound_port());
+      const OscSender to(input.bound_port());
       const std::string path = "/avar/control/s" + std::to_string(s);
       for (int i = 0; i < kEach; ++i) {
         lo_send(to.address(), path.c_str(), "i", i);
@@ -292,7 +281,7 @@ TEST(OscInputLoopback, ManySendersAtOnce) {
   ASSERT_EQ(posts.size(), static_cast<std::size_t>(kSenders * kEach));
   std::vector<int> next(kSenders, 0);
   for (const auto& p : posts) {
-    const int s = p.control.back() - '0';
+    const int s = p.name.back() - '0';
     EXPECT_EQ(p.value, next[s]++);  // each sender's messages in its order
   }
 }

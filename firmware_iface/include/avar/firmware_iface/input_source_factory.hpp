@@ -6,10 +6,11 @@
 //                     9000; port 0: any free port (OscInput::bound_port() tells which)
 //   midi:NAME         a MIDI input port: a case-insensitive part of its name (midi:nano) or its
 //                     number (midi:1)
-//   NAME=URI          the same device, its controls named NAME.control (pad=osc://:9000 turns
-//                     "jaw" into "pad.jaw"); NAME of letters, digits, '_' and '-'
-//
-// (hid:VID:PID[:SERIAL] joins them with the HID input.)
+//   hid:VID:PID[:SERIAL]  a HID gamepad or joystick, hex ids (hid_input.hpp)
+//   NAME=URI          the same device, its controls named NAME.control (pad=hid:054c:09cc turns
+//                     "x" into "pad.x"); NAME of letters, digits, '_' and '-'. OSC's direct
+//                     channel controls ("channel/jaw") keep their names: they name the rig's
+//                     channels, not the device's controls.
 
 #include <memory>
 #include <string_view>

@@ -1,6 +1,8 @@
 #pragma once
 // An input source whose controls all carry a name of the user's: "pad" makes "ch1.cc7" arrive as
 // "pad.ch1.cc7" and "jaw" as "pad.jaw", so two controllers of the same kind can be told apart.
+// Direct channel controls ("channel/jaw", from OSC's /avar/channel/jaw) pass unchanged: they name
+// a channel of the rig, whichever device sends them.
 
 #include <atomic>
 #include <cstdint>
@@ -8,6 +10,7 @@
 #include <string>
 
 #include "avar/firmware_iface/input_source.hpp"
+#include "avar/firmware_iface/osc_dispatch.hpp"
 
 namespace avar::firmware_iface {
 
