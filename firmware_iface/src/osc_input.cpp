@@ -32,12 +32,21 @@ bool is_bundle(std::span<const std::uint8_t> data) noexcept {
   return data.size() >= sizeof kTag && std::memcmp(data.data(), kTag, sizeof kTag) == 0;
 }
 
+/// liblo's argument pointers are only 4-byte aligned (lo_arg is a union with 8-byte members):
+/// read the value's bytes, never through the union.
+template <class T>
+T read_arg(const lo_arg* arg) noexcept {
+  T value;
+  std::memcpy(&value, arg, sizeof value);
+  return value;
+}
+
 double number_of(char type, const lo_arg* arg) noexcept {
   switch (type) {
-    case LO_FLOAT: return arg->f;
-    case LO_DOUBLE: return arg->d;
-    case LO_INT32: return arg->i;
-    case LO_INT64: return static_cast<double>(arg->h);
+    case LO_FLOAT: return read_arg<float>(arg);
+    case LO_DOUBLE: return read_arg<double>(arg);
+    case LO_INT32: return read_arg<std::int32_t>(arg);
+    case LO_INT64: return static_cast<double>(read_arg<std::int64_t>(arg));
     default: return 0.0;
   }
 }

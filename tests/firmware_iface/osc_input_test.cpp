@@ -123,7 +123,7 @@ TEST(OscPacket, BundlesAreUnpackedNestedAndChecked) {
   EXPECT_EQ(counters.ignored, 1u);
 
   // An element whose size runs past the datagram: what came before it stands, it is ignored.
-  packet.resize(packet.size() - 4);
+  packet.erase(packet.end() - 4, packet.end());
   posts = osc_posts_of(packet, &counters);
   EXPECT_EQ(posts.size(), 1u);  // the nested bundle's last message is cut: that bundle is one bad element
   EXPECT_EQ(counters.messages, 3u);
