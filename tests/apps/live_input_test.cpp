@@ -92,7 +92,9 @@ void expect_within_limits_and_speed(const LiveTrace& trace, double min, double m
   for (std::size_t k = 0; k < c.size(); ++k) {
     ASSERT_GE(c[k], min - 1e-9) << "tick " << k;
     ASSERT_LE(c[k], max + 1e-9) << "tick " << k;
-    if (k > 0) ASSERT_LE(std::abs(c[k] - c[k - 1]), max_velocity * (s[k] - s[k - 1]) * (1 + 1e-6) + 1e-9) << "tick " << k;
+    if (k > 0) {
+      ASSERT_LE(std::abs(c[k] - c[k - 1]), max_velocity * (s[k] - s[k - 1]) * (1 + 1e-6) + 1e-9) << "tick " << k;
+    }
   }
 }
 

@@ -34,6 +34,8 @@ class OscSender {
   OscSender& operator=(const OscSender&) = delete;
   /// One message with one float argument; false when it could not be sent.
   bool send(const std::string& path, float value) { return lo_send(address_, path.c_str(), "f", value) >= 0; }
+  /// For messages of other types (lo_send, lo_send_bundle).
+  lo_address address() const { return address_; }
 
  private:
   lo_address address_;
