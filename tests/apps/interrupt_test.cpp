@@ -36,10 +36,10 @@ TEST(Interrupt, FirstCtrlCEasesToRestAndExits130) {
   EXPECT_NE(play.err().find("interrupt: easing to rest"), std::string::npos) << play.err();
   EXPECT_NE(play.err().find("stopped: eased to rest after an interrupt"), std::string::npos) << play.err();
   const auto cells = last_row(trace);
-  ASSERT_EQ(cells.size(), 7u + 8u * 3u);
+  ASSERT_EQ(cells.size(), 8u + 8u * 3u);
   EXPECT_EQ(cells[1], "disabled");
-  EXPECT_DOUBLE_EQ(std::stod(cells[8]), 0.0);               // jaw commanded at rest
-  EXPECT_DOUBLE_EQ(std::stod(cells[7 + 6 * 3 + 1]), 20.0);  // lid_left at rest
+  EXPECT_DOUBLE_EQ(std::stod(cells[9]), 0.0);               // jaw commanded at rest
+  EXPECT_DOUBLE_EQ(std::stod(cells[8 + 6 * 3 + 1]), 20.0);  // lid_left at rest
 }
 
 TEST(Interrupt, SecondCtrlCReleasesAtOnce) {
@@ -63,9 +63,9 @@ TEST(Interrupt, CtrlBackslashIsAnEstopFault) {
   EXPECT_EQ(play.wait(), 3) << play.err();
   EXPECT_NE(play.err().find(": e-stop; actuators took their fail-safe actions"), std::string::npos) << play.err();
   const auto cells = last_row(trace);
-  ASSERT_EQ(cells.size(), 7u + 8u * 3u);
+  ASSERT_EQ(cells.size(), 8u + 8u * 3u);
   EXPECT_EQ(cells[1], "faulted");
-  EXPECT_DOUBLE_EQ(std::stod(cells[8]), 0.0);  // jaw: fail-safe "rest" (the default)
+  EXPECT_DOUBLE_EQ(std::stod(cells[9]), 0.0);  // jaw: fail-safe "rest" (the default)
 }
 
 }  // namespace

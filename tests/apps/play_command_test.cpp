@@ -69,10 +69,10 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::vector<std::string> cells;
   std::stringstream cells_in(last);
   for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
-  ASSERT_EQ(cells.size(), 7u + 8u * 3u);
-  EXPECT_DOUBLE_EQ(std::stod(cells[8]), 0.0);               // jaw command = rest
-  EXPECT_NEAR(std::stod(cells[9]), 0.0, 0.5);               // jaw simulated position
-  EXPECT_DOUBLE_EQ(std::stod(cells[7 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
+  ASSERT_EQ(cells.size(), 8u + 8u * 3u);
+  EXPECT_DOUBLE_EQ(std::stod(cells[9]), 0.0);               // jaw command = rest
+  EXPECT_NEAR(std::stod(cells[10]), 0.0, 0.5);               // jaw simulated position
+  EXPECT_DOUBLE_EQ(std::stod(cells[8 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
   EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
 }
 
