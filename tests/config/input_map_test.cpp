@@ -115,5 +115,14 @@ TEST(InputMap, RefusesEveryBadFieldWithItsLocation) {
   EXPECT_NE(input_map_error(replace(kInputs, "priority: 20", "priority: 1000")).find("-999 to 999"), std::string::npos);
 }
 
+TEST(InputMap, EveryBundledInputsFileFitsTheRigItIsFor) {
+  const rig::Rig rig = load_rig_file(std::string(AVAR_SOURCE_DIR) + "/examples/rigs/hello-head.yaml");
+  for (const char* name : {"hello-head-osc.yaml", "hello-head-gamepad.yaml", "hello-head-midi.yaml"}) {
+    const InputMap map = load_input_map(rig, std::string(AVAR_SOURCE_DIR) + "/examples/inputs/" + name, true);
+    EXPECT_FALSE(map.devices.empty()) << name;
+    EXPECT_GE(map.mappings.size(), 4u) << name;
+  }
+}
+
 }  // namespace
 }  // namespace avar::config
