@@ -16,6 +16,8 @@
 #include "../support/csv_rows.hpp"
 #include "../support/osc_sender.hpp"
 #include "../support/temp_file.hpp"
+#include "avar/config/input_map.hpp"
+#include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 
 namespace avar {
@@ -174,6 +176,54 @@ TEST(LiveInput, ARecordedTakePlaysBackWithinItsTolerance) {
     ++checked;
   }
   EXPECT_GT(checked, 50u);
+}
+
+TEST(LiveInput, AMergedTakeLiesOnItsOwnLayerOverACopyOfTheShow) {
+  const int port = testing::free_udp_port();
+  const std::string show = testing::write_temp_file("merge-show.yaml", R"(name: short
+duration: 2
+tracks:
+  jaw:
+    - {time: 0, value: 5}
+    - {time: 2, value: 5}
+  neck_pan:
+    - {time: 0, value: 0}
+    - {time: 2, value: 20}
+)");
+  const std::string take = testing::temp_path("merged.yaml");
+  TimedOscSender sender(port, "/avar/channel/jaw", 0.0, 2.5, [](double) { return 15.0f; });
+  const testing::CliResult r = testing::run_avar({"record", "--rig", kLiveRig, "--show", show, "--merge", "--sim", "--no-progress",
+                                                  "--priority", "0", "--input", "osc://127.0.0.1:" + std::to_string(port), "--out", take});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const playback::Show merged = config::load_show_file(take);
+  EXPECT_EQ(merged.tracks.size(), 2u);  // the show's own tracks, kept
+  ASSERT_EQ(merged.layers.size(), 1u);
+  EXPECT_EQ(merged.layers[0].name, "take");
+  ASSERT_EQ(merged.clips.size(), 1u);
+  ASSERT_EQ(merged.clips[0].tracks.size(), 1u);  // only the performed channel
+  EXPECT_EQ(merged.clips[0].tracks[0].channel, "jaw");
+  playback::CurveCursor cursor;
+  EXPECT_NEAR(merged.clips[0].tracks[0].curve.evaluate(1.5, cursor), 15, 0.25 + 1e-6);
+}
+
+TEST(LiveInput, LearnMapsEachChannelToTheControlMovedForIt) {
+  const int port = testing::free_udp_port();
+  const std::string out = testing::temp_path("learned.yaml");
+  // A jittering control first (never half its range), then the fader meant for the jaw, then
+  // the one for neck_pan.
+  TimedOscSender jitter(port, "/avar/control/noise", 0.0, 3.0, [](double t) { return static_cast<float>(0.5 + 0.1 * std::sin(20 * t)); });
+  TimedOscSender jaw(port, "/avar/control/fader1", 0.6, 1.2, [](double t) { return static_cast<float>((t - 0.6) / 0.6); });
+  TimedOscSender pan(port, "/avar/control/knob7", 1.8, 2.6, [](double t) { return static_cast<float>((t - 1.8) / 0.8); });
+  const testing::CliResult r = testing::run_avar({"inputs", "learn", "--rig", kLiveRig, "--input", "osc://127.0.0.1:" + std::to_string(port),
+                                                  "--channels", "jaw,neck_pan", "--out", out, "--timeout", "10"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const rig::Rig rig = config::load_rig_file(kLiveRig);
+  const config::InputMap map = config::load_input_map(rig, out, true);
+  ASSERT_EQ(map.mappings.size(), 2u);
+  EXPECT_EQ(map.mappings[0].control, "fader1");
+  EXPECT_EQ(map.mappings[0].channel, 0u);
+  EXPECT_EQ(map.mappings[1].control, "knob7");
+  EXPECT_EQ(map.devices, std::vector<std::string>{"osc://127.0.0.1:" + std::to_string(port)});
 }
 
 TEST(LiveInput, RefusesMissingOrUnreadableInputsBeforeAnythingMoves) {
