@@ -35,7 +35,7 @@ constexpr std::size_t kMaxMessages = 1 << 20;
 
 /// Sender timestamps by message number (the message's float value).
 struct SendLog {
-  std::unique_ptr<std::atomic<std::int64_t>[]> sent_ns{new std::atomic<std::int64_t>[kMaxMessages]};
+  std::unique_ptr<std::atomic<std::int64_t>[]> sent_ns { new std::atomic<std::int64_t>[ kMaxMessages ] };
 };
 
 int bound_udp_socket(int& port) {
@@ -44,7 +44,8 @@ int bound_udp_socket(int& port) {
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   socklen_t len = sizeof a;
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
     std::perror("avar-bench-input: UDP socket");
     std::exit(1);
   }
@@ -83,7 +84,8 @@ class StampingLink final : public firmware_iface::ActuatorLink {
     last_ = taken;
     const auto id = static_cast<std::size_t>(taken);
     if (from_arrival_.size() < from_arrival_.capacity() && r.value == taken) from_arrival_.push_back(now - r.arrived_ns);
-    if (from_sender_.size() < from_sender_.capacity()) from_sender_.push_back(now - log_.sent_ns[id].load(std::memory_order_acquire));
+    if (from_sender_.size() < from_sender_.capacity())
+      from_sender_.push_back(now - log_.sent_ns[id].load(std::memory_order_acquire));
     return Status::ok;
   }
   Status release() noexcept override { return Status::ok; }
@@ -107,7 +109,9 @@ void print_row(const char* what, std::vector<std::int64_t> ns) {
     return;
   }
   std::sort(ns.begin(), ns.end());
-  const auto at = [&](double q) { return static_cast<double>(ns[static_cast<std::size_t>(q * static_cast<double>(ns.size() - 1))]) / 1e3; };
+  const auto at = [&](double q) {
+    return static_cast<double>(ns[static_cast<std::size_t>(q * static_cast<double>(ns.size() - 1))]) / 1e3;
+  };
   std::printf("input,%s,samples=%zu,p50_us=%.1f,p99_us=%.1f,max_us=%.1f\n", what, ns.size(), at(0.5), at(0.99),
               static_cast<double>(ns.back()) / 1e3);
 }
@@ -166,8 +170,16 @@ int main(int argc, char** argv) {
   // avar: OSC input -> mailbox -> 1 kHz tick -> send.
   rig::Rig rig;
   rig.name = "bench-input";
-  rig.channels.push_back({.name = "x", .unit = "", .min = 0, .max = 1e7, .rest = 0, .max_velocity = 1e9, .max_acceleration = 1e12,
-                          .max_jerk = 1e15, .ramp_velocity = 1e7, .where = {}});
+  rig.channels.push_back({.name = "x",
+                          .unit = "",
+                          .min = 0,
+                          .max = 1e7,
+                          .rest = 0,
+                          .max_velocity = 1e9,
+                          .max_acceleration = 1e12,
+                          .max_jerk = 1e15,
+                          .ramp_velocity = 1e7,
+                          .where = {}});
   playback::Show show;
   show.name = "live";
   show.duration = seconds + 2;
@@ -201,8 +213,8 @@ int main(int argc, char** argv) {
     void after_tick(std::uint64_t, double, double, double, control::Controller&) override {}
   } quiet;
   const std::atomic<int> no_interrupts{0};
-  const control::RunResult run =
-      control::run_loop(controller, {kRate, control::ClockMode::realtime, control::RealtimeRequest{50, true, -1}}, quiet, no_interrupts);
+  const control::RunResult run = control::run_loop(
+      controller, {kRate, control::ClockMode::realtime, control::RealtimeRequest{50, true, -1}}, quiet, no_interrupts);
   sender.join();
   osc->stop();
   for (const auto& w : run.realtime.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

@@ -365,10 +365,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   // live mixer, start buttons for --wait-start.
   if (digital_inputs) {
     try {
-      if (live)
-        digital_inputs->start(live->inputs().sink());
-      else
-        digital_inputs->start();
+      if (live) digital_inputs->start(live->inputs().sink());
+      else digital_inputs->start();
     } catch (const std::runtime_error& e) {
       err << "error: " << e.what() << '\n';
       return kExitFault;

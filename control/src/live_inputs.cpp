@@ -51,7 +51,9 @@ LiveInputs::LiveInputs(std::vector<LiveChannel> channels, std::vector<ControlMap
 
 void LiveInputs::apply(double now_s, std::span<double> frame) noexcept {
   const double dt = applied_ ? std::max(0.0, now_s - last_now_) : 0.0;
-  if (!applied_) std::copy(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(std::min(frame.size(), last_out_.size())), last_out_.begin());
+  if (!applied_)
+    std::copy(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(std::min(frame.size(), last_out_.size())),
+              last_out_.begin());
   last_now_ = now_s;
   applied_ = true;
   newest_taken_ns_ = 0;
@@ -94,10 +96,8 @@ void LiveInputs::apply(double now_s, std::span<double> frame) noexcept {
       activity = activity || s.smoothed != 0;
     }
     s.started = true;
-    if (activity)
-      mixer_.set(i, out, now_s);
-    else
-      mixer_.update(i, out);
+    if (activity) mixer_.set(i, out, now_s);
+    else mixer_.update(i, out);
   }
 
   for (std::size_t c = 0; c < channels_.size(); ++c) {
@@ -112,7 +112,8 @@ void LiveInputs::apply(double now_s, std::span<double> frame) noexcept {
   mixer_.mix(frame, now_s);
   for (std::size_t i = 0; i < mixer_.size(); ++i)
     if (mixer_.weight(i) > 0) touched_[mixer_.layer(i).channel] = 1;
-  std::copy(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(std::min(frame.size(), last_out_.size())), last_out_.begin());
+  std::copy(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(std::min(frame.size(), last_out_.size())),
+            last_out_.begin());
 }
 
 }  // namespace avar::control

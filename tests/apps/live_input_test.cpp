@@ -88,7 +88,8 @@ tracks:
     - {time: 6, value: 5}
 )";
 
-void expect_within_limits_and_speed(const LiveTrace& trace, double min, double max, double max_velocity, const std::string& channel) {
+void expect_within_limits_and_speed(const LiveTrace& trace, double min, double max, double max_velocity,
+                                    const std::string& channel) {
   const auto& s = trace.at("seconds");
   const auto& c = trace.at(channel + ".command");
   for (std::size_t k = 0; k < c.size(); ++k) {
@@ -134,9 +135,9 @@ TEST(LiveInput, PuppetMovesAChannelThroughAMappedControlAndEndsAfterItsDuration)
   const std::string trace_path = testing::temp_path("puppet.csv");
   // 0.75 on a unipolar control spans [-50, 50] at 25.
   TimedOscSender sender(port, "/avar/control/look", 0.0, 1.5, [](double) { return 0.75f; });
-  const testing::CliResult r = testing::run_avar({"puppet", "--rig", kLiveRig, "--sim", "--no-progress", "--priority", "0", "--input",
-                                                  "osc://:" + std::to_string(port), "--inputs", inputs, "--duration", "2", "--trace",
-                                                  trace_path});
+  const testing::CliResult r =
+      testing::run_avar({"puppet", "--rig", kLiveRig, "--sim", "--no-progress", "--priority", "0", "--input",
+                         "osc://:" + std::to_string(port), "--inputs", inputs, "--duration", "2", "--trace", trace_path});
   ASSERT_EQ(r.code, 0) << r.err;
   const LiveTrace trace(trace_path);
   const auto& pan = trace.at("neck_pan.command");
@@ -154,10 +155,9 @@ TEST(LiveInput, ARecordedTakePlaysBackWithinItsTolerance) {
   const std::string trace_path = testing::temp_path("record.csv");
   TimedOscSender sender(port, "/avar/channel/jaw", 0.0, 2.2,
                         [](double t) { return static_cast<float>(15 + 10 * std::sin(2 * 3.14159265 * 0.8 * t)); });
-  const testing::CliResult r =
-      testing::run_avar({"record", "--rig", kLiveRig, "--sim", "--no-progress", "--priority", "0", "--input",
-                         "osc://127.0.0.1:" + std::to_string(port), "--duration", "2.5", "--tolerance", "0.2", "--out", take, "--trace",
-                         trace_path});
+  const testing::CliResult r = testing::run_avar({"record", "--rig", kLiveRig, "--sim", "--no-progress", "--priority", "0",
+                                                  "--input", "osc://127.0.0.1:" + std::to_string(port), "--duration", "2.5",
+                                                  "--tolerance", "0.2", "--out", take, "--trace", trace_path});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("jaw: "), std::string::npos) << r.out;
   const playback::Show written = config::load_show_file(take);
@@ -192,8 +192,9 @@ tracks:
 )");
   const std::string take = testing::temp_path("merged.yaml");
   TimedOscSender sender(port, "/avar/channel/jaw", 0.0, 2.5, [](double) { return 15.0f; });
-  const testing::CliResult r = testing::run_avar({"record", "--rig", kLiveRig, "--show", show, "--merge", "--sim", "--no-progress",
-                                                  "--priority", "0", "--input", "osc://127.0.0.1:" + std::to_string(port), "--out", take});
+  const testing::CliResult r =
+      testing::run_avar({"record", "--rig", kLiveRig, "--show", show, "--merge", "--sim", "--no-progress", "--priority", "0",
+                         "--input", "osc://127.0.0.1:" + std::to_string(port), "--out", take});
   ASSERT_EQ(r.code, 0) << r.err;
   const playback::Show merged = config::load_show_file(take);
   EXPECT_EQ(merged.tracks.size(), 2u);  // the show's own tracks, kept
@@ -211,11 +212,13 @@ TEST(LiveInput, LearnMapsEachChannelToTheControlMovedForIt) {
   const std::string out = testing::temp_path("learned.yaml");
   // A jittering control first (never half its range), then the fader meant for the jaw, then
   // the one for neck_pan.
-  TimedOscSender jitter(port, "/avar/control/noise", 0.0, 3.0, [](double t) { return static_cast<float>(0.5 + 0.1 * std::sin(20 * t)); });
+  TimedOscSender jitter(port, "/avar/control/noise", 0.0, 3.0,
+                        [](double t) { return static_cast<float>(0.5 + 0.1 * std::sin(20 * t)); });
   TimedOscSender jaw(port, "/avar/control/fader1", 0.6, 1.2, [](double t) { return static_cast<float>((t - 0.6) / 0.6); });
   TimedOscSender pan(port, "/avar/control/knob7", 1.8, 2.6, [](double t) { return static_cast<float>((t - 1.8) / 0.8); });
-  const testing::CliResult r = testing::run_avar({"inputs", "learn", "--rig", kLiveRig, "--input", "osc://127.0.0.1:" + std::to_string(port),
-                                                  "--channels", "jaw,neck_pan", "--out", out, "--timeout", "10"});
+  const testing::CliResult r =
+      testing::run_avar({"inputs", "learn", "--rig", kLiveRig, "--input", "osc://127.0.0.1:" + std::to_string(port), "--channels",
+                         "jaw,neck_pan", "--out", out, "--timeout", "10"});
   ASSERT_EQ(r.code, 0) << r.err;
   const rig::Rig rig = config::load_rig_file(kLiveRig);
   const config::InputMap map = config::load_input_map(rig, out, true);
@@ -233,8 +236,8 @@ TEST(LiveInput, RefusesMissingOrUnreadableInputsBeforeAnythingMoves) {
   r = testing::run_avar({"puppet", "--rig", kLiveRig, "--sim", "--input", "carrier-pigeon:7"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("osc://"), std::string::npos) << r.err;  // the accepted forms are taught
-  r = testing::run_avar({"play", std::string(AVAR_SOURCE_DIR) + "/examples/shows/hello-head.yaml", "--rig", kLiveRig, "--fast", "--input",
-                         "osc://:9000"});
+  r = testing::run_avar({"play", std::string(AVAR_SOURCE_DIR) + "/examples/shows/hello-head.yaml", "--rig", kLiveRig, "--fast",
+                         "--input", "osc://:9000"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("drop --fast"), std::string::npos) << r.err;
 }

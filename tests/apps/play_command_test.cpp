@@ -59,7 +59,11 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   std::ifstream csv(trace);
   std::string header, line, last;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,ik_us,mix_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,neck_pan.target", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("seconds,phase,wake_late_us,sample_us,ik_us,mix_us,limit_us,send_us,jaw.target,jaw.command,jaw.measured,"
+                         "neck_pan.target",
+                         0),
+            0u)
+      << header;
   int rows = 0;
   while (std::getline(csv, line)) {
     last = line;
@@ -71,7 +75,7 @@ TEST(PlayCommand, PlaysTheBundledShowOnTheSimulatorAndSummarises) {
   for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
   ASSERT_EQ(cells.size(), 8u + 8u * 3u);
   EXPECT_DOUBLE_EQ(std::stod(cells[9]), 0.0);               // jaw command = rest
-  EXPECT_NEAR(std::stod(cells[10]), 0.0, 0.5);               // jaw simulated position
+  EXPECT_NEAR(std::stod(cells[10]), 0.0, 0.5);              // jaw simulated position
   EXPECT_DOUBLE_EQ(std::stod(cells[8 + 6 * 3 + 1]), 20.0);  // lid_left command = rest 20 %
   EXPECT_NE(read_file(plot).find("<svg"), std::string::npos);
 }

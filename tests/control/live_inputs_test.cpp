@@ -118,7 +118,7 @@ TEST(LiveInputs, ASilentControlHandsTheChannelBackToTheShowAfterItsTimeout) {
     last = frame[0];
   }
   EXPECT_DOUBLE_EQ(peak, 40);
-  EXPECT_DOUBLE_EQ(frame[0], 10);  // back to the show
+  EXPECT_DOUBLE_EQ(frame[0], 10);                         // back to the show
   EXPECT_LT(biggest_step, 1.5 * 0.01 / 0.5 * 30 + 1e-9);  // eased both ways
 }
 

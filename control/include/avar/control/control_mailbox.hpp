@@ -20,7 +20,7 @@ namespace avar::control {
 struct ControlReading {
   double value = 0;
   bool bipolar = false;
-  std::uint64_t sequence = 0;  ///< messages so far; 0: never moved
+  std::uint64_t sequence = 0;   ///< messages so far; 0: never moved
   std::int64_t arrived_ns = 0;  ///< CLOCK_MONOTONIC of the newest message
 };
 

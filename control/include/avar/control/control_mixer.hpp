@@ -26,8 +26,8 @@ struct MixerLayer {
   std::size_t channel = 0;  ///< index into the frame
   int priority = 0;         ///< higher wins; equal priorities mix in declaration order
   Blend blend = Blend::override;
-  double crossfade_s = 0.3;        ///< time for the weight to go 0 -> 1 or 1 -> 0; 0 = at once
-  double silence_timeout_s = 0;    ///< release after this long without set(); 0 = never
+  double crossfade_s = 0.3;      ///< time for the weight to go 0 -> 1 or 1 -> 0; 0 = at once
+  double silence_timeout_s = 0;  ///< release after this long without set(); 0 = never
 };
 
 class ControlMixer {
