@@ -267,6 +267,7 @@ int write_take(const PlayOptions& options, const Loaded& loaded, const control::
   const double duration = times.back();
   const SourceLocation where{*options.record_path, 1, 1};
   std::vector<playback::Track> tracks;
+  tracks.reserve(performed.size());
   for (const std::size_t c : performed)
     tracks.push_back(fit_track(loaded.rig.channels[c].name, times, values[c], options.record_tolerance, 60, where));
 

@@ -96,7 +96,8 @@ void PlayRecorder::draw_progress(double now_s, const control::Controller& contro
   if (std::isfinite(duration))
     std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",
                   control::to_string(controller.phase()), within, duration, kWidth,
-                  std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(fraction * 100 + 0.5), now_s);
+                  std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(std::lround(fraction * 100)),
+                  now_s);
   else  // live only: no show to measure against
     std::snprintf(line, sizeof line, "%-8s live %8.2f s  loop time %7.2f s", control::to_string(controller.phase()), show_t,
                   now_s);

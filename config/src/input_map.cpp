@@ -16,7 +16,7 @@ bool control_name_ok(const std::string& name) {
 }
 
 std::string control_name(const YamlRef& node, const std::string& what) {
-  const std::string name = node.as_string(what);
+  std::string name = node.as_string(what);
   if (!control_name_ok(name))
     node.fail("expected " + what + " to be a control name (letters, digits, _ . - /), found " + node.describe());
   return name;

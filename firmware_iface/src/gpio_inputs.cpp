@@ -1,18 +1,16 @@
 #include "avar/firmware_iface/gpio_inputs.hpp"
 
-#include <time.h>
+#include <ctime>
 
 #include <algorithm>
 #include <stdexcept>
 
+#include "avar/firmware_iface/atomic_input_counters.hpp"
+
 namespace avar::firmware_iface {
 namespace {
 
-std::int64_t now_ns() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
+std::int64_t now_ns() noexcept { return input_arrival_now_ns(); }
 
 /// Where inputs go when the owner gave no sink.
 class NoSink final : public ControlSink {

@@ -57,7 +57,7 @@ bool dispatch_message(std::span<const std::uint8_t> data, ControlSink& sink, std
   int result = 0;
   // lo_message_deserialise copies the data before it swaps bytes: the const_cast writes nothing.
   void* bytes = const_cast<std::uint8_t*>(data.data());
-  const lo_message message = lo_message_deserialise(bytes, data.size(), &result);
+  lo_message message = lo_message_deserialise(bytes, data.size(), &result);
   if (message == nullptr) return false;
   bool set = false;
   const char* path = lo_get_path(bytes, static_cast<ssize_t>(data.size()));

@@ -1,21 +1,19 @@
 #include "avar/sim/sim_gpio_chip.hpp"
 
-#include <time.h>
-
 #include <stdexcept>
+
+#include "avar/firmware_iface/atomic_input_counters.hpp"
 
 namespace avar::sim {
 namespace {
 
-std::int64_t monotonic_now_ns() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
+/// Edge times on the clock input devices stamp with (CLOCK_MONOTONIC).
+std::int64_t monotonic_now_ns() noexcept { return firmware_iface::input_arrival_now_ns(); }
 
 }  // namespace
 
-SimGpioChip::SimGpioChip(std::string name, unsigned lines) : describe_("simulated GPIO chip '" + name + "'"), lines_(lines) {}
+SimGpioChip::SimGpioChip(const std::string& name, unsigned lines)
+    : describe_("simulated GPIO chip '" + name + "'"), lines_(lines) {}
 
 SimGpioChip::Line& SimGpioChip::checked(unsigned line, const char* what) {
   if (line >= lines_.size())

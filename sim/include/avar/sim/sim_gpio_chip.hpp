@@ -28,7 +28,7 @@ class SimGpioChip final : public firmware_iface::GpioChip {
 
   /// A chip of `lines` lines (a Raspberry Pi's gpiochip0 has 54 to 58), called `name` in
   /// messages.
-  explicit SimGpioChip(std::string name = "sim", unsigned lines = 64);
+  explicit SimGpioChip(const std::string& name = "sim", unsigned lines = 64);
 
   const std::string& describe() const noexcept override { return describe_; }
   unsigned line_count() const noexcept override { return static_cast<unsigned>(lines_.size()); }
