@@ -165,7 +165,8 @@ int run_inputs_learn(const InputsOptions& options, std::ostream& out, std::ostre
     const auto asked = std::chrono::steady_clock::now();
     while (found.empty() && interrupts.count().load() == 0 && seconds_since(asked) < options.timeout_s) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      for (const auto& [name, m] : sink.take()) {
+      for (const auto& [moved_name, m] : sink.take()) {
+        const std::string& name = moved_name;  // clang 14 cannot capture a structured binding
         if (std::any_of(learned.begin(), learned.end(), [&](const auto& l) { return l.second == name; })) continue;
         auto [it, fresh] = swept.try_emplace(name, m);
         Moved& s = it->second;

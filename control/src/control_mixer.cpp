@@ -8,7 +8,7 @@ namespace avar::control {
 using playback::smoothstep;
 
 ControlMixer::ControlMixer(std::size_t channels, std::vector<MixerLayer> layers)
-    : layers_(std::move(layers)), order_(layers_.size()), state_(layers_.size()), channels_(channels) {
+    : layers_(std::move(layers)), order_(layers_.size()), state_(layers_.size()) {
   for (const MixerLayer& l : layers_) {
     if (l.channel >= channels)
       throw std::invalid_argument("layer '" + l.name + "' names channel " + std::to_string(l.channel) + " of " +

@@ -68,7 +68,6 @@ class ControlMixer {
   std::vector<MixerLayer> layers_;
   std::vector<std::size_t> order_;  ///< layer indices by ascending priority (stable)
   std::vector<State> state_;
-  std::size_t channels_;
   double last_mix_s_ = 0;
   bool mixed_ = false;
 };
