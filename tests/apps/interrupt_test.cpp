@@ -2,13 +2,16 @@
 // rest and exits 130; a second one releases every servo at once.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
+#include <thread>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "../support/child_process.hpp"
 #include "../support/csv_rows.hpp"
+#include "../support/osc_sender.hpp"
 #include "../support/temp_file.hpp"
 
 namespace avar::app {
@@ -40,6 +43,26 @@ TEST(Interrupt, FirstCtrlCEasesToRestAndExits130) {
   EXPECT_EQ(cells[1], "disabled");
   EXPECT_DOUBLE_EQ(std::stod(cells[9]), 0.0);               // jaw commanded at rest
   EXPECT_DOUBLE_EQ(std::stod(cells[8 + 6 * 3 + 1]), 20.0);  // lid_left at rest
+}
+
+TEST(Interrupt, CtrlCEndsARecordedTakeAndKeepsIt) {
+  const int port = testing::free_udp_port();
+  const std::string take = testing::temp_path("take.yaml");
+  testing::ChildProcess record({AVAR_BINARY, "record", "--rig", AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml", "--sim",
+                                "--no-progress", "--priority", "0", "--input", "osc://127.0.0.1:" + std::to_string(port), "--out", take});
+  ASSERT_TRUE(record.started());
+  ASSERT_NE(record.read_err_until("Ctrl-C ends the take").find("recording"), std::string::npos);
+  testing::OscSender osc(port);
+  for (int i = 0; i < 50; ++i) {  // a second of the jaw at 12
+    osc.send("/avar/channel/jaw", 12.0f);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  record.signal(SIGINT);
+  EXPECT_EQ(record.wait(), 0) << record.err();
+  std::ifstream written(take);
+  std::stringstream text;
+  text << written.rdbuf();
+  EXPECT_NE(text.str().find("jaw:"), std::string::npos) << text.str();
 }
 
 TEST(Interrupt, SecondCtrlCReleasesAtOnce) {
