@@ -49,7 +49,8 @@ TEST(Interrupt, CtrlCEndsARecordedTakeAndKeepsIt) {
   const int port = testing::free_udp_port();
   const std::string take = testing::temp_path("take.yaml");
   testing::ChildProcess record({AVAR_BINARY, "record", "--rig", AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml", "--sim",
-                                "--no-progress", "--priority", "0", "--input", "osc://127.0.0.1:" + std::to_string(port), "--out", take});
+                                "--no-progress", "--priority", "0", "--input", "osc://127.0.0.1:" + std::to_string(port), "--out",
+                                take});
   ASSERT_TRUE(record.started());
   ASSERT_NE(record.read_err_until("Ctrl-C ends the take").find("recording"), std::string::npos);
   testing::OscSender osc(port);
