@@ -17,8 +17,11 @@ ControlMixer::ControlMixer(std::size_t channels, std::vector<MixerLayer> layers)
       throw std::invalid_argument("layer '" + l.name + "': crossfade and timeout must be 0 or more seconds");
   }
   std::iota(order_.begin(), order_.end(), std::size_t{0});
-  std::stable_sort(order_.begin(), order_.end(),
-                   [this](std::size_t a, std::size_t b) { return layers_[a].priority < layers_[b].priority; });
+  // By priority, then declaration order (a plain sort with the tie broken: stable_sort would take
+  // a temporary buffer through the nothrow operator new).
+  std::sort(order_.begin(), order_.end(), [this](std::size_t a, std::size_t b) {
+    return layers_[a].priority != layers_[b].priority ? layers_[a].priority < layers_[b].priority : a < b;
+  });
 }
 
 void ControlMixer::set(std::size_t layer, double value, double now_s) noexcept {
