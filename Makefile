@@ -6,6 +6,8 @@ TSAN_BUILD ?= build-tsan
 LINT_BUILD ?= build-lint
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+# The project's own trees treat warnings as errors (a plain CMake build does not: AVAR_WERROR).
+WERROR = -DAVAR_WERROR=ON
 BENCH ?= OFF
 AVAR = $(BUILD)/apps/avar
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
@@ -19,12 +21,14 @@ deps:
 	@scripts/install-deps.sh $(EXTRA_DEPS)
 
 configure: deps
-	@cmake -S . -B $(BUILD) -G Ninja $(RELEASE_FLAGS) -DAVAR_BUILD_BENCH=$(BENCH) $(CMAKE_FLAGS) >/dev/null
+	@cmake -S . -B $(BUILD) -G Ninja $(WERROR) $(RELEASE_FLAGS) -DAVAR_BUILD_BENCH=$(BENCH) $(CMAKE_FLAGS) >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo builds the avar binary and what it needs, no test suite.
+demo: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target avar
 	$(AVAR) play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml \
 	  --plot $(BUILD)/hello-head.svg --trace $(BUILD)/hello-head.csv
 
@@ -42,7 +46,7 @@ test: lint test-sanitize test-tsan
 # reads the compile database of a configured-only tree: the sanitizer trees compile eight files to
 # a unit, so their databases name no source file.
 lint: deps
-	@cmake -S . -B $(LINT_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_UNITY_BUILD=OFF -DAVAR_BUILD_TESTS=OFF \
+	@cmake -S . -B $(LINT_BUILD) -G Ninja $(WERROR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_UNITY_BUILD=OFF -DAVAR_BUILD_TESTS=OFF \
 	  -DAVAR_BUILD_BENCH=ON >/dev/null
 	@LINT_BUILD=$(LINT_BUILD) scripts/lint-changed.sh $(LINT_BASE)
 
@@ -50,13 +54,13 @@ test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-sanitize: deps
-	@cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DAVAR_SANITIZE=ON \
+	@cmake -S . -B $(SANITIZE_BUILD) -G Ninja $(WERROR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DAVAR_SANITIZE=ON \
 	  -DAVAR_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
 test-tsan: deps
-	@cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+	@cmake -S . -B $(TSAN_BUILD) -G Ninja $(WERROR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
 	  -DAVAR_TSAN=ON -DAVAR_BUILD_BENCH=OFF -DAVAR_TEST_MODULES="$(TSAN_SUITES)" >/dev/null
 	@cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(patsubst %,avar_%_tests,$(TSAN_SUITES))
 	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS) -E '$(TSAN_EXCLUDE)'

@@ -1,8 +1,12 @@
-# Warnings are errors for every avar target; sanitizers are opt-in per build tree.
+# The same warnings for every avar target, errors with AVAR_WERROR (the project's own builds);
+# sanitizers are opt-in per build tree.
 add_library(avar_build_flags INTERFACE)
 target_compile_options(avar_build_flags INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
-  -Wnon-virtual-dtor -Woverloaded-virtual -Werror)
+  -Wnon-virtual-dtor -Woverloaded-virtual)
+if(AVAR_WERROR)
+  target_compile_options(avar_build_flags INTERFACE -Werror)
+endif()
 
 if(AVAR_SANITIZE)
   target_compile_options(avar_build_flags INTERFACE
