@@ -65,6 +65,10 @@ void validate(const SkeletonAnimation& animation) {
     throw std::invalid_argument(model_message("frame time ", animation.frame_time, " s is not a positive number"));
   }
   if (animation.frames.empty()) throw std::invalid_argument("the animation has no frames");
+  if (!animation.channels.empty() && animation.channels.size() != animation.joints.size()) {
+    throw std::invalid_argument(
+        model_message("channels describe ", animation.channels.size(), " joints; the skeleton has ", animation.joints.size()));
+  }
   for (std::size_t j = 0; j < animation.joints.size(); ++j) {
     const std::ptrdiff_t parent = animation.joints[j].parent;
     if (parent != kNoParent && (parent < 0 || static_cast<std::size_t>(parent) >= j)) {

@@ -47,6 +47,10 @@ struct SkeletonAnimation {
   /// joints.size() entries in each vector; successive rotations of a joint lie in the same
   /// hemisphere (q and -q flipped to agree), so slerp between frames turns the short way.
   std::vector<Pose> frames;
+  /// What the file animates on each joint, for reports (`avar mocap info`): indexed like joints,
+  /// in file order (BVH: "Xposition" ... "Zrotation"; glTF: "translation", "rotation", "scale").
+  /// Empty when the importer does not describe channels; otherwise joints.size() entries.
+  std::vector<std::vector<std::string>> channels;
 
   std::size_t frame_count() const noexcept { return frames.size(); }
   /// Time of the last frame (0 for a single frame).
