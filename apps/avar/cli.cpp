@@ -8,6 +8,7 @@
 #include "avar/exit_codes.hpp"
 #include "avar/fit_command.hpp"
 #include "avar/inputs_command.hpp"
+#include "avar/mocap_bake_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
@@ -105,7 +106,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   RunCli play, puppet, record;
   CLI::App* play_cmd = app.add_subcommand("play", "Play a show on a rig: ease in from the present pose, play, ease out to rest");
-  play_cmd->add_option("show", play.options.show_path, "Show file (YAML: duration, loop, tracks of keys)")->required();
+  play_cmd->add_option("show", play.options.show_path, "Show file (YAML: duration, loop, tracks of keys), or a .bvh with --map")
+      ->required();
+  play_cmd->add_option("--map", play.options.map_path, "Retarget map: play a motion-capture file (baked in memory) through it");
   declare_run_options(play_cmd, play, true);
   play_cmd->footer(
       "Live inputs (--input, repeatable) mix over the show through the rig's inputs: mappings; the\n"
@@ -158,6 +161,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   InputsOptions inputs;
   const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
+
+  CLI::App* mocap_cmd = app.add_subcommand("mocap", "Motion capture: retarget and bake onto a rig");
+  mocap_cmd->require_subcommand(1);
+  MocapBakeOptions mocap_bake;
+  CLI::App* mocap_bake_cmd = add_mocap_bake_subcommand(*mocap_cmd, mocap_bake);
 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
@@ -230,6 +238,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
+  if (*mocap_bake_cmd) return run_mocap_bake(mocap_bake, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);

@@ -25,6 +25,7 @@
 #include "avar/interrupts.hpp"
 #include "avar/fitted_track.hpp"
 #include "avar/live_session.hpp"
+#include "avar/mocap_bake.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
@@ -53,8 +54,9 @@ playback::Show live_show(std::optional<double> duration) {
 /// nullopt on any error.
 std::optional<Loaded> load_and_check(const PlayOptions& o, std::ostream& err) {
   try {
-    Loaded loaded{
-        config::load_rig_file(o.rig_path), o.live_only ? live_show(o.duration_s) : config::load_show_file(o.show_path), {}};
+    rig::Rig rig = config::load_rig_file(o.rig_path);
+    playback::Show show = o.live_only ? live_show(o.duration_s) : load_playable_show(o.show_path, o.map_path, rig);
+    Loaded loaded{std::move(rig), std::move(show), {}};
     loaded.inputs = o.inputs_path ? config::load_input_map(loaded.rig, *o.inputs_path, true)
                                   : config::load_input_map(loaded.rig, o.rig_path, false);
     if (o.live_only) return loaded;

@@ -15,6 +15,7 @@ namespace avar::app {
 
 struct PlayOptions {
   std::string show_path;
+  std::optional<std::string> map_path;  ///< --map: show_path is a motion-capture file baked through this map
   std::string rig_path;
   std::optional<std::string> port;   ///< override the rig's single link's port
   bool simulate = false;             ///< --sim: simulate every link
