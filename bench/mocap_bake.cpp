@@ -70,7 +70,7 @@ std::string bake_bench_bvh() {
 
 const std::string& bake_bench_file() {
   static const std::string path = [] {
-    const std::string p = "/tmp/avar-bench-mocap-bake-" + std::to_string(::getpid()) + ".bvh";
+    std::string p = "/tmp/avar-bench-mocap-bake-" + std::to_string(::getpid()) + ".bvh";
     std::ofstream(p) << bake_bench_bvh();
     return p;
   }();
@@ -79,7 +79,7 @@ const std::string& bake_bench_file() {
 
 const std::string& bake_bench_map() {
   static const std::string path = [] {
-    const std::string p = "/tmp/avar-bench-mocap-bake-" + std::to_string(::getpid()) + "-map.yaml";
+    std::string p = "/tmp/avar-bench-mocap-bake-" + std::to_string(::getpid()) + "-map.yaml";
     std::ofstream(p) << "retarget:\n  rotations:\n"
                         "    - {joint: Head, channel: neck_pan, axis: y, order: yxz}\n"
                         "    - {joint: Head, channel: neck_tilt, axis: x, order: yxz, scale: 0.5}\n"

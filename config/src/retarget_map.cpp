@@ -22,14 +22,18 @@ double retarget_number(const YamlRef& parent, std::string_view key, const std::s
   return node ? node->as_double(what) : fallback;
 }
 
+/// The binding's source joint: its name and where it stands (joints are checked at bake time).
+void read_source_joint(const YamlRef& node, const std::string& what, std::string& name, SourceLocation& where) {
+  const YamlRef joint = node.at("joint", what + " (the source joint)");
+  name = joint.as_string("the joint of " + what);
+  where = joint.where();
+}
+
 mocap::RotationBinding read_rotation(const rig::Rig& rig, const YamlRef& node, const std::string& what) {
-  node.expect_map(what);
   node.expect_only_keys({"joint", "channel", "axis", "order", "relative_to", "scale", "offset", "reverse", "units"}, what);
   mocap::RotationBinding b;
   b.where = node.where();
-  const YamlRef joint = node.at("joint", what + " (the source joint)");
-  b.joint = joint.as_string("the joint of " + what);
-  b.joint_where = joint.where();
+  read_source_joint(node, what, b.joint, b.joint_where);
   const YamlRef channel = node.at("channel", what + " (the rig channel it drives)");
   b.channel = channel.as_string("the channel of " + what);
   const auto ci = rig.find_channel(b.channel);
@@ -88,13 +92,10 @@ void read_axes(const YamlRef& node, const std::string& what, mocap::PositionBind
 }
 
 mocap::PositionBinding read_position(const rig::Rig& rig, const YamlRef& node, const std::string& what) {
-  node.expect_map(what);
   node.expect_only_keys({"joint", "target", "scale", "origin", "axes", "offset"}, what);
   mocap::PositionBinding b;
   b.where = node.where();
-  const YamlRef joint = node.at("joint", what + " (the source joint)");
-  b.joint = joint.as_string("the joint of " + what);
-  b.joint_where = joint.where();
+  read_source_joint(node, what, b.joint, b.joint_where);
   const YamlRef target = node.at("target", what + " (an effector of the rig's kinematics)");
   b.target = target.as_string("the target of " + what);
   if (!rig.kinematics)

@@ -42,15 +42,17 @@ double retarget_channel_value(const RotationBinding& b, double radians) noexcept
 
 }  // namespace
 
-double rotation_value(const RotationBinding& b, const Eigen::Quaterniond& relative) noexcept {
-  return retarget_channel_value(b, playback::euler_from_quaternion(relative, b.order)[b.axis]);
+double rotation_value(const RotationBinding& binding, const Eigen::Quaterniond& relative) noexcept {
+  return retarget_channel_value(binding, playback::euler_from_quaternion(relative, binding.order)[binding.axis]);
 }
 
-Eigen::Vector3d position_value(const PositionBinding& b, double source_units, const Eigen::Vector3d& p) noexcept {
+Eigen::Vector3d position_value(const PositionBinding& binding, double source_units,
+                               const Eigen::Vector3d& file_position) noexcept {
   Eigen::Vector3d out;
   for (int i = 0; i < 3; ++i)
-    out[i] = b.sign[static_cast<std::size_t>(i)] * p[b.from[static_cast<std::size_t>(i)]] * source_units * b.scale;
-  return out + b.offset;
+    out[i] = binding.sign[static_cast<std::size_t>(i)] * file_position[binding.from[static_cast<std::size_t>(i)]] * source_units *
+             binding.scale;
+  return out + binding.offset;
 }
 
 RetargetedMotion retarget(const SkeletonAnimation& animation, const RetargetMap& map, double sample_rate_hz,
