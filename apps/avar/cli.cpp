@@ -8,6 +8,7 @@
 #include "avar/exit_codes.hpp"
 #include "avar/fit_command.hpp"
 #include "avar/inputs_command.hpp"
+#include "avar/mocap_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
@@ -96,6 +97,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
       "  avar fit recording.csv --tolerance 0.1 --out take.yaml [--smooth butterworth --cutoff 4]\n"
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
+      "  avar mocap info walk.bvh   /   avar mocap joints walk.bvh --out joints.csv\n"
+      "      show a motion-capture file's skeleton, or write its joints' positions per frame as CSV\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
@@ -155,6 +158,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
+
+  MocapOptions mocap;
+  const MocapCommands mocap_cmds = add_mocap_subcommands(app, mocap);
 
   InputsOptions inputs;
   const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
@@ -227,6 +233,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   }
   if (*inputs_cmds.monitor) return run_inputs_monitor(inputs, out, err);
   if (*inputs_cmds.learn) return run_inputs_learn(inputs, out, err);
+  if (*mocap_cmds.mocap) return run_mocap(mocap_cmds, mocap, out, err);
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
