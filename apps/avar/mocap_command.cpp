@@ -64,30 +64,33 @@ int run_guarded(std::ostream& err, Body body) {
 
 MocapCommands add_mocap_subcommands(CLI::App& app, MocapOptions& o) {
   MocapCommands c;
-  c.mocap = app.add_subcommand("mocap", "Inspect motion-capture files (BVH): their skeleton and joint positions");
+  c.mocap = app.add_subcommand("mocap", "Inspect motion-capture files (BVH, glTF 2.0): their skeleton and joint positions");
   c.mocap->require_subcommand(1);
   c.mocap->footer(
       "Units and axes are the file's own: nothing is converted. BVH End Sites appear as joints named\n"
       "<parent>_end. Examples:\n"
       "  avar mocap info walk.bvh\n"
-      "  avar mocap joints walk.bvh --out joints.csv");
+      "  avar mocap joints walk.bvh --out joints.csv\n"
+      "  avar mocap joints wave.glb --fps 60 --out joints.csv");
 
   c.info = c.mocap->add_subcommand("info", "Print the joint tree with each joint's channels, frame count, rate and duration");
-  c.info->add_option("file", o.path, "Motion-capture file (.bvh), validated whole first")->required();
+  c.info->add_option("file", o.path, "Motion-capture file (.bvh, .gltf or .glb), validated whole first")->required();
   c.info->footer(
       "Each line is a joint, indented under its parent, with the channels the file animates in file\n"
       "order (BVH rotations compose in that order, the first outermost). Example:\n"
       "  avar mocap info walk.bvh");
 
   c.joints = c.mocap->add_subcommand("joints", "Write the world position of every joint, every frame, as CSV");
-  c.joints->add_option("file", o.path, "Motion-capture file (.bvh), validated whole first")->required();
-  c.joints->add_option("--fps", o.fps, "Samples per second for files without frames of their own (BVH: not allowed; default 30)");
+  c.joints->add_option("file", o.path, "Motion-capture file (.bvh, .gltf or .glb), validated whole first")->required();
+  c.joints->add_option("--fps", o.fps,
+                       "glTF: samples per second, at i / F s over the animation (default 30); BVH files keep their own frames");
   c.joints->add_option("--out", o.out, "Write the CSV to this file instead of standard output");
   c.joints->footer(
-      "Output: a header `frame,joint,x,y,z`, then one row per frame (0-based, the file's frames) and joint\n"
-      "(hierarchy order, End Sites as <parent>_end): the joint origin's position in the file's own axes\n"
-      "and units, from the file's offsets and channels (forward kinematics). Example:\n"
-      "  avar mocap joints walk.bvh --out joints.csv");
+      "Output: a header `frame,joint,x,y,z`, then one row per frame (0-based: BVH the file's frames, glTF\n"
+      "samples at i / --fps s) and joint (hierarchy order, BVH End Sites as <parent>_end): the joint\n"
+      "origin's position in the file's own axes and units (forward kinematics). Examples:\n"
+      "  avar mocap joints walk.bvh --out joints.csv\n"
+      "  avar mocap joints wave.glb --fps 60 --out joints.csv");
   return c;
 }
 

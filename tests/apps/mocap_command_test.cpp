@@ -59,6 +59,23 @@ TEST(MocapCommand, JointsWritesEveryJointEveryFrameInTheFilesAxes) {
   EXPECT_EQ(to_stdout.out, file_text.str());
 }
 
+TEST(MocapCommand, GltfJointsSampleAtTheRequestedRate) {
+  const std::string glb = AVAR_SOURCE_DIR "/tests/data/mocap/gltf_short_rotation.glb";
+  const testing::CliResult r = testing::run_avar({"mocap", "joints", glb, "--fps", "10"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto rows = testing::csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 1U + 11 * 2);  // samples at 0, 0.1 ... 1 s; joints spin and tip
+  // Frame 10 (t = 1 s): the tip, turned 90 deg about y, at (1, 0, 0) (worked in gltf_reader_test).
+  EXPECT_EQ(rows[22][0], "10");
+  EXPECT_EQ(rows[22][1], "tip");
+  EXPECT_NEAR(std::stod(rows[22][2]), 1, 1e-9);
+  EXPECT_NEAR(std::stod(rows[22][4]), 0, 1e-9);
+  const testing::CliResult info = testing::run_avar({"mocap", "info", glb});
+  ASSERT_EQ(info.code, kExitOk) << info.err;
+  EXPECT_NE(info.out.find("  spin  [rotation:LINEAR]\n    tip  []\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("frames: 31\nframe time: 0.0333333 s (30 fps)\nduration: 1 s\n"), std::string::npos) << info.out;
+}
+
 TEST(MocapCommand, BadFilesAndOptionsExitTwoWithTheirPlace) {
   const std::string broken = testing::write_temp_file("broken.bvh", "HIERARCHY\nROOT a\n{\n  OFFSET 0 0\n}\n");
   const testing::CliResult bad = testing::run_avar({"mocap", "info", broken});
@@ -69,7 +86,11 @@ TEST(MocapCommand, BadFilesAndOptionsExitTwoWithTheirPlace) {
   EXPECT_NE(fps.err.find("a BVH file's rows are its frames"), std::string::npos) << fps.err;
   const testing::CliResult unknown = testing::run_avar({"mocap", "info", "take.fbx"});
   EXPECT_EQ(unknown.code, kExitBadInput);
-  EXPECT_NE(unknown.err.find("take.fbx: unknown motion-capture format '.fbx'"), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find("take.fbx: unknown motion-capture format '.fbx'; expected .bvh, .gltf or .glb"), std::string::npos)
+      << unknown.err;
+  const testing::CliResult zero_fps = testing::run_avar({"mocap", "joints", "x.glb", "--fps", "0"});
+  EXPECT_EQ(zero_fps.code, kExitBadInput);
+  EXPECT_EQ(zero_fps.err, "error: expected --fps to be a number more than 0, found 0\n");
   EXPECT_EQ(testing::run_avar({"mocap"}).code, kExitBadInput);
   const testing::CliResult help = testing::run_avar({"mocap", "joints", "--help"});
   EXPECT_EQ(help.code, kExitOk);

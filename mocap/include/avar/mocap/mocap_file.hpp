@@ -1,14 +1,15 @@
 #pragma once
 // Any supported motion-capture file into the skeleton-animation model, chosen by the file's
-// extension (case-insensitive): .bvh (bvh_reader.hpp). Load time only: allocates and throws.
+// extension (case-insensitive): .bvh (bvh_reader.hpp), .gltf and .glb (gltf_reader.hpp). Load time only: allocates and throws.
 
+#include <cstdint>
 #include <string>
 
 #include "avar/mocap/skeleton_animation.hpp"
 
 namespace avar::mocap {
 
-enum class MocapFormat : std::uint8_t { bvh };
+enum class MocapFormat : std::uint8_t { bvh, gltf, glb };
 
 struct MocapLoadOptions {
   /// Frames per second a format without frames of its own is sampled at (> 0). BVH files keep
@@ -20,7 +21,7 @@ struct MocapLoadOptions {
 /// extensions that are supported otherwise.
 MocapFormat mocap_format(const std::string& path);
 
-/// "BVH".
+/// "BVH", "glTF 2.0 (JSON)", "glTF 2.0 (binary .glb)".
 const char* to_string(MocapFormat format);
 
 /// Reads and validates `path` with the reader of its format. Throws avar::InputError.
