@@ -78,6 +78,16 @@ TEST(GltfReaderFixtures, GlbWithNormalizedShortRotations) {
   EXPECT_GLTF_AT(a, 10, "tip", 1, 0, 0);
 }
 
+TEST(GltfReaderFixtures, SparseAccessorWithoutBufferView) {
+  const SkeletonAnimation a = load_gltf(gltf_fixture("gltf_sparse.gltf"), GltfReadOptions{4, 0});
+  ASSERT_EQ(a.frame_count(), 5U);
+  // Keys (0,0,0) and, by substitution, (4,0,0): linear, so (2,0,0) at t = 0.5; end 1 above it.
+  EXPECT_GLTF_AT(a, 0, "end", 0, 1, 0);
+  EXPECT_GLTF_AT(a, 2, "slider", 2, 0, 0);
+  EXPECT_GLTF_AT(a, 2, "end", 2, 1, 0);
+  EXPECT_GLTF_AT(a, 4, "end", 4, 1, 0);
+}
+
 std::string gltf_text(const std::string& name) {
   std::ifstream in(gltf_fixture(name));
   std::stringstream text;

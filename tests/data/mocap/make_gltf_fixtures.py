@@ -95,6 +95,25 @@ def short_rotation_glb():
     return gltf(nodes, b, samplers, channels, skins=[{"joints": [0, 1]}]), b.blob
 
 
+def sparse_translation():
+    # slider's translation keys come from a sparse accessor with no buffer view: zeros, then
+    # element 1 replaced by (4,0,0); end sits at (0,1,0) under it. Indices are UNSIGNED_SHORT.
+    b = Buffer()
+    times = b.floats([0.0, 1.0], "SCALAR")
+    b.add("H", [1, 0], 5123, "SCALAR")  # indices (padded to 4 bytes); its accessor goes unused
+    index_view = len(b.views) - 1
+    b.floats([4, 0, 0], "VEC3")
+    value_view = len(b.views) - 1
+    b.accessors.append({"componentType": 5126, "count": 2, "type": "VEC3",
+                        "sparse": {"count": 1, "indices": {"bufferView": index_view, "componentType": 5123},
+                                   "values": {"bufferView": value_view}}})
+    slide = len(b.accessors) - 1
+    nodes = [{"name": "slider", "children": [1]}, {"name": "end", "translation": [0, 1, 0]}]
+    samplers = [{"input": times, "output": slide}]
+    channels = [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]
+    return gltf(nodes, b, samplers, channels, skins=[{"joints": [0, 1]}], uri=data_uri(b.blob))
+
+
 def glb(doc, blob):
     text = json.dumps(doc, separators=(",", ":")).encode()
     text += b" " * (-len(text) % 4)
@@ -112,6 +131,8 @@ def main():
         json.dump(doc, f, indent=1)
     with open(os.path.join(HERE, bin_name), "wb") as f:
         f.write(blob)
+    with open(os.path.join(HERE, "gltf_sparse.gltf"), "w") as f:
+        json.dump(sparse_translation(), f, indent=1)
     doc, blob = short_rotation_glb()
     with open(os.path.join(HERE, "gltf_short_rotation.glb"), "wb") as f:
         f.write(glb(doc, blob))
