@@ -3,8 +3,10 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <filesystem>
+#include <fstream>
+#include <string_view>
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
@@ -32,16 +34,21 @@ bool skip_gltf_image(tinygltf::Image*, const int, std::string*, std::string*, in
   return true;
 }
 
+/// A binary glTF starts with the magic "glTF" (whatever the file is called).
+bool gltf_is_binary(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 4> magic{};
+  in.read(magic.data(), magic.size());
+  return in && std::string_view(magic.data(), magic.size()) == "glTF";
+}
+
 tinygltf::Model gltf_load_model(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; });
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_gltf_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
-  const bool ok = extension == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                                      : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  const bool ok = gltf_is_binary(path) ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                                       : loader.LoadASCIIFromFile(&model, &error, &warning, path);
   if (!ok) {
     std::replace(error.begin(), error.end(), '\n', ' ');
     while (!error.empty() && error.back() == ' ') error.pop_back();

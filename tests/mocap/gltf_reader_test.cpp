@@ -8,6 +8,7 @@
 #include <string>
 
 #include "../support/input_errors.hpp"
+#include "joint_positions.hpp"
 #include "avar/core/input_error.hpp"
 
 namespace avar::mocap {
@@ -15,20 +16,9 @@ namespace {
 
 // Fixtures: tests/data/mocap/make_gltf_fixtures.py wrote them; expected positions are worked by
 // hand below from the glTF 2.0 specification (node TRS, Appendix C interpolation).
-std::string gltf_fixture(const std::string& name) { return AVAR_SOURCE_DIR "/tests/data/mocap/" + name; }
+std::string gltf_fixture(const std::string& name) { return testing::mocap_fixture(name); }
 
-Eigen::Vector3d gltf_world(const SkeletonAnimation& animation, std::size_t frame, const std::string& name) {
-  std::vector<Eigen::Affine3d> world;
-  forward_kinematics(animation, animation.frames.at(frame), world);
-  const auto joint = animation.find_joint(name);
-  EXPECT_TRUE(joint) << name;
-  if (!joint) return Eigen::Vector3d::Constant(std::nan(""));
-  return world[*joint].translation();
-}
-
-#define EXPECT_GLTF_AT(animation, frame, joint, x, y, z)                                   \
-  EXPECT_LT((gltf_world(animation, frame, joint) - Eigen::Vector3d(x, y, z)).norm(), 1e-6) \
-      << "frame " << (frame) << " joint " << (joint) << " at " << gltf_world(animation, frame, joint).transpose()
+#define EXPECT_GLTF_AT(animation, frame, joint, x, y, z) EXPECT_JOINT_AT(animation, frame, joint, x, y, z, 1e-6)
 
 TEST(GltfReaderFixtures, SkinJointsLinearSlerpAndStep) {
   const SkeletonAnimation a = load_gltf(gltf_fixture("gltf_linear_step_skin.gltf"));
@@ -96,11 +86,11 @@ std::string gltf_text(const std::string& name) {
 }
 
 std::string gltf_error(const std::string& text) {
-  return avar::testing::load_error([](const std::string& path) { load_gltf(path); }, text, "broken.gltf");
+  return ::avar::testing::load_error([](const std::string& path) { load_gltf(path); }, text, "broken.gltf");
 }
 
 TEST(GltfReaderErrors, RefusalsNameTheJsonPath) {
-  using avar::testing::replace;
+  using ::avar::testing::replace;
   const std::string good = gltf_text("gltf_linear_step_skin.gltf");
   EXPECT_EQ(gltf_error(good), "");
   EXPECT_EQ(gltf_error(replace(good, "\"output\": 1,", "\"output\": 99,")),

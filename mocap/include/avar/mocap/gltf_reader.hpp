@@ -33,7 +33,8 @@ struct GltfReadOptions {
   std::size_t animation = 0;   ///< which of the file's animations
 };
 
-/// Reads, samples and validates the glTF file at `path` (.glb binary, otherwise JSON .gltf).
+/// Reads, samples and validates the glTF file at `path` (binary when it starts with the .glb
+/// magic "glTF", otherwise JSON).
 SkeletonAnimation load_gltf(const std::string& path, const GltfReadOptions& options = {});
 
 }  // namespace avar::mocap
