@@ -17,3 +17,6 @@ endif()
 if(AVAR_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+# glTF 2.0 motion capture (mocap): Debian's shared tinygltf, its JSON from nlohmann-json.
+find_package(TinyGLTF REQUIRED)
+find_package(nlohmann_json REQUIRED)

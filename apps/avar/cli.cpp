@@ -9,6 +9,7 @@
 #include "avar/fit_command.hpp"
 #include "avar/inputs_command.hpp"
 #include "avar/mocap_bake_command.hpp"
+#include "avar/mocap_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
@@ -97,6 +98,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
       "  avar fit recording.csv --tolerance 0.1 --out take.yaml [--smooth butterworth --cutoff 4]\n"
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
+      "  avar mocap info walk.bvh   /   avar mocap joints walk.bvh --out joints.csv\n"
+      "      show a motion-capture file's skeleton, or write its joints' positions per frame as CSV\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
@@ -159,13 +162,14 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
 
+  MocapOptions mocap;
+  const MocapCommands mocap_cmds = add_mocap_subcommands(app, mocap);
+
   InputsOptions inputs;
   const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
 
-  CLI::App* mocap_cmd = app.add_subcommand("mocap", "Motion capture: retarget and bake onto a rig");
-  mocap_cmd->require_subcommand(1);
   MocapBakeOptions mocap_bake;
-  CLI::App* mocap_bake_cmd = add_mocap_bake_subcommand(*mocap_cmd, mocap_bake);
+  CLI::App* mocap_bake_cmd = add_mocap_bake_subcommand(*mocap_cmds.mocap, mocap_bake);
 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
@@ -235,10 +239,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   }
   if (*inputs_cmds.monitor) return run_inputs_monitor(inputs, out, err);
   if (*inputs_cmds.learn) return run_inputs_learn(inputs, out, err);
+  if (*mocap_bake_cmd) return run_mocap_bake(mocap_bake, out, err);
+  if (*mocap_cmds.mocap) return run_mocap(mocap_cmds, mocap, out, err);
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
-  if (*mocap_bake_cmd) return run_mocap_bake(mocap_bake, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);

@@ -1,7 +1,6 @@
 #include "avar/mocap_bake.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <ostream>
@@ -10,16 +9,10 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/fitted_track.hpp"
-#include "avar/mocap/bvh_reader.hpp"
+#include "avar/mocap/mocap_file.hpp"
 
 namespace avar::app {
 namespace {
-
-std::string bake_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// Samples outside [min, max]: refused at the binding, or clamped (counted) with `clamp`.
 std::size_t bake_keep_in_limits(const mocap::RetargetedMotion& motion, mocap::RetargetedMotion::Channel& channel,
@@ -42,13 +35,18 @@ std::size_t bake_keep_in_limits(const mocap::RetargetedMotion& motion, mocap::Re
 }  // namespace
 
 bool is_mocap_file(const std::string& path) {
-  const std::string ext = bake_extension(path);
-  return ext == ".bvh" || ext == ".gltf" || ext == ".glb";
+  try {
+    (void)mocap::mocap_format(path);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
 }
 
-mocap::SkeletonAnimation load_motion_file(const std::string& path) {
-  if (bake_extension(path) == ".bvh") return mocap::load_bvh(path);
-  throw InputError({path, 0, 0}, "found a file ending '" + bake_extension(path) + "'; expected a motion-capture file (.bvh)");
+mocap::SkeletonAnimation load_motion_file(const std::string& path, double sample_rate_hz) {
+  mocap::MocapLoadOptions options;
+  options.sample_rate_hz = sample_rate_hz;
+  return mocap::load_mocap_file(path, options);
 }
 
 Baked bake_show(const mocap::SkeletonAnimation& animation, const mocap::RetargetMap& map, const rig::Rig& rig,
@@ -123,9 +121,10 @@ playback::Show load_playable_show(const std::string& path, const std::optional<s
     return config::load_show_file(path);
   }
   if (!is_mocap_file(path))
-    throw InputError({path, 0, 0}, "--map retargets motion capture; expected a .bvh file, found another kind of file");
+    throw InputError({path, 0, 0},
+                     "--map retargets motion capture; expected a .bvh, .gltf or .glb file, found another kind of file");
   const mocap::RetargetMap map = config::load_retarget_map(*map_path, rig);
-  const mocap::SkeletonAnimation animation = load_motion_file(path);
+  const mocap::SkeletonAnimation animation = load_motion_file(path, 30);
   return bake_show(animation, map, rig, BakeSettings{}, std::filesystem::path(path).stem().string(), nullptr).show;
 }
 

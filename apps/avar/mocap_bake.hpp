@@ -38,12 +38,13 @@ struct BakeReport {
   std::vector<Channel> channels;  ///< tracks first, then target axes
 };
 
-/// True for the file names bake reads as motion capture (.bvh, .gltf, .glb; any case).
+/// True for the file names mocap::load_mocap_file reads (.bvh, .gltf, .glb; any case).
 bool is_mocap_file(const std::string& path);
 
-/// Reads a motion-capture file by its extension (InputError with file:line:col on a bad file,
-/// or naming the path when the extension is not one bake reads).
-mocap::SkeletonAnimation load_motion_file(const std::string& path);
+/// Reads a motion-capture file by its extension (mocap::load_mocap_file; InputError with the
+/// place of a bad file, or naming the path when the extension is not one it reads). Formats
+/// without frames of their own (glTF) are sampled at `sample_rate_hz`.
+mocap::SkeletonAnimation load_motion_file(const std::string& path, double sample_rate_hz);
 
 struct Baked {
   playback::Show show;

@@ -20,7 +20,7 @@ namespace avar::app {
 CLI::App* add_mocap_bake_subcommand(CLI::App& mocap, MocapBakeOptions& o) {
   CLI::App* cmd =
       mocap.add_subcommand("bake", "Retarget a motion-capture file onto a rig through a map and write an editable show");
-  cmd->add_option("file", o.mocap_path, "Motion-capture file (.bvh)")->required();
+  cmd->add_option("file", o.mocap_path, "Motion-capture file (.bvh, .gltf, .glb)")->required();
   cmd->add_option("--map", o.map_path, "Retarget map (YAML: retarget: rotations, positions)")->required();
   cmd->add_option("--rig", o.rig_path, "Rig file the show is for")->required();
   cmd->add_option("--out", o.out_path, "Show file to write (YAML)")->required();
@@ -30,7 +30,8 @@ CLI::App* add_mocap_bake_subcommand(CLI::App& mocap, MocapBakeOptions& o) {
   cmd->add_option("--position-tolerance", o.position_tolerance,
                   "Largest difference of an IK target's keys from the samples, metres (default 0.001)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--fps", o.fps, "Samples per second fitted (default: the file's frame rate)")->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--fps", o.fps, "Samples per second fitted (default: a BVH's own frame rate; glTF is sampled at 30)")
+      ->check(CLI::Range(1.0, 1000.0));
   cmd->add_flag("--clamp", o.clamp, "Clamp samples outside a channel's limits (counted) instead of refusing the bake");
   cmd->add_flag(
       "--no-progress", [&o](std::int64_t) { o.progress = false; }, "Do not print progress lines");
@@ -48,7 +49,7 @@ int run_mocap_bake(const MocapBakeOptions& o, std::ostream& out, std::ostream& e
   try {
     const rig::Rig rig = config::load_rig_file(o.rig_path);
     const mocap::RetargetMap map = config::load_retarget_map(o.map_path, rig);
-    const mocap::SkeletonAnimation animation = load_motion_file(o.mocap_path);
+    const mocap::SkeletonAnimation animation = load_motion_file(o.mocap_path, o.fps.value_or(30));
     BakeSettings settings;
     settings.tolerance = o.tolerance;
     settings.position_tolerance = o.position_tolerance;

@@ -71,14 +71,6 @@ double sample_time(const Grid& g, std::size_t i) {
   return std::round(t * 1e9) / 1e9;
 }
 
-/// Shortest decimal text that reads back to the same double; -0 prints as 0.
-void append_number(std::string& line, double value) {
-  if (value == 0) value = 0;
-  std::array<char, 32> buf{};
-  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-  line.append(buf.data(), result.ptr);
-}
-
 /// The channels the show drives, in file order: its tracks, then those its layers touch.
 std::vector<std::string> driven_channels(const playback::Show& show) {
   std::vector<std::string> names;
@@ -126,10 +118,10 @@ void write_csv(const std::vector<std::string>& header, const Grid& grid, std::os
     const double t = sample_time(grid, i);
     values(t, row);
     line.clear();
-    append_number(line, t);
+    append_round_trip(line, t);
     for (double v : row) {
       line += ',';
-      append_number(line, v);
+      append_round_trip(line, v);
     }
     line += '\n';
     out << line;

@@ -20,4 +20,11 @@ std::string format_fixed(double value, int decimals) {
   return s;
 }
 
+void append_round_trip(std::string& text, double value) {
+  if (value == 0) value = 0;
+  std::array<char, 32> buf{};
+  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  text.append(buf.data(), result.ptr);
+}
+
 }  // namespace avar

@@ -161,15 +161,15 @@ class BvhHierarchyParser {
   std::unordered_map<std::string, int> names_;
 };
 
-void expect_keyword(Lexer& lexer, const Token& token, std::string_view keyword, const std::string& context) {
+void bvh_expect_keyword(Lexer& lexer, const Token& token, std::string_view keyword, const std::string& context) {
   if (!bvh_keyword(token.text, keyword))
     lexer.fail(token, "expected '" + std::string(keyword) + "'" + context + ", found " + Lexer::describe(token));
 }
 
-BvhHierarchy read_hierarchy(Lexer& lexer) {
-  expect_keyword(lexer, lexer.next(), "HIERARCHY", " at the start of a BVH file");
+BvhHierarchy bvh_read_hierarchy(Lexer& lexer) {
+  bvh_expect_keyword(lexer, lexer.next(), "HIERARCHY", " at the start of a BVH file");
   const Token root = lexer.next();
-  expect_keyword(lexer, root, "ROOT", " after HIERARCHY");
+  bvh_expect_keyword(lexer, root, "ROOT", " after HIERARCHY");
   BvhHierarchy hierarchy;
   BvhHierarchyParser(lexer, hierarchy).joint(lexer.rest_of_line(), kNoParent, 0);
   if (hierarchy.value_count == 0) lexer.fail(root, "the hierarchy has no CHANNELS; expected at least one channel to animate");
@@ -177,11 +177,11 @@ BvhHierarchy read_hierarchy(Lexer& lexer) {
 }
 
 /// The `Frames: N` count (at least 1).
-std::size_t read_frame_count(Lexer& lexer) {
+std::size_t bvh_read_frame_count(Lexer& lexer) {
   const Token motion = lexer.next();
   if (bvh_keyword(motion.text, "ROOT")) lexer.fail(motion, "a second ROOT; expected one skeleton per file, then MOTION");
-  expect_keyword(lexer, motion, "MOTION", " after the hierarchy");
-  expect_keyword(lexer, lexer.next(), "Frames:", " after MOTION");
+  bvh_expect_keyword(lexer, motion, "MOTION", " after the hierarchy");
+  bvh_expect_keyword(lexer, lexer.next(), "Frames:", " after MOTION");
   const Token count = lexer.next_on_line();
   std::size_t frames = 0;
   const auto [ptr, ec] = std::from_chars(count.text.data(), count.text.data() + count.text.size(), frames);
@@ -190,9 +190,9 @@ std::size_t read_frame_count(Lexer& lexer) {
   return frames;
 }
 
-double read_frame_time(Lexer& lexer) {
-  expect_keyword(lexer, lexer.next(), "Frame", " (of 'Frame Time:') after the frame count");
-  expect_keyword(lexer, lexer.next_on_line(), "Time:", " after 'Frame'");
+double bvh_read_frame_time(Lexer& lexer) {
+  bvh_expect_keyword(lexer, lexer.next(), "Frame", " (of 'Frame Time:') after the frame count");
+  bvh_expect_keyword(lexer, lexer.next_on_line(), "Time:", " after 'Frame'");
   const Token value = lexer.next_on_line();
   const double seconds = lexer.number(value, "the frame time in seconds");
   if (!(seconds > 0)) lexer.fail(value, "expected a frame time of more than 0 s, found " + Lexer::describe(value));
@@ -202,7 +202,7 @@ double read_frame_time(Lexer& lexer) {
 }
 
 /// The local pose of one MOTION row (`values` in hierarchy order).
-void pose_from_row(const BvhHierarchy& hierarchy, const std::vector<double>& values, Pose& pose) {
+void bvh_pose_from_row(const BvhHierarchy& hierarchy, const std::vector<double>& values, Pose& pose) {
   const std::size_t count = hierarchy.joints.size();
   pose.translation.resize(count);
   pose.rotation.resize(count);
@@ -227,7 +227,7 @@ void pose_from_row(const BvhHierarchy& hierarchy, const std::vector<double>& val
   }
 }
 
-void read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declared, SkeletonAnimation& animation) {
+void bvh_read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declared, SkeletonAnimation& animation) {
   std::vector<double> values(hierarchy.value_count);
   animation.frames.reserve(std::min<std::size_t>(declared, 1'000'000));
   while (lexer.next_line()) {
@@ -250,7 +250,7 @@ void read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declar
                             " values; expected one per channel (" + std::to_string(values.size()) + ")");
     }
     animation.frames.emplace_back();
-    pose_from_row(hierarchy, values, animation.frames.back());
+    bvh_pose_from_row(hierarchy, values, animation.frames.back());
   }
   if (animation.frames.size() != declared) {
     lexer.fail(lexer.here(), "the file ends after " + std::to_string(animation.frames.size()) + " rows; expected " +
@@ -258,7 +258,7 @@ void read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declar
   }
 }
 
-std::string read_whole_file(const std::string& path) {
+std::string bvh_read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path, 0, 0}, std::string("cannot read the file: ") + std::strerror(errno));
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -270,12 +270,12 @@ std::string read_whole_file(const std::string& path) {
 
 SkeletonAnimation parse_bvh(std::string_view text, const std::string& source) {
   Lexer lexer(text, source);
-  BvhHierarchy hierarchy = read_hierarchy(lexer);
-  const std::size_t declared = read_frame_count(lexer);
+  BvhHierarchy hierarchy = bvh_read_hierarchy(lexer);
+  const std::size_t declared = bvh_read_frame_count(lexer);
   SkeletonAnimation animation;
   animation.source = source;
-  animation.frame_time = read_frame_time(lexer);
-  read_frames(lexer, hierarchy, declared, animation);
+  animation.frame_time = bvh_read_frame_time(lexer);
+  bvh_read_frames(lexer, hierarchy, declared, animation);
   animation.joints = std::move(hierarchy.joints);
   animation.channels.reserve(hierarchy.channels.size());
   for (const auto& list : hierarchy.channels) {
@@ -291,6 +291,6 @@ SkeletonAnimation parse_bvh(std::string_view text, const std::string& source) {
   return animation;
 }
 
-SkeletonAnimation load_bvh(const std::string& path) { return parse_bvh(read_whole_file(path), path); }
+SkeletonAnimation load_bvh(const std::string& path) { return parse_bvh(bvh_read_whole_file(path), path); }
 
 }  // namespace avar::mocap

@@ -55,6 +55,20 @@ TEST(MocapBake, BakesTheExampleHeadWithinTheToleranceAndTheShowChecks) {
   EXPECT_NE(check.out.find("0 segment(s) ask more"), std::string::npos) << check.out;
 }
 
+TEST(MocapBake, BakesAGltfFileSampledAtTheAskedRate) {
+  // The fixture's joint 'spin' turns from rest to 90 deg about y over 1 s (slerp: 90 t deg).
+  const std::string glb = AVAR_SOURCE_DIR "/tests/data/mocap/gltf_short_rotation.glb";
+  const std::string map = avar::testing::write_temp_file(
+      "map.yaml", "retarget:\n  rotations:\n    - {joint: spin, channel: neck_pan, axis: y, order: xyz, scale: 0.5}\n");
+  const std::string out = avar::testing::temp_path("spin.yaml");
+  const testing::CliResult bake = testing::run_avar({"mocap", "bake", glb, "--map", map, "--rig", kBakeHeadRig, "--out", out,
+                                                     "--fps", "10", "--tolerance", "0.1", "--no-progress"});
+  ASSERT_EQ(bake.code, kExitOk) << bake.err << bake.out;
+  EXPECT_NE(bake.out.find("neck_pan: 11 samples in"), std::string::npos) << bake.out;
+  const playback::Show show = config::load_show_file(out);
+  for (int i = 0; i <= 10; ++i) EXPECT_NEAR(bake_value(show, "neck_pan", i / 10.0), 4.5 * i, 0.1 + 1e-9) << i;
+}
+
 TEST(MocapBake, PlaysAMocapFileDirectlyThroughAMap) {
   const testing::CliResult play =
       testing::run_avar({"play", kBakeNodBvh, "--map", kBakeHeadMap, "--rig", kBakeHeadRig, "--sim", "--fast", "--no-progress"});

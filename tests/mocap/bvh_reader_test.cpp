@@ -10,39 +10,28 @@
 
 #include "avar/core/input_error.hpp"
 #include "../support/input_errors.hpp"
+#include "joint_positions.hpp"
 
 namespace avar::mocap {
 namespace {
 
-std::string bvh_fixture_path(const std::string& name) { return AVAR_SOURCE_DIR "/tests/data/mocap/" + name; }
+using testing::mocap_fixture;
 
 std::string bvh_fixture_text(const std::string& name) {
-  std::ifstream in(bvh_fixture_path(name), std::ios::binary);
+  std::ifstream in(mocap_fixture(name), std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
-/// World position of joint `name` at frame `frame` by the model's forward kinematics.
-Eigen::Vector3d bvh_world(const SkeletonAnimation& animation, std::size_t frame, const std::string& name) {
-  std::vector<Eigen::Affine3d> world;
-  forward_kinematics(animation, animation.frames.at(frame), world);
-  const auto joint = animation.find_joint(name);
-  EXPECT_TRUE(joint) << name;
-  if (!joint) return Eigen::Vector3d::Constant(std::nan(""));
-  return world[*joint].translation();
-}
-
-#define EXPECT_BVH_AT(animation, frame, joint, x, y, z)                                   \
-  EXPECT_LT((bvh_world(animation, frame, joint) - Eigen::Vector3d(x, y, z)).norm(), 1e-9) \
-      << "frame " << (frame) << " joint " << (joint) << " at " << bvh_world(animation, frame, joint).transpose()
+#define EXPECT_BVH_AT(animation, frame, joint, x, y, z) EXPECT_JOINT_AT(animation, frame, joint, x, y, z, 1e-9)
 
 // Expected positions below are worked by hand from the BVH convention (rotations in degrees, the
 // first listed channel outermost; translation = OFFSET + position channels) with the right-handed
 // quarter turns Rx: (x,y,z) -> (x,-z,y), Ry: (x,y,z) -> (z,y,-x), Rz: (x,y,z) -> (-y,x,z).
 
 TEST(BvhReaderFixtures, ZxyArmWithRootPositionAndEndSite) {
-  const SkeletonAnimation a = load_bvh(bvh_fixture_path("zxy_arm.bvh"));
+  const SkeletonAnimation a = load_bvh(mocap_fixture("zxy_arm.bvh"));
   ASSERT_EQ(a.joints.size(), 3U);
   EXPECT_EQ(a.joints[2].name, "Elbow_end");
   EXPECT_TRUE(a.joints[2].end_site);
@@ -72,7 +61,7 @@ TEST(BvhReaderFixtures, ZxyArmWithRootPositionAndEndSite) {
 }
 
 TEST(BvhReaderFixtures, XyzYzxAndSixChannelsInMixedOrder) {
-  const SkeletonAnimation a = load_bvh(bvh_fixture_path("orders.bvh"));
+  const SkeletonAnimation a = load_bvh(mocap_fixture("orders.bvh"));
   ASSERT_EQ(a.joints.size(), 4U);
   // Frame 0: Base X=90 Y=90 is Rx Ry. Link = Rx Ry (1,0,0) = Rx (0,0,-1) = (0,1,0);
   // Tip = Link + Rx Ry (0,0,1) = Rx (1,0,0) = +(1,0,0); end = Tip + Rx Ry (0,1,0) = +(0,0,1).
@@ -129,7 +118,7 @@ TEST(BvhReaderFixtures, NamesWithSpacesBracesOnTheLineAndSuccessiveRotationsInOn
 
 /// The error of parsing `text` after its "file:" prefix: "LINE:COLUMN: problem".
 std::string bvh_error(const std::string& text) {
-  return avar::testing::load_error([](const std::string& path) { load_bvh(path); }, text, "broken.bvh");
+  return ::avar::testing::load_error([](const std::string& path) { load_bvh(path); }, text, "broken.bvh");
 }
 
 const std::string kBvhGood =
@@ -155,7 +144,7 @@ const std::string kBvhGood =
     "5 6 7 8\n";                                    // 20
 
 TEST(BvhReaderErrors, EachMalformedClassIsRefusedWithItsLocation) {
-  using avar::testing::replace;
+  using ::avar::testing::replace;
   EXPECT_EQ(bvh_error(kBvhGood), "");
   // Truncated hierarchy.
   EXPECT_EQ(bvh_error(kBvhGood.substr(0, kBvhGood.find("  }\n}"))),

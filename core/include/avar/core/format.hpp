@@ -13,4 +13,8 @@ std::string format_number(double value);
 /// rounds to zero has no minus sign ("0.00", not "-0.00").
 std::string format_fixed(double value, int decimals);
 
+/// Appends the shortest decimal text that reads back to the same double (CSV output); -0 is
+/// written as 0.
+void append_round_trip(std::string& text, double value);
+
 }  // namespace avar
