@@ -1,31 +1,31 @@
-#include "avar/fitted_track.hpp"
+#include "avar/playback/offline/track_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "avar/playback/offline/curve_fit.hpp"
 
-namespace avar::app {
+namespace avar::playback {
 
-playback::Track fit_track(const std::string& channel, std::span<const double> times, std::span<const double> values,
+Track fit_track(const std::string& channel, std::span<const double> times, std::span<const double> values,
                           double tolerance, double corner_angle_deg, const SourceLocation& where) {
-  playback::CurveFitOptions fit_options;
+  CurveFitOptions fit_options;
   // A hair inside the tolerance, so that the written decimal numbers cannot push a sample over.
   fit_options.tolerance = tolerance * (1 - 1e-9);
   fit_options.corner_angle_deg = corner_angle_deg;
-  playback::Track track;
+  Track track;
   track.channel = channel;
   track.where = where;
-  track.raw = playback::fit_curve(times, values, fit_options, where).curve;
-  track.curve = playback::Curve::build(track.raw);
+  track.raw = fit_curve(times, values, fit_options, where).curve;
+  track.curve = Curve::build(track.raw);
   return track;
 }
 
-double max_fit_error(const playback::Curve& curve, std::span<const double> times, std::span<const double> values) {
+double max_fit_error(const Curve& curve, std::span<const double> times, std::span<const double> values) {
   double worst = 0;
-  playback::CurveCursor cursor;
+  CurveCursor cursor;
   for (std::size_t i = 0; i < times.size(); ++i) worst = std::max(worst, std::abs(curve.evaluate(times[i], cursor) - values[i]));
   return worst;
 }
 
-}  // namespace avar::app
+}  // namespace avar::playback
