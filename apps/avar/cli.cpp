@@ -8,6 +8,7 @@
 #include "avar/exit_codes.hpp"
 #include "avar/fit_command.hpp"
 #include "avar/inputs_command.hpp"
+#include "avar/jaw_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
@@ -96,6 +97,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
       "  avar fit recording.csv --tolerance 0.1 --out take.yaml [--smooth butterworth --cutoff 4]\n"
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
+      "  avar jaw voice.wav --rig RIG --channel jaw --out jaw.yaml\n"
+      "      a talking figure's jaw track from a voice recording\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
@@ -155,6 +158,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
+  JawCommandOptions jaw;
+  CLI::App* jaw_cmd = add_jaw_subcommand(app, jaw);
 
   InputsOptions inputs;
   const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
@@ -230,6 +235,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
+  if (*jaw_cmd) return run_jaw(jaw, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);

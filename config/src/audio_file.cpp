@@ -19,7 +19,8 @@ MonoAudio read_mono_audio(const std::string& path, const SourceLocation& where) 
   std::vector<float> interleaved(frames * channels);
   const sf_count_t read = sf_readf_float(file.get(), interleaved.data(), info.frames);
   if (read <= 0)
-    throw InputError(where, "cannot decode audio file '" + path + "' (" + sf_strerror(file.get()) + "); expected a readable sound file");
+    throw InputError(where,
+                     "cannot decode audio file '" + path + "' (" + sf_strerror(file.get()) + "); expected a readable sound file");
   MonoAudio audio;
   audio.sample_rate_hz = info.samplerate;
   audio.samples.resize(static_cast<std::size_t>(read));

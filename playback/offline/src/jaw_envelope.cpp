@@ -45,8 +45,10 @@ std::vector<double> speech_envelope_db(std::span<const float> samples, double sa
   levels.reserve(frames);
   for (std::size_t k = 0; k < frames; ++k) {
     const double centre = static_cast<double>(k) / o.frame_rate_hz * sample_rate_hz;
-    const auto first = static_cast<std::size_t>(std::clamp(std::floor(centre - half_window), 0.0, static_cast<double>(band.size())));
-    const auto last = static_cast<std::size_t>(std::clamp(std::ceil(centre + half_window), 0.0, static_cast<double>(band.size())));
+    const auto first =
+        static_cast<std::size_t>(std::clamp(std::floor(centre - half_window), 0.0, static_cast<double>(band.size())));
+    const auto last =
+        static_cast<std::size_t>(std::clamp(std::ceil(centre + half_window), 0.0, static_cast<double>(band.size())));
     const double mean_square = last > first ? (energy[last] - energy[first]) / static_cast<double>(last - first) : 0.0;
     levels.push_back(10 * std::log10(std::max(mean_square, 1e-20)));
   }

@@ -5,6 +5,11 @@
 #include "avar/playback/offline/jaw_from_audio.hpp"
 
 namespace avar::playback {
+namespace {
+
+constexpr double kCloseUndershoot = 0.05;
+
+}  // namespace
 
 std::vector<double> gated_opening(std::span<const double> envelope_db, const JawOptions& o) {
   validate(o);
@@ -22,8 +27,10 @@ std::vector<double> gated_opening(std::span<const double> envelope_db, const Jaw
     if (!gate_open && level >= o.gate_db) gate_open = true;
     if (gate_open && level < close_db) gate_open = false;
     const double target = gate_open ? std::clamp((level - close_db) / (o.full_db - close_db), 0.0, 1.0) : 0.0;
-    current += (target > current ? attack : release) * (target - current);
-    if (!gate_open && current < 1e-3) current = 0;
+    // Closing aims a little below closed and stops there, so the jaw reaches exactly closed in
+    // finite time (about 3 release constants from fully open) instead of creeping towards it.
+    const double aim = target > 0 ? target : -kCloseUndershoot;
+    current = std::max(0.0, current + (aim > current ? attack : release) * (aim - current));
     opening.push_back(current);
   }
   return opening;

@@ -7,8 +7,8 @@
 
 namespace avar::playback {
 
-Track fit_track(const std::string& channel, std::span<const double> times, std::span<const double> values,
-                          double tolerance, double corner_angle_deg, const SourceLocation& where) {
+Track fit_track(const std::string& channel, std::span<const double> times, std::span<const double> values, double tolerance,
+                double corner_angle_deg, const SourceLocation& where) {
   CurveFitOptions fit_options;
   // A hair inside the tolerance, so that the written decimal numbers cannot push a sample over.
   fit_options.tolerance = tolerance * (1 - 1e-9);
