@@ -40,7 +40,7 @@ double default_jaw_tolerance(const playback::JawOptions& options) {
 }
 
 JawTrack jaw_track_from_audio(const std::string& audio_path, const std::string& channel, const playback::JawOptions& options,
-                              double tolerance, const SourceLocation& where, double max_time_s) {
+                              double tolerance, const SourceLocation& where, double start_s, double end_s) {
   try {
     playback::validate(options);
   } catch (const std::invalid_argument& e) {
@@ -48,6 +48,8 @@ JawTrack jaw_track_from_audio(const std::string& audio_path, const std::string& 
   }
   if (!(tolerance > 0) || !std::isfinite(tolerance))
     throw InputError(where, "expected a fitting tolerance above 0 (channel units), found " + std::to_string(tolerance));
+  if (!(start_s >= 0) || !(start_s < end_s))
+    throw InputError(where, "expected the audio to start within the show, at 0 s or later");
   const MonoAudio audio = read_mono_audio(audio_path, where);
   JawTrack result;
   result.audio_duration_s = audio.duration_s();
@@ -57,10 +59,16 @@ JawTrack jaw_track_from_audio(const std::string& audio_path, const std::string& 
     throw InputError(where, "audio file '" + audio_path + "': " + e.what());
   }
   auto& m = result.motion;
-  const auto kept = static_cast<std::size_t>(std::lower_bound(m.times.begin(), m.times.end(), max_time_s) - m.times.begin());
+  for (double& t : m.times) t += start_s;
+  const auto kept = static_cast<std::size_t>(std::lower_bound(m.times.begin(), m.times.end(), end_s) - m.times.begin());
   m.times.resize(std::max<std::size_t>(kept, 1));
   m.values.resize(m.times.size());
   m.envelope_db.resize(m.times.size());
+  if (start_s > 0) {
+    m.times.insert(m.times.begin(), 0.0);
+    m.values.insert(m.values.begin(), options.closed);
+    m.envelope_db.insert(m.envelope_db.begin(), -200.0);
+  }
   result.track = playback::fit_track(channel, m.times, m.values, tolerance, 60, where);
   keep_inside_travel(result.track, m, options);
   return result;

@@ -15,7 +15,7 @@ namespace avar::config {
 
 struct JawTrack {
   playback::Track track;       ///< keys within `tolerance` of motion.values at every frame
-  playback::JawMotion motion;  ///< the frames fitted
+  playback::JawMotion motion;  ///< the frames fitted, in show time
   double audio_duration_s = 0;
 };
 
@@ -23,10 +23,11 @@ struct JawTrack {
 double default_jaw_tolerance(const playback::JawOptions& options);
 
 /// Reads `audio_path`, runs the jaw pipeline with `options` and fits the frames within
-/// `tolerance` (channel units, > 0) as the track of `channel`. Frames at or after `max_time_s`
-/// (the show's duration, when the track lives in a show) are left out. Errors (unreadable
-/// audio, options out of range) are InputErrors at `where`.
+/// `tolerance` (channel units, > 0) as the track of `channel`. The audio starts at `start_s`
+/// (show seconds, >= 0; before it the jaw is closed, with a closed key at 0) and frames at or
+/// after `end_s` (the show's duration, when the track lives in a show) are left out. Errors
+/// (unreadable audio, options out of range) are InputErrors at `where`.
 JawTrack jaw_track_from_audio(const std::string& audio_path, const std::string& channel, const playback::JawOptions& options,
-                              double tolerance, const SourceLocation& where, double max_time_s = 1e300);
+                              double tolerance, const SourceLocation& where, double start_s = 0, double end_s = 1e300);
 
 }  // namespace avar::config
