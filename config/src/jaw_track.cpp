@@ -14,11 +14,7 @@ namespace {
 /// [closed, open] the curve never leaves the jaw's travel, and a segment between two closed keys
 /// over closed frames (silence) with its handles at closed stays exactly closed.
 void keep_inside_travel(playback::Track& track, const playback::JawMotion& m, const playback::JawOptions& o) {
-  const double lo = std::min(o.closed, o.open), hi = std::max(o.closed, o.open);
   auto& keys = track.raw.keys;
-  for (auto& key : keys)
-    for (auto* handle : {&key.left, &key.right})
-      if (*handle) (*handle)->value = std::clamp((*handle)->value, lo, hi);
   std::size_t frame = 0;
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
     if (keys[i].value != o.closed || keys[i + 1].value != o.closed) continue;
@@ -30,7 +26,7 @@ void keep_inside_travel(playback::Track& track, const playback::JawMotion& m, co
     if (keys[i].right) keys[i].right->value = o.closed;
     if (keys[i + 1].left) keys[i + 1].left->value = o.closed;
   }
-  track.curve = playback::Curve::build(track.raw);
+  playback::keep_handles_within(track, std::min(o.closed, o.open), std::max(o.closed, o.open));
 }
 
 }  // namespace

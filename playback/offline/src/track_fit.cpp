@@ -28,4 +28,11 @@ double max_fit_error(const Curve& curve, std::span<const double> times, std::spa
   return worst;
 }
 
+void keep_handles_within(Track& track, double lo, double hi) {
+  for (auto& key : track.raw.keys)
+    for (auto* handle : {&key.left, &key.right})
+      if (*handle) (*handle)->value = std::clamp((*handle)->value, lo, hi);
+  track.curve = Curve::build(track.raw);
+}
+
 }  // namespace avar::playback

@@ -19,4 +19,9 @@ Track fit_track(const std::string& channel, std::span<const double> times, std::
 /// The largest |curve(t_i) - v_i| over the samples.
 double max_fit_error(const Curve& curve, std::span<const double> times, std::span<const double> values);
 
+/// Moves every handle value of the track's keys into [lo, hi] and rebuilds its curve. A Bezier
+/// segment stays inside the hull of its control points (time runs monotonically in fitted
+/// segments), so with its keys inside [lo, hi] the curve never leaves it.
+void keep_handles_within(Track& track, double lo, double hi);
+
 }  // namespace avar::playback
