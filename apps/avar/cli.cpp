@@ -12,6 +12,7 @@
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
+#include "avar/visemes_command.hpp"
 
 namespace avar::app {
 
@@ -99,6 +100,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
       "  avar jaw voice.wav --rig RIG --channel jaw --out jaw.yaml\n"
       "      a talking figure's jaw track from a voice recording\n"
+      "  avar visemes voice.tsv --rig RIG --out lips.yaml\n"
+      "      lip-sync tracks from Rhubarb or Papagayo mouth cues through the rig's visemes: table\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
@@ -160,6 +163,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
   JawCommandOptions jaw;
   CLI::App* jaw_cmd = add_jaw_subcommand(app, jaw);
+  VisemesCommandOptions visemes;
+  CLI::App* visemes_cmd = add_visemes_subcommand(app, visemes);
 
   InputsOptions inputs;
   const InputsCommands inputs_cmds = add_inputs_subcommands(app, inputs);
@@ -236,6 +241,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
   if (*jaw_cmd) return run_jaw(jaw, out, err);
+  if (*visemes_cmd) return run_visemes(visemes, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);

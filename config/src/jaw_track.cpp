@@ -61,9 +61,13 @@ JawTrack jaw_track_from_audio(const std::string& audio_path, const std::string& 
   m.values.resize(m.times.size());
   m.envelope_db.resize(m.times.size());
   if (start_s > 0) {
-    m.times.insert(m.times.begin(), 0.0);
-    m.values.insert(m.values.begin(), options.closed);
-    m.envelope_db.insert(m.envelope_db.begin(), -200.0);
+    // Closed frames before the audio, so that the fit holds the jaw there too.
+    std::vector<double> before;
+    for (std::size_t k = 0; static_cast<double>(k) / options.frame_rate_hz < start_s - 1e-9; ++k)
+      before.push_back(static_cast<double>(k) / options.frame_rate_hz);
+    m.times.insert(m.times.begin(), before.begin(), before.end());
+    m.values.insert(m.values.begin(), before.size(), options.closed);
+    m.envelope_db.insert(m.envelope_db.begin(), before.size(), -200.0);
   }
   result.track = playback::fit_track(channel, m.times, m.values, tolerance, 60, where);
   keep_inside_travel(result.track, m, options);

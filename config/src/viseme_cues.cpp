@@ -95,6 +95,7 @@ std::vector<playback::VisemeCue> read_json_cues(const std::string& path, std::is
         "found no 'mouthCues' list; expected Rhubarb's JSON output {\"mouthCues\": [{\"start\", \"end\", \"value\"}]}");
   std::vector<playback::VisemeCue> cues;
   const auto& list = doc["mouthCues"];
+  cues.reserve(list.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
     const auto& c = list[i];
     const std::string what = "mouthCues[" + std::to_string(i) + "]";

@@ -55,17 +55,21 @@ playback::VisemeTable read_viseme_table(const YamlRef& node, std::string_view wh
 }
 
 playback::VisemeTable read_rig_viseme_table(const YamlRef& node, const rig::Rig& rig) {
+  // Channel names first: an unknown channel is a clearer message than a pose that differs.
+  if (node.is_map())
+    for (auto it = node.node.begin(); it != node.node.end(); ++it)
+      if (it->second.IsMap())
+        for (auto p = it->second.begin(); p != it->second.end(); ++p)
+          if (p->first.Scalar() != "dominance" && !rig.find_channel(p->first.Scalar()))
+            YamlRef{p->first, node.file}.fail("mouth shape '" + it->first.Scalar() + "' poses channel '" + p->first.Scalar() +
+                                              "', which the rig does not have; expected one of its channels");
   playback::VisemeTable table = read_viseme_table(node, "the rig's visemes table");
   for (auto it = node.node.begin(); it != node.node.end(); ++it) {
     const std::string shape = it->first.Scalar();
     for (auto p = it->second.begin(); p != it->second.end(); ++p) {
       const std::string name = p->first.Scalar();
       if (name == "dominance") continue;
-      const auto index = rig.find_channel(name);
-      if (!index)
-        YamlRef{p->first, node.file}.fail("mouth shape '" + shape + "' poses channel '" + name +
-                                          "', which the rig does not have; expected one of its channels");
-      const rig::ChannelSpec& ch = rig.channels[*index];
+      const rig::ChannelSpec& ch = rig.channels[*rig.find_channel(name)];
       const double v = p->second.as<double>();
       if (v < ch.min || v > ch.max)
         YamlRef{p->second, node.file}.fail("mouth shape '" + shape + "' sets '" + name + "' to " + format_number(v) + " " +

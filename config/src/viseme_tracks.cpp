@@ -24,6 +24,20 @@ std::vector<playback::Track> viseme_tracks(const std::vector<playback::VisemeCue
     cue.start += start_s;
     cue.end += start_s;
   }
+  // The rest shape, when the table has one, holds the mouth before the first cue and after the
+  // last (else the nearest cues' mixture would).
+  const std::size_t rest = table.find("X") != table.shapes.size() ? table.find("X") : table.find("rest");
+  if (rest != table.shapes.size()) {
+    playback::VisemeCue before;
+    before.shape = table.shapes[rest];
+    before.where = where;
+    playback::VisemeCue after = before;
+    before.end = shifted.front().start;
+    after.start = shifted.back().end;
+    after.end = std::max(after.start, end_s);
+    if (before.end > 0) shifted.insert(shifted.begin(), before);
+    if (after.end > after.start) shifted.push_back(after);
+  }
   playback::VisemeMotion motion;
   try {
     motion = playback::blend_visemes(shifted, table, options, end_s);
@@ -31,6 +45,7 @@ std::vector<playback::Track> viseme_tracks(const std::vector<playback::VisemeCue
     throw InputError(where, e.what());
   }
   std::vector<playback::Track> tracks;
+  tracks.reserve(table.channels.size());
   for (std::size_t c = 0; c < table.channels.size(); ++c) {
     double lo = table.poses[0][c], hi = lo;
     for (const auto& pose : table.poses) {

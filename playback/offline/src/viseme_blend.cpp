@@ -45,6 +45,8 @@ VisemeMotion blend_visemes(const std::vector<VisemeCue>& cues, const VisemeTable
   VisemeMotion motion;
   motion.values.resize(table.channels.size());
   const auto frames = static_cast<std::size_t>(std::floor(std::max(end_s, 0.0) * o.frame_rate_hz + 1e-9)) + 1;
+  motion.times.reserve(frames);
+  for (auto& channel : motion.values) channel.reserve(frames);
   for (std::size_t k = 0; k < frames; ++k) {
     const double t = static_cast<double>(k) / o.frame_rate_hz;
     motion.times.push_back(t);

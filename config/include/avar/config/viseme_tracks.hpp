@@ -17,7 +17,8 @@ namespace avar::config {
 /// One track per table channel over show time [0, end_s]: the cues shifted by `start_s`,
 /// blended and sampled at options.frame_rate_hz, fitted within `tolerance` (default: 1% of the
 /// span of the channel's poses) and kept inside the span of its poses. Every cue's shape must be
-/// in the table (InputError at the cue otherwise).
+/// in the table (InputError at the cue otherwise). When the table has a rest shape (`X`, as
+/// Rhubarb names it, or `rest`, as Papagayo does), it holds before the first cue and after the last.
 std::vector<playback::Track> viseme_tracks(const std::vector<playback::VisemeCue>& cues, const playback::VisemeTable& table,
                                            const playback::CoarticulationOptions& options, double start_s, double end_s,
                                            std::optional<double> tolerance, const SourceLocation& where);
