@@ -10,9 +10,11 @@
 #include "avar/inputs_command.hpp"
 #include "avar/mocap_bake_command.hpp"
 #include "avar/mocap_command.hpp"
+#include "avar/jaw_command.hpp"
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
+#include "avar/visemes_command.hpp"
 
 namespace avar::app {
 
@@ -100,6 +102,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
       "  avar mocap info walk.bvh   /   avar mocap joints walk.bvh --out joints.csv\n"
       "      show a motion-capture file's skeleton, or write its joints' positions per frame as CSV\n"
+      "  avar jaw voice.wav --rig RIG --channel jaw --out jaw.yaml\n"
+      "      a talking figure's jaw track from a voice recording\n"
+      "  avar visemes voice.tsv --rig RIG --out lips.yaml\n"
+      "      lip-sync tracks from Rhubarb or Papagayo mouth cues through the rig's visemes: table\n"
       "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
       "      run a simulated device and print the serial port other programs can open\n"
       "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
@@ -161,6 +167,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
+  JawCommandOptions jaw;
+  CLI::App* jaw_cmd = add_jaw_subcommand(app, jaw);
+  VisemesCommandOptions visemes;
+  CLI::App* visemes_cmd = add_visemes_subcommand(app, visemes);
 
   MocapOptions mocap;
   const MocapCommands mocap_cmds = add_mocap_subcommands(app, mocap);
@@ -244,6 +254,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
+  if (*jaw_cmd) return run_jaw(jaw, out, err);
+  if (*visemes_cmd) return run_visemes(visemes, out, err);
   if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
   if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
   if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);

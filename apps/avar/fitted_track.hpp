@@ -1,21 +1,12 @@
 #pragma once
-// One channel's samples fitted with few Bezier keys (playback::fit_curve) as a track of a show:
-// shared by `avar fit` (samples from a CSV) and `avar record` (a live take).
+// The fitter of samples into a track lives in playback (avar/playback/offline/track_fit.hpp) so
+// that show loading can use it too; the commands name it here.
 
-#include <span>
-#include <string>
-
-#include "avar/core/input_error.hpp"
-#include "avar/playback/runtime/track.hpp"
+#include "avar/playback/offline/track_fit.hpp"
 
 namespace avar::app {
 
-/// The track of `channel` through samples (times strictly increasing, seconds) within
-/// `tolerance` (channel units, > 0) of every sample, as written to a file and read back.
-playback::Track fit_track(const std::string& channel, std::span<const double> times, std::span<const double> values,
-                          double tolerance, double corner_angle_deg, const SourceLocation& where);
-
-/// The largest |curve(t_i) - v_i| over the samples.
-double max_fit_error(const playback::Curve& curve, std::span<const double> times, std::span<const double> values);
+using playback::fit_track;
+using playback::max_fit_error;
 
 }  // namespace avar::app

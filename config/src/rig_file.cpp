@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rig_kinematics.hpp"
+#include "viseme_table.hpp"
 #include "yaml_support.hpp"
 #include "avar/assembly/protocol.hpp"
 
@@ -383,8 +384,8 @@ rig::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
-  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs"},
-                        "the rig file");
+  root.expect_only_keys(
+      {"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs", "visemes"}, "the rig file");
 
   Rig rig;
   rig.file = path;
@@ -447,6 +448,8 @@ rig::Rig load_rig_file(const std::string& path) {
     }
     check_gpio_lines(rig, nodes);
   }
+  // The lip-sync poses (`avar visemes` reads them): validated with the rest of the file.
+  if (auto visemes = root.find("visemes")) (void)detail::read_rig_viseme_table(*visemes, rig);
   return rig;
 }
 

@@ -10,6 +10,7 @@
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
 #include "show_tracks.hpp"
+#include "show_visemes.hpp"
 #include "yaml_vectors.hpp"
 
 namespace avar::config {
@@ -270,7 +271,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 playback::Show load_show_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes"}, "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -283,8 +284,9 @@ playback::Show load_show_file(const std::string& path) {
 
   // Targets for inverse kinematics, or clips on layers, may stand in for tracks.
   const auto targets = root.find("targets");
-  const YamlRef tracks = (targets || root.has("layers") || root.has("clips")) && !root.has("tracks") ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
-                                                        : root.at("tracks", "the show file");
+  const YamlRef tracks = (targets || root.has("layers") || root.has("clips") || root.has("visemes")) && !root.has("tracks")
+                             ? YamlRef{YAML::Node(YAML::NodeType::Map), &path}
+                             : root.at("tracks", "the show file");
   tracks.expect_map("tracks (a map of channel name to a list of keys, or to {extrapolation, cycles, auto_smoothing, keys})");
   std::set<std::string> seen;
   for (auto it = tracks.node.begin(); it != tracks.node.end(); ++it) {
@@ -293,6 +295,7 @@ playback::Show load_show_file(const std::string& path) {
     if (!seen.insert(channel).second) name.fail("channel '" + channel + "' has two tracks; expected one track per channel");
     show.tracks.push_back(read_track(name, YamlRef{it->second, &path}, show.duration));
   }
+  if (auto visemes = root.find("visemes")) detail::read_show_visemes(*visemes, show);
   if (targets) {
     targets->expect_map("targets (a map of effector name to its target point or x, y, z curves)");
     std::set<std::string> effectors;

@@ -1,6 +1,7 @@
 #include "show_tracks.hpp"
 
 #include "avar/core/format.hpp"
+#include "show_audio_track.hpp"
 
 namespace avar::config::detail {
 namespace {
@@ -102,6 +103,10 @@ playback::Track read_track(const YamlRef& name, const YamlRef& body, double dura
   track.where = name.where();
   track.raw.where = name.where();
   YamlRef keys = body;
+  if (body.is_map() && body.has("audio")) {
+    body.expect_only_keys({"audio"}, "track '" + channel + "' made from audio (audio: {file, open, ...} and nothing else)");
+    return read_audio_track(name, body.at("audio", "track '" + channel + "'"), duration);
+  }
   if (body.is_map()) {
     const std::string what = "track '" + channel + "'";
     body.expect_only_keys({"extrapolation", "cycles", "auto_smoothing", "keys"}, what);
