@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rig_kinematics.hpp"
+#include "idle_section.hpp"
 #include "yaml_support.hpp"
 #include "avar/assembly/protocol.hpp"
 
@@ -383,7 +384,7 @@ rig::Rig load_rig_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
-  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs"},
+  root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs", "idle"},
                         "the rig file");
 
   Rig rig;
@@ -447,6 +448,8 @@ rig::Rig load_rig_file(const std::string& path) {
     }
     check_gpio_lines(rig, nodes);
   }
+  // Read again by load_idle_section when a run uses it; checked here with the rest of the file.
+  if (auto idle = root.find("idle")) (void)read_idle_section(rig, *idle);
   return rig;
 }
 
