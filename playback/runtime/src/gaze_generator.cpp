@@ -40,7 +40,8 @@ void GazeGenerator::begin_saccade(double t) noexcept {
   to_[1] = random_.uniform(spec_.tilt_min, spec_.tilt_max);
   to_[2] = random_.chance(spec_.near_probability) ? spec_.vergence : 0.0;
   const double dpan = to_[0] - from_[0], dtilt = to_[1] - from_[1], dverg = to_[2] - from_[2];
-  double d = saccade_duration(std::hypot(dpan, dtilt));
+  amplitude_ = std::hypot(dpan, dtilt);
+  double d = saccade_duration(amplitude_);
   // Each eye channel moves its own component (a per-eye pan also its vergence).
   if (spec_.eyes_pan) d = min_jerk_duration(dpan, limits_[*spec_.eyes_pan], kGazeSaccadeShare, d);
   if (spec_.left_pan) d = min_jerk_duration(std::abs(dpan) + std::abs(dverg), limits_[*spec_.left_pan], kGazeSaccadeShare, d);

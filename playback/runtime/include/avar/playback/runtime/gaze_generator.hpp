@@ -33,6 +33,8 @@ class GazeGenerator {
   /// Saccades begun so far, and the last one's duration (s).
   std::uint64_t saccades() const noexcept { return saccades_; }
   double last_saccade_s() const noexcept { return saccade_s_; }
+  /// The last saccade's amplitude (pan and tilt together), channel units.
+  double last_amplitude() const noexcept { return amplitude_; }
   /// When the current saccade began and when the next one will (s).
   double saccade_start() const noexcept { return saccade_start_; }
   double next_saccade() const noexcept { return next_saccade_; }
@@ -49,7 +51,7 @@ class GazeGenerator {
   std::vector<IdleChannelLimits> limits_;
   BehaviourRandom random_;
   std::array<double, 3> from_{}, to_{}, gaze_{};  ///< pan, tilt, vergence
-  double saccade_start_ = 0, saccade_s_ = 0, next_saccade_ = 0;
+  double saccade_start_ = 0, saccade_s_ = 0, next_saccade_ = 0, amplitude_ = 0;
   std::uint64_t saccades_ = 0;
   std::array<HeadGoal, 4> pending_{};  ///< head goals not yet due, oldest first
   std::size_t pending_count_ = 0;
