@@ -7,6 +7,7 @@
 #include <numbers>
 #include <utility>
 
+#include "avar/core/format.hpp"
 #include "avar/playback/runtime/blink_generator.hpp"
 
 namespace avar::config {
@@ -33,7 +34,7 @@ double idle_positive(const YamlRef& node, const std::string& what) {
 double idle_within(const YamlRef& node, const std::string& what, double lo, double hi) {
   const double v = node.as_double(what);
   if (v < lo || v > hi)
-    node.fail("expected " + what + " from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " + node.describe());
+    node.fail("expected " + what + " from " + format_number(lo) + " to " + format_number(hi) + ", found " + node.describe());
   return v;
 }
 
@@ -105,8 +106,8 @@ playback::BlinkSpec read_blinks(const rig::Rig& rig, const YamlRef& node, std::v
   const double event = 2 * timing.blink_s() + s.double_gap_s;
   if (s.interval_min < event)
     (node.find("interval_s") ? *node.find("interval_s") : node)
-        .fail("expected the shortest blink interval to be at least " + std::to_string(event) +
-              " s (a double blink at the lids' speeds), found " + std::to_string(s.interval_min));
+        .fail("expected the shortest blink interval to be at least " + format_number(event) +
+              " s (a double blink at the lids' speeds), found " + format_number(s.interval_min));
   return s;
 }
 
