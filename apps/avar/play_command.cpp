@@ -440,7 +440,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
   if (options.live_only)
-    err << "live on '" << rig.name << "'"
+    err << (options.idle ? "idle on '" : "live on '") << rig.name << "'"
         << (std::isfinite(loaded->show.duration) ? " for " + format_number(loaded->show.duration) + " s" : std::string())
         << (options.record_path ? ", recording" : "") << "; Ctrl-C " << (options.record_path ? "ends the take and " : "")
         << "eases to rest, twice releases; Ctrl-\\ is an e-stop" << std::endl;
