@@ -7,6 +7,7 @@
 #include "avar/check_command.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/fit_command.hpp"
+#include "avar/idle_options.hpp"
 #include "avar/inputs_command.hpp"
 #include "avar/mocap_bake_command.hpp"
 #include "avar/mocap_command.hpp"
@@ -119,6 +120,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       ->required();
   play_cmd->add_option("--map", play.options.map_path, "Retarget map: play a motion-capture file (baked in memory) through it");
   declare_run_options(play_cmd, play, true);
+  add_idle_play_options(play_cmd, play.options);
   play_cmd->footer(
       "Live inputs (--input, repeatable) mix over the show through the rig's inputs: mappings; the\n"
       "limiter and supervisor still hold every channel to its limits. Examples:\n"
@@ -154,6 +156,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "and keeps it. Examples:\n"
       "  avar record --rig RIG --sim --input osc://127.0.0.1:9000 --duration 20 --out take.yaml\n"
       "  avar record --rig RIG --show SHOW --merge --input midi:nano --out show-with-take.yaml");
+
+  RunCli idle;
+  CLI::App* idle_cmd = add_idle_subcommand(app, idle.options);
+  declare_run_options(idle_cmd, idle, false);
 
   std::string check_show, check_rig;
   CLI::App* check_cmd = app.add_subcommand("check", "Validate a show against a rig and report every problem, moving nothing");
@@ -246,6 +252,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     record.options.live_only = record.options.show_path.empty();
     record.options.record_path = record.record_out;
     return run_play(record.finish(), out, err);
+  }
+  if (*idle_cmd) {
+    idle.options.live_only = true;
+    idle.options.idle = true;
+    return run_play(idle.finish(), out, err);
   }
   if (*inputs_cmds.monitor) return run_inputs_monitor(inputs, out, err);
   if (*inputs_cmds.learn) return run_inputs_learn(inputs, out, err);

@@ -24,6 +24,7 @@
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
 #include "avar/fitted_track.hpp"
+#include "avar/idle_session.hpp"
 #include "avar/live_session.hpp"
 #include "avar/mocap_bake.hpp"
 #include "avar/play_recorder.hpp"
@@ -307,7 +308,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   std::optional<Loaded> loaded = load_and_check(options, err);
   if (!loaded) return kExitBadInput;
   const rig::Rig& rig = loaded->rig;
-  const bool performs = options.live_only || options.record_path;
+  // `avar idle` is a live-only run that needs no input device.
+  const bool performs = (options.live_only && !options.idle) || options.record_path;
   std::vector<std::string> uris = options.inputs;
   if (uris.empty() && performs) uris = loaded->inputs.devices;
   if (performs && uris.empty() && !has_control_inputs(rig)) {
@@ -329,9 +331,23 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     err << "error: --rate " << rate << " is outside 1 to 1000 ticks per second\n";
     return kExitBadInput;
   }
+  if (options.fast && !std::isfinite(loaded->show.duration)) {
+    err << "error: --fast cannot run forever; give --duration S\n";
+    return kExitBadInput;
+  }
   if (loaded->show.loop && options.fast && options.loops.value_or(1) == 0) {
     err << "error: --fast cannot play a looping show forever; give --loops N\n";
     return kExitBadInput;
+  }
+
+  std::unique_ptr<IdleSession> idle;
+  if (options.idle) {
+    try {
+      idle = std::make_unique<IdleSession>(rig, loaded->show, options.seed.value_or(fresh_idle_seed()));
+    } catch (const InputError& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitBadInput;
+    }
   }
 
   std::unique_ptr<assembly::FigureLinks> figure;
@@ -401,13 +417,21 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
   controller_options.positions = figure.get();  // the simulator's ground truth, for simulated links
   if (live) controller_options.live = &live->inputs();
+  if (idle) {
+    controller_options.live = idle->layers(controller_options.live);
+    controller_options.lead_in_s = options.idle_before_s;
+    controller_options.lead_out_s = options.idle_after_s;
+  }
   control::Controller controller(rig, loaded->show, links, controller_options);
+  if (idle) idle->watch(controller);
   controller.begin(0.0, start_pose);
 
   const bool keep = options.trace_path || options.plot_path || options.record_path;
   const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(controller_options.loops, 1)) : 1.0;
   // A live run without an end reserves a minute; longer ones grow as they go.
-  const double planned_s = std::isfinite(loaded->show.duration) ? passes * loaded->show.duration : 60.0;
+  const double planned_s = std::isfinite(loaded->show.duration)
+                               ? passes * loaded->show.duration + controller_options.lead_in_s + controller_options.lead_out_s
+                               : 60.0;
   const auto expected_ticks = static_cast<std::size_t>((planned_s + 10.0) * rate);
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
@@ -418,7 +442,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
   if (options.live_only)
-    err << "live on '" << rig.name << "'"
+    err << (options.idle ? "idle on '" : "live on '") << rig.name << "'"
         << (std::isfinite(loaded->show.duration) ? " for " + format_number(loaded->show.duration) + " s" : std::string())
         << (options.record_path ? ", recording" : "") << "; Ctrl-C " << (options.record_path ? "ends the take and " : "")
         << "eases to rest, twice releases; Ctrl-\\ is an e-stop" << std::endl;
@@ -437,6 +461,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate, live.get());
+  if (idle) idle->describe(out);
   try {
     if (options.record_path) {
       if (const int code = write_take(options, *loaded, controller, recorder, live->inputs(), out, err); code != kExitOk)

@@ -40,6 +40,12 @@ struct PlayOptions {
   std::optional<std::string> record_path;  ///< write the take (the mixed channels) as a show here
   double record_tolerance = 0.25;          ///< the take's keys stay this close to every tick's value (channel units)
   bool record_merge = false;               ///< write the take on its own layer over a copy of the show
+
+  // Idle life (the rig's idle: section) below the show: --idle, `avar idle`.
+  bool idle = false;
+  std::optional<std::uint64_t> seed;  ///< default: a fresh one, printed in the summary
+  double idle_before_s = 0;           ///< idle alone this long before the show plays
+  double idle_after_s = 0;            ///< and after it ends
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rig_kinematics.hpp"
+#include "idle_section.hpp"
 #include "viseme_table.hpp"
 #include "yaml_support.hpp"
 #include "avar/assembly/protocol.hpp"
@@ -385,7 +386,8 @@ rig::Rig load_rig_file(const std::string& path) {
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
   root.expect_only_keys(
-      {"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs", "visemes"}, "the rig file");
+      {"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs", "visemes", "idle"},
+      "the rig file");
 
   Rig rig;
   rig.file = path;
@@ -450,6 +452,8 @@ rig::Rig load_rig_file(const std::string& path) {
   }
   // The lip-sync poses (`avar visemes` reads them): validated with the rest of the file.
   if (auto visemes = root.find("visemes")) (void)detail::read_rig_viseme_table(*visemes, rig);
+  // Read again by load_idle_section when a run uses it; checked here with the rest of the file.
+  if (auto idle = root.find("idle")) (void)read_idle_section(rig, *idle);
   return rig;
 }
 

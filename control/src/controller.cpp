@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace avar::control {
@@ -123,10 +124,12 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
   show_time_ = 0;
 }
 
-bool Controller::show_over(double show_time_s) const noexcept {
-  if (!show_.loop) return show_time_s >= show_.duration;
-  return options_.loops > 0 && show_time_s >= static_cast<double>(options_.loops) * show_.duration;
+double Controller::show_end() const noexcept {
+  if (!show_.loop) return show_.duration;
+  return options_.loops > 0 ? static_cast<double>(options_.loops) * show_.duration : std::numeric_limits<double>::infinity();
 }
+
+bool Controller::show_over(double show_time_s) const noexcept { return show_time_s >= show_end() + options_.lead_out_s; }
 
 void Controller::ease_to(std::span<const double> goal, double now_s) noexcept {
   // From where the limiter is heading (its goal: the commands reach it on a limited profile).
@@ -248,9 +251,10 @@ void Controller::tick(double now_s) noexcept {
       }
       [[fallthrough]];
     case Phase::running:
-      show_time_ = now_s - show_start_;
+      show_time_ = now_s - show_start_ - options_.lead_in_s;
       if (!show_over(show_time_)) {
-        sampler_.sample(show_time_, target_);
+        // The lead-in holds the first frame and the lead-out the last (a looping show's too).
+        sampler_.sample(std::clamp(show_time_, 0.0, show_end()), target_);
         sampled_show = true;
         break;
       }
@@ -262,7 +266,7 @@ void Controller::tick(double now_s) noexcept {
     case Phase::disabled: break;
   }
   lap(Stage::sample, mark);
-  if (sampled_show && ik_) (void)ik_->apply(show_time_, target_);  // tallied in IkStage::stats
+  if (sampled_show && ik_) (void)ik_->apply(std::clamp(show_time_, 0.0, show_end()), target_);  // tallied in IkStage::stats
   lap(Stage::ik, mark);
   if (sampled_show && options_.live) options_.live->apply(now_s, target_);
   lap(Stage::mix, mark);

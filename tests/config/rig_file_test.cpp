@@ -73,7 +73,7 @@ TEST(RigFile, MalformedYamlGivesLineAndColumn) {
 TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
   EXPECT_EQ(rig_error(replace(kGoodRig, "name: two", "name: two\nspeed: 3")),
             ":2:1: unknown field 'speed' in the rig file; expected one of: name, rate_hz, links, channels, actuators, "
-            "kinematics, digital_inputs, inputs, visemes");
+            "kinematics, digital_inputs, inputs, visemes, idle");
   EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw,", "{channel: chin,")),
             ":8:15: unknown channel 'chin'; expected one of the rig's channels: jaw, pan");
   EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),

@@ -66,6 +66,11 @@ struct ControllerOptions {
   /// Live inputs mixed over the show while it runs (after inverse kinematics, before the
   /// limiter); borrowed, must outlive the controller, called on the loop thread. nullptr: none.
   LiveLayer* live = nullptr;
+  /// Seconds the running phase holds the show's first frame before it plays (lead-in) and its
+  /// last frame after it ends (lead-out), with the live layers over it (idle life between
+  /// shows). show_time() runs from -lead_in_s. >= 0.
+  double lead_in_s = 0;
+  double lead_out_s = 0;
 };
 
 class Controller {
@@ -123,9 +128,13 @@ class Controller {
   std::uint64_t faults_seen() const noexcept { return supervisor_.faults_seen(); }
   const Supervisor& supervisor() const noexcept { return supervisor_; }
   bool stop_requested() const noexcept { return stop_requested_; }
-  /// Show time of the last running tick (seconds into the show, growing across loops).
+  /// Show time of the last running tick (seconds into the show, growing across loops; negative
+  /// during the lead-in).
   double show_time() const noexcept { return show_time_; }
   double show_duration() const noexcept { return show_.duration; }
+  /// Show time at which the show's last pass ends (before any lead-out); infinite for a show
+  /// looping until stopped.
+  double show_end() const noexcept;
   /// Loop time at which the show started playing (after the soft start), or -1.
   double show_start_time() const noexcept { return show_start_; }
   /// The frame that the last tick sent (after limits), indexed by channel.

@@ -1,0 +1,40 @@
+#include "avar/idle_session.hpp"
+
+#include <ostream>
+#include <random>
+
+#include "avar/config/idle_section.hpp"
+
+namespace avar::app {
+namespace {
+
+playback::IdleSpec idle_spec_of(const rig::Rig& rig) {
+  std::optional<playback::IdleSpec> spec = config::load_idle_section(rig, rig.file);
+  if (!spec) throw InputError({rig.file, 1, 1}, "--idle needs an idle: section in the rig file (noise, blinks, gaze, breathing)");
+  return std::move(*spec);
+}
+
+}  // namespace
+
+IdleSession::IdleSession(const rig::Rig& rig, const playback::Show& show, std::uint64_t seed)
+    : seed_(seed), idle_(idle_spec_of(rig), seed, control::show_drives(rig, show)) {}
+
+control::LiveLayer* IdleSession::layers(control::LiveLayer* above) {
+  if (!above) return &idle_;
+  stack_.emplace(std::vector<control::LiveLayer*>{&idle_, above});
+  return &*stack_;
+}
+
+void IdleSession::describe(std::ostream& out) const {
+  const playback::IdleGenerator& g = idle_.generator();
+  out << "  idle: seed " << seed_ << " (repeat with --seed " << seed_ << ")";
+  if (g.gaze()) out << ", " << g.gaze()->saccades() << " saccades";
+  out << '\n';
+}
+
+std::uint64_t fresh_idle_seed() {
+  std::random_device entropy;
+  return (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+}
+
+}  // namespace avar::app
