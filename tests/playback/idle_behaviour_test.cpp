@@ -148,17 +148,17 @@ TEST(IdleBlinks, SlowLidsGetLongerMovesWithinTheirLimits) {
 TEST(IdleGaze, SaccadesFollowTheMainSequenceWithinTheEyeLimitsAndFixationsInRange) {
   IdleSpec spec = idle_test_spec();
   const GazeSpec& g = *spec.gaze;
-  for (std::uint64_t seed = 21; seed <= 23; ++seed) {
+  for (std::uint64_t seed = 21; seed <= 22; ++seed) {
     SCOPED_TRACE(seed);
     GazeGenerator gaze(g, spec.limits, seed);
     std::vector<double> frame(spec.limits.size(), 0.0), previous;
-    const double dt = 0.001;
+    const double dt = 0.002;
     gaze.sample(0, frame);
     previous = frame;
     std::uint64_t seen = 0;
     double planned_next = 0, last_start = 0;
     std::vector<double> worst(spec.limits.size(), 0.0);
-    for (double t = dt; t < 300; t += dt) {
+    for (double t = dt; t < 200; t += dt) {
       gaze.sample(t, frame);
       for (const std::size_t c : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{3}}) {
         ASSERT_GE(frame[c], spec.limits[c].low());
@@ -181,8 +181,8 @@ TEST(IdleGaze, SaccadesFollowTheMainSequenceWithinTheEyeLimitsAndFixationsInRang
       planned_next = gaze.next_saccade();
       last_start = gaze.saccade_start();
     }
-    EXPECT_GT(seen, 100u);
-    EXPECT_GT(last_start, 290 - g.fixation_max - 1);
+    EXPECT_GT(seen, 60u);
+    EXPECT_GT(last_start, 190 - g.fixation_max - 1);
     // The eyes: peak speeds within their limits (saccade share plus the head's counter-turn),
     // and real saccades (fast): above a third of the limit.
     EXPECT_LE(worst[2], (kGazeSaccadeShare + kGazeHeadShare) * spec.limits[2].max_velocity);
@@ -277,17 +277,17 @@ TEST(IdleGenerator, TheSameSeedRepeatsExactlyAndAnotherSeedDiffers) {
 }
 
 TEST(IdleGenerator, NoChannelLeavesItsRangeOrExceedsItsSpeedOverSeededRuns) {
-  for (std::uint64_t seed = 100; seed < 105; ++seed) {
+  for (std::uint64_t seed = 100; seed < 103; ++seed) {
     SCOPED_TRACE(seed);
     IdleSpec spec = idle_test_spec();
     spec.noise.push_back({0, 500, 3, 4});  // asks far too much: clipped to range and speed
     IdleGenerator idle(spec, seed);
     const auto& limits = idle.spec().limits;
     std::vector<double> frame(limits.size(), 0.0), previous;
-    const double dt = 0.002;
+    const double dt = 0.004;
     idle.sample(0, frame);
     previous = frame;
-    for (double t = dt; t < 300; t += dt) {
+    for (double t = dt; t < 120; t += dt) {
       idle.sample(t, frame);
       for (std::size_t c = 0; c < frame.size(); ++c) {
         if (!idle.drives()[c]) continue;
