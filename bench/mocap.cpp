@@ -49,7 +49,7 @@ const std::string& bench_text() {
 
 const std::string& bench_file() {
   static const std::string path = [] {
-    const std::string p = (std::filesystem::temp_directory_path() / "avar-bench-mocap.bvh").string();
+    std::string p = (std::filesystem::temp_directory_path() / "avar-bench-mocap.bvh").string();
     std::ofstream(p, std::ios::binary) << bench_text();
     return p;
   }();

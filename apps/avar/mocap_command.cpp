@@ -39,7 +39,9 @@ void print_joint_tree(const mocap::SkeletonAnimation& a, std::ostream& out) {
     out << std::string(2 * depth[j] + 2, ' ') << a.joints[j].name;
     if (a.joints[j].end_site) {
       out << "  (End Site)";
-    } else if (!a.channels.empty()) {
+    } else if (a.channels.empty() || a.channels[j].empty()) {
+      out << "  (no channels)";
+    } else {
       out << "  [";
       for (std::size_t c = 0; c < a.channels[j].size(); ++c) out << (c ? " " : "") << a.channels[j][c];
       out << ']';
@@ -99,8 +101,9 @@ int run_mocap_info(const MocapOptions& o, std::ostream& out, std::ostream& err) 
     const mocap::SkeletonAnimation a = load_for_command(o);
     std::size_t end_sites = 0;
     for (const auto& joint : a.joints) end_sites += joint.end_site ? 1 : 0;
-    out << o.path << ": " << mocap::to_string(mocap::mocap_format(o.path)) << '\n'
-        << "joints: " << a.joints.size() - end_sites << " (+" << end_sites << " End Sites)\n";
+    out << o.path << ": " << mocap::to_string(mocap::mocap_format(o.path)) << '\n' << "joints: " << a.joints.size() - end_sites;
+    if (end_sites) out << " (+" << end_sites << " End Sites)";
+    out << '\n';
     print_joint_tree(a, out);
     out << "frames: " << a.frame_count() << '\n'
         << "frame time: " << format_number(a.frame_time) << " s (" << format_number(1.0 / a.frame_time) << " fps)\n"

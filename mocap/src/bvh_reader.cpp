@@ -227,9 +227,12 @@ void bvh_pose_from_row(const BvhHierarchy& hierarchy, const std::vector<double>&
   }
 }
 
-void bvh_read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declared, SkeletonAnimation& animation) {
+void bvh_read_frames(Lexer& lexer, const BvhHierarchy& hierarchy, std::size_t declared, std::size_t text_size,
+                     SkeletonAnimation& animation) {
   std::vector<double> values(hierarchy.value_count);
-  animation.frames.reserve(std::min<std::size_t>(declared, 1'000'000));
+  // Every row holds value_count numbers of at least two characters each (digit and separator):
+  // a huge Frames: in a small file reserves no more than the file can hold.
+  animation.frames.reserve(std::min(declared, text_size / (2 * values.size()) + 1));
   while (lexer.next_line()) {
     Token token = lexer.next_on_line();
     if (token.end()) continue;  // a blank line
@@ -275,7 +278,7 @@ SkeletonAnimation parse_bvh(std::string_view text, const std::string& source) {
   SkeletonAnimation animation;
   animation.source = source;
   animation.frame_time = bvh_read_frame_time(lexer);
-  bvh_read_frames(lexer, hierarchy, declared, animation);
+  bvh_read_frames(lexer, hierarchy, declared, text.size(), animation);
   animation.joints = std::move(hierarchy.joints);
   animation.channels.reserve(hierarchy.channels.size());
   for (const auto& list : hierarchy.channels) {

@@ -21,7 +21,7 @@ using gltf::Interpolation;
 using gltf::KeyedSampler;
 
 /// More samples than this is refused as a likely mistake (a huge key time or rate).
-constexpr double kGltfMaxFrames = 10'000'000;
+constexpr double kGltfMaxFrames = 1'000'000;
 
 [[noreturn]] void gltf_fail(const std::string& file, const std::string& path, const std::string& problem) {
   throw InputError({file, 0, 0}, path.empty() ? problem : path + ": " + problem);

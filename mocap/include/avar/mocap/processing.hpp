@@ -24,9 +24,10 @@ SkeletonAnimation trim(const SkeletonAnimation& animation, double from_s, double
 /// flip), then each component filtered and the result renormalised.
 SkeletonAnimation smooth(const SkeletonAnimation& animation, playback::SmoothingMethod method, double cutoff_hz);
 
-/// Distance between the poses of frames a and b: the root-mean-square over joints of the angle
-/// (radians) between their local rotations. Translations are left out (a walk's root travels).
-double pose_distance(const SkeletonAnimation& animation, std::size_t a, std::size_t b);
+/// Distance between the poses of frames `first` and `second`: the root-mean-square over joints of
+/// the angle (radians) between their local rotations. Translations are left out (a walk's root
+/// travels).
+double pose_distance(const SkeletonAnimation& animation, std::size_t first, std::size_t second);
 
 struct LoopMatch {
   std::size_t first = 0;  ///< frame the loop starts at
