@@ -79,7 +79,7 @@ TEST(VisemeBlend, ContinuousAndWithinThePosesOverRandomSequences) {
   std::uniform_real_distribution<double> length(0.0, 0.25);
   std::uniform_int_distribution<int> shape(0, 2);
   const char* names[] = {"X", "A", "D"};
-  for (int family = 0; family < 20; ++family) {
+  for (int family = 0; family < 8; ++family) {
     std::vector<VisemeCue> cues;
     double t = 0;
     for (int i = 0; i < 30; ++i) {
