@@ -377,10 +377,7 @@ void check_gpio_lines(const Rig& rig, const std::vector<YamlRef>& input_nodes) {
   }
 }
 
-}  // namespace
-
-rig::Rig load_rig_file(const std::string& path) {
-  const YAML::Node root_node = load_yaml_file(path);
+rig::Rig rig_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
   root.expect_only_keys({"name", "rate_hz", "links", "channels", "actuators", "kinematics", "digital_inputs", "inputs"},
@@ -448,6 +445,14 @@ rig::Rig load_rig_file(const std::string& path) {
     check_gpio_lines(rig, nodes);
   }
   return rig;
+}
+
+}  // namespace
+
+rig::Rig load_rig_file(const std::string& path) { return rig_from_yaml(load_yaml_file(path), path); }
+
+rig::Rig load_rig_text(const std::string& text, const std::string& path) {
+  return rig_from_yaml(parse_yaml_text(text, path), path);
 }
 
 }  // namespace avar::config
