@@ -1,10 +1,7 @@
 // What a Maestro answers on its serial port (Get Position, Get Errors replies, or noise): the
 // link must read any reply into finite channel positions or report a status.
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <vector>
 
 #include "avar/firmware_iface/maestro_link.hpp"
 #include "scripted_transport.hpp"
@@ -26,17 +23,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     config.actuators.push_back(a);
   }
   fi::MaestroLink link(transport, config);
-  std::vector<double> frame(3, 0.0);
-  while (!in.empty()) {
-    if (in.flag()) {
-      std::uint16_t errors = 0;
-      (void)link.read_errors(errors);
-      continue;
-    }
-    bool flags[3] = {false, false, false};
-    if (link.read_positions(frame, flags) != avar::Status::ok) continue;
-    for (std::size_t i = 0; i < 3; ++i)
-      if (flags[i] && !std::isfinite(frame[i])) std::abort();
-  }
+  avar::fuzz::read_link_until_script_ends(link, in, [&] {
+    std::uint16_t errors = 0;
+    (void)link.read_errors(errors);
+  });
   return 0;
 }

@@ -3,8 +3,12 @@
 // script (timeout once it runs out), writes go nowhere. For fuzzing a link's reply handling.
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
 #include <string>
 
+#include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "fuzz_bytes.hpp"
 
@@ -41,5 +45,23 @@ class ScriptedTransport final : public firmware_iface::ByteTransport {
   mutable std::chrono::nanoseconds now_{0};
   std::string name_ = "fuzz script";
 };
+
+/// Reads the positions of `link`'s first three channels until the script runs out; a flag byte
+/// before each read picks `other_query` (the link's own query: errors, moving) instead. Aborts on
+/// a position the link says it knows that is not finite.
+template <class Query>
+void read_link_until_script_ends(firmware_iface::ActuatorLink& link, ByteReader& in, Query other_query) {
+  std::array<double, 3> frame{};
+  while (!in.empty()) {
+    if (in.flag()) {
+      other_query();
+      continue;
+    }
+    bool known[3] = {false, false, false};
+    if (link.read_positions(frame, known) != Status::ok) continue;
+    for (std::size_t i = 0; i < frame.size(); ++i)
+      if (known[i] && !std::isfinite(frame[i])) std::abort();
+  }
+}
 
 }  // namespace avar::fuzz
