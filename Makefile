@@ -1,9 +1,13 @@
 # The two commands a new user needs: `make demo` and `make test`. Both install what is missing,
-# configure and build first. `make bench` runs the benchmarks.
+# configure and build first. `make bench` runs the benchmarks, `make fuzz FUZZ_SECONDS=N` the fuzzers.
 BUILD ?= build
 SANITIZE_BUILD ?= build-sanitize
 TSAN_BUILD ?= build-tsan
 LINT_BUILD ?= build-lint
+FUZZ_BUILD ?= build-fuzz
+# `make fuzz`: seconds per target, and which targets (empty: all of fuzz/CMakeLists.txt).
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 # The project's own trees treat warnings as errors (a plain CMake build does not: AVAR_WERROR).
@@ -13,7 +17,7 @@ AVAR = $(BUILD)/apps/avar
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: all deps configure build demo demo-talking lint test test-fast test-sanitize test-tsan bench clean
+.PHONY: all deps configure build demo demo-talking lint test test-fast test-sanitize test-tsan bench fuzz clean
 
 all: build
 
@@ -81,5 +85,15 @@ bench: BENCH = ON
 bench: build
 	@set -e; for b in $(BUILD)/bench/avar-bench-*; do echo "== $$b"; $$b; done
 
+# Every fuzz target (fuzz/) under libFuzzer with ASan+UBSan for FUZZ_SECONDS each, one after the
+# other, in a clang tree whose libraries carry the fuzzer's instrumentation; one line of execs and
+# coverage per target; fails on any crash, leak or hang (inputs in $(FUZZ_BUILD)/artifacts/).
+# `make test` replays the seed corpora only (CTest fuzz_replay.*). No -Werror: clang warns where GCC does not.
+fuzz: deps
+	@cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DAVAR_LIBFUZZER=ON -DAVAR_BUILD_TESTS=OFF -DAVAR_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target avar_fuzz_all
+	@scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD) $(FUZZ_BUILD)

@@ -379,10 +379,7 @@ void check_gpio_lines(const Rig& rig, const std::vector<YamlRef>& input_nodes) {
   }
 }
 
-}  // namespace
-
-rig::Rig load_rig_file(const std::string& path) {
-  const YAML::Node root_node = load_yaml_file(path);
+rig::Rig rig_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
   // `inputs:` is read by load_input_map (input_map.hpp).
   root.expect_only_keys(
@@ -455,6 +452,14 @@ rig::Rig load_rig_file(const std::string& path) {
   // Read again by load_idle_section when a run uses it; checked here with the rest of the file.
   if (auto idle = root.find("idle")) (void)read_idle_section(rig, *idle);
   return rig;
+}
+
+}  // namespace
+
+rig::Rig load_rig_file(const std::string& path) { return rig_from_yaml(load_yaml_file(path), path); }
+
+rig::Rig load_rig_text(const std::string& text, const std::string& path) {
+  return rig_from_yaml(parse_yaml_text(text, path), path);
 }
 
 }  // namespace avar::config

@@ -266,10 +266,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
   return target;
 }
 
-}  // namespace
-
-playback::Show load_show_file(const std::string& path) {
-  const YAML::Node root_node = load_yaml_file(path);
+playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
   root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes"}, "the show file");
 
@@ -308,6 +305,14 @@ playback::Show load_show_file(const std::string& path) {
   }
   detail::read_clips_and_layers(root, show);
   return show;
+}
+
+}  // namespace
+
+playback::Show load_show_file(const std::string& path) { return show_from_yaml(load_yaml_file(path), path); }
+
+playback::Show load_show_text(const std::string& text, const std::string& path) {
+  return show_from_yaml(parse_yaml_text(text, path), path);
 }
 
 }  // namespace avar::config

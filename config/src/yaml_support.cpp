@@ -12,8 +12,12 @@ YAML::Node load_yaml_file(const std::string& path) {
   if (!in) throw InputError({path, 0, 0}, std::string("cannot read file: ") + std::strerror(errno));
   std::stringstream text;
   text << in.rdbuf();
+  return parse_yaml_text(text.str(), path);
+}
+
+YAML::Node parse_yaml_text(const std::string& text, const std::string& path) {
   try {
-    YAML::Node root = YAML::Load(text.str());
+    YAML::Node root = YAML::Load(text);
     if (!root || root.IsNull()) throw InputError({path, 1, 1}, "the file is empty; expected a YAML map");
     return root;
   } catch (const YAML::Exception& e) {

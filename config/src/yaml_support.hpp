@@ -17,6 +17,8 @@ namespace avar::config {
 
 /// Parses a whole YAML file. Throws InputError for a missing file or malformed YAML.
 YAML::Node load_yaml_file(const std::string& path);
+/// The same from the text of a document; `path` names it in errors.
+YAML::Node parse_yaml_text(const std::string& text, const std::string& path);
 
 /// A node together with the file it came from, so that errors can point at it.
 struct YamlRef {

@@ -11,4 +11,8 @@ namespace avar::config {
 /// Loads and validates a rig file. Throws InputError on the first problem found.
 rig::Rig load_rig_file(const std::string& path);
 
+/// The same from the text of a rig file; `path` names it in errors, and relative paths in it (a
+/// URDF file) are relative to its folder.
+rig::Rig load_rig_text(const std::string& text, const std::string& path);
+
 }  // namespace avar::config

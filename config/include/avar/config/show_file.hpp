@@ -12,4 +12,7 @@ namespace avar::config {
 /// problem found.
 playback::Show load_show_file(const std::string& path);
 
+/// The same from the text of a show file; `path` names it in errors.
+playback::Show load_show_text(const std::string& text, const std::string& path);
+
 }  // namespace avar::config
