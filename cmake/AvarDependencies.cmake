@@ -11,6 +11,10 @@ pkg_check_modules(HIDAPI REQUIRED IMPORTED_TARGET hidapi-hidraw)
 pkg_check_modules(LIBGPIOD REQUIRED IMPORTED_TARGET libgpiod)
 pkg_check_modules(RTMIDI REQUIRED IMPORTED_TARGET rtmidi)
 pkg_check_modules(LIBLO REQUIRED IMPORTED_TARGET liblo)
+# Sound files (WAV, FLAC, OGG) for the jaw-from-audio track source.
+pkg_check_modules(SNDFILE REQUIRED IMPORTED_TARGET sndfile)
+# SMPTE linear timecode (LTC) decoding for the timecode chase.
+pkg_check_modules(LTC REQUIRED IMPORTED_TARGET ltc)
 if(AVAR_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()
