@@ -1,10 +1,10 @@
 #include <gtest/gtest.h>
-#include <ltc.h>
 
 #include <array>
 #include <vector>
 
 #include "avar/firmware_iface/artnet_timecode_codec.hpp"
+#include "avar/firmware_iface/ltc_audio.hpp"
 #include "avar/firmware_iface/ltc_decoder.hpp"
 #include "avar/firmware_iface/mtc_decoder.hpp"
 
@@ -166,35 +166,11 @@ TEST(TimecodeDecodersArtnet, BadPacketsOfEveryKind) {
   EXPECT_EQ(verdict(b), V::ok);
 }
 
-/// LTC audio from libltc's encoder: `frames` frames from `start`, at sample_rate.
-std::vector<float> tcdec_ltc_audio(const Timecode& start, int frames, double sample_rate) {
-  const double fps = frames_per_second(start.rate);
-  LTCEncoder* e = ltc_encoder_create(sample_rate, fps, fps == 25.0 ? LTC_TV_625_50 : LTC_TV_525_60,
-                                     start.rate == FrameRate::fps29_97df ? 0 : LTC_USE_DATE);
-  SMPTETimecode st{};
-  std::snprintf(st.timezone, sizeof st.timezone, "+0000");
-  st.hours = static_cast<unsigned char>(start.hours);
-  st.mins = static_cast<unsigned char>(start.minutes);
-  st.secs = static_cast<unsigned char>(start.seconds);
-  st.frame = static_cast<unsigned char>(start.frames);
-  ltc_encoder_set_timecode(e, &st);
-  std::vector<float> audio;
-  for (int i = 0; i < frames; ++i) {
-    ltc_encoder_encode_frame(e);
-    ltcsnd_sample_t* buf = nullptr;
-    const int n = ltc_encoder_get_bufferptr(e, &buf, 1);
-    for (int k = 0; k < n; ++k) audio.push_back((static_cast<float>(buf[k]) - 128.0F) / 128.0F);
-    ltc_encoder_inc_timecode(e);
-  }
-  ltc_encoder_free(e);
-  return audio;
-}
-
 TEST(TimecodeDecodersLtc, DecodesGeneratedAudioAtEveryRate) {
   for (const FrameRate r : {FrameRate::fps24, FrameRate::fps25, FrameRate::fps29_97df, FrameRate::fps30}) {
     const double sr = 48000;
     const Timecode start = r == FrameRate::fps29_97df ? Timecode{0, 0, 59, 20, r} : Timecode{1, 0, 0, 0, r};
-    const std::vector<float> audio = tcdec_ltc_audio(start, 50, sr);
+    const std::vector<float> audio = encode_ltc_audio(start, 50, sr);
     LtcDecoder d(sr);
     std::vector<TimecodeFix> fixes;
     std::vector<std::int64_t> ends;
