@@ -247,15 +247,23 @@ void Controller::tick(double now_s) noexcept {
         break;
       }
       [[fallthrough]];
-    case Phase::running:
-      show_time_ = now_s - show_start_;
-      if (!show_over(show_time_)) {
+    case Phase::running: {
+      bool clock_stop = false;
+      if (options_.show_clock) {
+        const ShowClockReading clock = options_.show_clock->read(now_s);
+        show_time_ = clock.show_time_s;
+        clock_stop = clock.stop;
+      } else {
+        show_time_ = now_s - show_start_;
+      }
+      if (!clock_stop && !show_over(show_time_)) {
         sampler_.sample(show_time_, target_);
         sampled_show = true;
         break;
       }
       ease_to(rest_, now_s);
       supervisor_.enter(Phase::stopping);
+    }
       [[fallthrough]];
     case Phase::stopping:
     case Phase::faulted: ramp_.sample(now_s - phase_start_, target_); break;

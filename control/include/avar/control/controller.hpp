@@ -27,6 +27,7 @@
 #include "avar/control/live_layer.hpp"
 #include "avar/control/plant.hpp"
 #include "avar/control/ramp.hpp"
+#include "avar/control/show_clock.hpp"
 #include "avar/control/supervisor.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/core/status.hpp"
@@ -66,6 +67,9 @@ struct ControllerOptions {
   /// Live inputs mixed over the show while it runs (after inverse kinematics, before the
   /// limiter); borrowed, must outlive the controller, called on the loop thread. nullptr: none.
   LiveLayer* live = nullptr;
+  /// Show time while running (a timecode chase); borrowed, must outlive the controller, read on
+  /// the loop thread. nullptr: loop time since the show started.
+  ShowClock* show_clock = nullptr;
 };
 
 class Controller {
