@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "avar/control/realtime_setup.hpp"
+#include "avar/timecode_options.hpp"
 
 namespace avar::app {
 
@@ -39,6 +40,8 @@ struct PlayOptions {
   std::optional<std::string> record_path;  ///< write the take (the mixed channels) as a show here
   double record_tolerance = 0.25;          ///< the take's keys stay this close to every tick's value (channel units)
   bool record_merge = false;               ///< write the take on its own layer over a copy of the show
+
+  TimecodeOptions timecode;  ///< --timecode: show time chases a timecode source
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

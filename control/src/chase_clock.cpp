@@ -47,6 +47,14 @@ ShowClockReading ChaseClock::read(double now_s) noexcept {
     frame_s_ = 1.0 / frames_per_second(r.rate);
     const double source_now = r.seconds + direction * (t - arrival_s);
     const double e = source_now - phase_s_;
+    if (state_ == ChaseState::waiting && options_.offset_label) {
+      Timecode label = *options_.offset_label;
+      label.rate = r.rate;
+      label.frames = std::min(label.frames, nominal_fps(r.rate) - 1);
+      if (!valid(label)) label.frames = 2;  // a dropped drop-frame label: the minute's first frame
+      options_.offset_s = to_seconds(label) +
+                          static_cast<double>(options_.offset_label->frames - label.frames) / frames_per_second(r.rate);
+    }
     if (state_ == ChaseState::waiting || std::abs(e) > options_.jump_s) {
       if (state_ != ChaseState::waiting) ++jumps_;
       phase_s_ = source_now;

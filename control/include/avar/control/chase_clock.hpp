@@ -24,6 +24,7 @@
 // Construction allocates; read() and the accessors are real-time safe. Loop thread only.
 
 #include <cstdint>
+#include <optional>
 
 #include "avar/control/latency_histogram.hpp"
 #include "avar/control/show_clock.hpp"
@@ -33,6 +34,9 @@ namespace avar::control {
 
 struct ChaseOptions {
   double offset_s = 0;       ///< source time at show time 0, s
+  /// When set, the offset is this label, read at the source's rate when the first position
+  /// arrives (replacing offset_s); frames beyond that rate's count are frames / fps.
+  std::optional<Timecode> offset_label;
   double freewheel_s = 2.0;  ///< run on this long after the last new position, then stop
   double jump_s = 0.1;       ///< a difference larger than this relocks at once (a jump)
   double alpha = 0.15;       ///< phase gain per new position (0..1]
