@@ -25,6 +25,7 @@
 #include "avar/interrupts.hpp"
 #include "avar/fitted_track.hpp"
 #include "avar/live_session.hpp"
+#include "avar/osc_control.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
@@ -379,6 +380,21 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
 
+  std::unique_ptr<OscControlSurface> surface;
+  if (options.timecode.osc_control) {
+    if (chase) {
+      err << "error: --osc-control and --timecode both drive show time; give one\n";
+      return kExitBadInput;
+    }
+    try {
+      surface = std::make_unique<OscControlSurface>(*options.timecode.osc_control, loaded->show.name);
+      surface->start();
+    } catch (const std::exception& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitBadInput;
+    }
+  }
+
   // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
   // live mixer, start buttons for --wait-start.
   if (digital_inputs) {
@@ -417,6 +433,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   controller_options.positions = figure.get();  // the simulator's ground truth, for simulated links
   if (live) controller_options.live = &live->inputs();
   if (chase) controller_options.show_clock = &chase->clock();
+  if (surface) controller_options.show_clock = surface.get();
   control::Controller controller(rig, loaded->show, links, controller_options);
   controller.begin(0.0, start_pose);
 
@@ -447,16 +464,24 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   run_options.estop = &interrupts.estop();
   if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
   run_options.plant = figure.get();
-  if (chase) chase->forward_to(recorder);
-  const control::RunResult run = control::run_loop(controller, run_options, chase ? static_cast<control::TickObserver&>(*chase) : recorder,
-                                                   interrupts.count());
+  control::TickObserver* observer = &recorder;
+  if (chase) chase->forward_to(recorder), observer = chase.get();
+  if (surface) {
+    surface->forward_to(recorder), observer = surface.get();
+    run_options.estop_remote = &surface->estop();
+    err << "OSC control on udp " << surface->where() << ": waiting for /avar/show/play '" << loaded->show.name << "'"
+        << std::endl;
+  }
+  const control::RunResult run = control::run_loop(controller, run_options, *observer, interrupts.count());
   recorder.finish();
   if (chase) chase->stop();
+  if (surface) surface->stop();
   if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate, live.get());
   if (chase) chase->summarize(out);
+  if (surface) surface->summarize(out);
   try {
     if (options.record_path) {
       if (const int code = write_take(options, *loaded, controller, recorder, live->inputs(), out, err); code != kExitOk)

@@ -41,7 +41,7 @@ struct PlayOptions {
   double record_tolerance = 0.25;          ///< the take's keys stay this close to every tick's value (channel units)
   bool record_merge = false;               ///< write the take on its own layer over a copy of the show
 
-  TimecodeOptions timecode;  ///< --timecode: show time chases a timecode source
+  ShowControlOptions timecode;  ///< --timecode (show time chases a timecode source), --osc-control
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

@@ -28,7 +28,7 @@ std::uint16_t timecode_port(std::string_view text, const std::string& spec) {
 
 }  // namespace
 
-void declare_timecode_options(CLI::App* cmd, TimecodeOptions& o) {
+void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o) {
   cmd->add_option("--timecode", o.source,
                   "Chase a timecode source: ltc:FILE.wav, mtc:PORT, artnet[:PORT] or artnet:HOST:PORT (show time follows "
                   "it; the run stops when it is gone for --freewheel seconds)");
@@ -36,6 +36,9 @@ void declare_timecode_options(CLI::App* cmd, TimecodeOptions& o) {
   cmd->add_option("--freewheel", o.freewheel_s,
                   "Seconds to run on without timecode before easing to rest (default 2)")
       ->check(CLI::Range(0.0, 3600.0));
+  cmd->add_option("--osc-control", o.osc_control,
+                  "OSC control surface on UDP [ADDRESS:]PORT (127.0.0.1 unless given): the show waits for "
+                  "/avar/show/play NAME; /avar/show/stop, /avar/show/seek SECONDS, /avar/estop, /avar/state");
 }
 
 std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::string& spec, bool fast) {
@@ -70,7 +73,7 @@ std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::
   throw std::invalid_argument("--timecode '" + spec + "': " + kTimecodeForms);
 }
 
-TimecodeRun::TimecodeRun(const TimecodeOptions& options, bool fast, std::size_t expected_ticks) {
+TimecodeRun::TimecodeRun(const ShowControlOptions& options, bool fast, std::size_t expected_ticks) {
   control::ChaseOptions chase;
   chase.freewheel_s = options.freewheel_s;
   if (options.offset) {

@@ -25,14 +25,15 @@ class App;
 
 namespace avar::app {
 
-struct TimecodeOptions {
+struct ShowControlOptions {
   std::optional<std::string> source;  ///< --timecode
   std::optional<std::string> offset;  ///< --offset HH:MM:SS:FF: source time at show time 0
   double freewheel_s = 2.0;           ///< --freewheel S
+  std::optional<std::string> osc_control;  ///< --osc-control [ADDR:]PORT (osc_control.hpp)
 };
 
-/// Adds --timecode, --offset and --freewheel to `cmd`.
-void declare_timecode_options(CLI::App* cmd, TimecodeOptions& o);
+/// Adds --timecode, --offset, --freewheel and --osc-control to `cmd`.
+void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o);
 
 /// Opens (does not start) the source `spec` names. `fast`: the run is on the simulated clock,
 /// where only a file can play. Throws InputError-free std::invalid_argument with what was
@@ -51,7 +52,7 @@ class TimecodeRun final : public control::TickObserver {
  public:
   /// Validates the options (std::invalid_argument naming what was expected) and opens the
   /// source; nothing is started.
-  TimecodeRun(const TimecodeOptions& options, bool fast, std::size_t expected_ticks);
+  TimecodeRun(const ShowControlOptions& options, bool fast, std::size_t expected_ticks);
   ~TimecodeRun() override;
 
   /// Starts receiving (std::runtime_error when the device or socket cannot be opened).
