@@ -169,13 +169,14 @@ SyncFigures bench_mtc() {
   for (int q = 0; q < quarters; ++q) {
     const Timecode t = from_frame_number(first + 2 * (q / 8), FrameRate::fps25);
     const int piece = q % 8;
-    const int fields[8] = {t.frames & 0xF, t.frames >> 4, t.seconds & 0xF, t.seconds >> 4,
-                           t.minutes & 0xF, t.minutes >> 4, t.hours & 0xF, (t.hours >> 4) | (1 << 1)};
+    const int fields[8] = {t.frames & 0xF,  t.frames >> 4,  t.seconds & 0xF, t.seconds >> 4,
+                           t.minutes & 0xF, t.minutes >> 4, t.hours & 0xF,   (t.hours >> 4) | (1 << 1)};
     sent.push_back({q * 0.01, {0xF1, static_cast<std::uint8_t>((piece << 4) | fields[piece])}});
   }
   std::mt19937_64 rng(7);
   const auto decoder = [] {
-    return [d = std::make_shared<firmware_iface::MtcDecoder>()](const std::vector<std::uint8_t>& m, firmware_iface::TimecodeFix& fix) {
+    return [d = std::make_shared<firmware_iface::MtcDecoder>()](const std::vector<std::uint8_t>& m,
+                                                                firmware_iface::TimecodeFix& fix) {
       return d->decode(m, fix) == firmware_iface::MtcVerdict::fix;
     };
   };

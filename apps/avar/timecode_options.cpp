@@ -33,8 +33,7 @@ void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o) {
                   "Chase a timecode source: ltc:FILE.wav, mtc:PORT, artnet[:PORT] or artnet:HOST:PORT (show time follows "
                   "it; the run stops when it is gone for --freewheel seconds)");
   cmd->add_option("--offset", o.offset, "Timecode at show time 0, HH:MM:SS:FF (default 00:00:00:00)");
-  cmd->add_option("--freewheel", o.freewheel_s,
-                  "Seconds to run on without timecode before easing to rest (default 2)")
+  cmd->add_option("--freewheel", o.freewheel_s, "Seconds to run on without timecode before easing to rest (default 2)")
       ->check(CLI::Range(0.0, 3600.0));
   cmd->add_option("--osc-control", o.osc_control,
                   "OSC control surface on UDP [ADDRESS:]PORT (127.0.0.1 unless given): the show waits for "
@@ -96,8 +95,7 @@ void TimecodeRun::start() { source_->start(); }
 
 void TimecodeRun::stop() noexcept { source_->stop(); }
 
-void TimecodeRun::after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s,
-                             control::Controller& controller) {
+void TimecodeRun::after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& controller) {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   // The chase read the clock this tick only while the show ran.
   const bool ran = controller.phase() == control::Phase::running;

@@ -26,9 +26,9 @@ class App;
 namespace avar::app {
 
 struct ShowControlOptions {
-  std::optional<std::string> source;  ///< --timecode
-  std::optional<std::string> offset;  ///< --offset HH:MM:SS:FF: source time at show time 0
-  double freewheel_s = 2.0;           ///< --freewheel S
+  std::optional<std::string> source;       ///< --timecode
+  std::optional<std::string> offset;       ///< --offset HH:MM:SS:FF: source time at show time 0
+  double freewheel_s = 2.0;                ///< --freewheel S
   std::optional<std::string> osc_control;  ///< --osc-control [ADDR:]PORT (osc_control.hpp)
 };
 

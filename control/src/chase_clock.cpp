@@ -7,8 +7,8 @@
 namespace avar::control {
 namespace {
 
-constexpr double kChaseMaxRateError = 0.1;   // the filtered rate stays within 10% of play speed
-constexpr double kChaseStaleFrames = 2.5;    // no new position for this many frames: freewheeling
+constexpr double kChaseMaxRateError = 0.1;  // the filtered rate stays within 10% of play speed
+constexpr double kChaseStaleFrames = 2.5;   // no new position for this many frames: freewheeling
 
 }  // namespace
 
@@ -35,8 +35,8 @@ ShowClockReading ChaseClock::read(double now_s) noexcept {
   const firmware_iface::TimecodeReading r = source_.latest();
   const double direction = r.reverse ? -1.0 : 1.0;
   const double arrival_s = static_cast<double>(r.arrival_ns) * 1e-9;
-  const bool fresh = r.sequence != seen_sequence_ && r.sequence != 0 &&
-                     (state_ == ChaseState::waiting || r.seconds != last_position_s_);
+  const bool fresh =
+      r.sequence != seen_sequence_ && r.sequence != 0 && (state_ == ChaseState::waiting || r.seconds != last_position_s_);
   if (r.sequence != seen_sequence_) seen_sequence_ = r.sequence;
 
   // The chase clock now, at its filtered rate.
@@ -52,8 +52,8 @@ ShowClockReading ChaseClock::read(double now_s) noexcept {
       label.rate = r.rate;
       label.frames = std::min(label.frames, nominal_fps(r.rate) - 1);
       if (!valid(label)) label.frames = 2;  // a dropped drop-frame label: the minute's first frame
-      options_.offset_s = to_seconds(label) +
-                          static_cast<double>(options_.offset_label->frames - label.frames) / frames_per_second(r.rate);
+      options_.offset_s =
+          to_seconds(label) + static_cast<double>(options_.offset_label->frames - label.frames) / frames_per_second(r.rate);
     }
     if (state_ == ChaseState::waiting || std::abs(e) > options_.jump_s) {
       if (state_ != ChaseState::waiting) ++jumps_;

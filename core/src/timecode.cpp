@@ -8,7 +8,7 @@ namespace avar {
 namespace {
 
 constexpr std::int64_t kDropFramesPerTenMinutes = 17982;  // 10 * 60 * 30 - 9 * 2
-constexpr std::int64_t kDropFramesPerMinute = 1798;        // 60 * 30 - 2 (minutes not divisible by 10)
+constexpr std::int64_t kDropFramesPerMinute = 1798;       // 60 * 30 - 2 (minutes not divisible by 10)
 
 }  // namespace
 
@@ -81,9 +81,7 @@ Timecode from_frame_number(std::int64_t frame, FrameRate rate) noexcept {
   return t;
 }
 
-double to_seconds(const Timecode& t) noexcept {
-  return static_cast<double>(to_frame_number(t)) / frames_per_second(t.rate);
-}
+double to_seconds(const Timecode& t) noexcept { return static_cast<double>(to_frame_number(t)) / frames_per_second(t.rate); }
 
 std::string to_string(const Timecode& t) {
   std::array<char, 32> text{};
@@ -116,10 +114,11 @@ std::optional<Timecode> parse_timecode(std::string_view text, FrameRate rate, st
   if (at != text.size()) return fail("'" + std::string(text) + "' has more after HH:MM:SS:FF");
   const Timecode t{fields[0], fields[1], fields[2], fields[3], rate};
   if (!valid(t))
-    return fail("'" + std::string(text) + "' is out of range at " + to_string(rate) +
-                " fps (hours 0-23, minutes and seconds 0-59, frames 0-" + std::to_string(nominal_fps(rate) - 1) +
-                (rate == FrameRate::fps29_97df ? "; frames 00 and 01 do not exist at the start of a minute not divisible by 10" : "") +
-                ")");
+    return fail(
+        "'" + std::string(text) + "' is out of range at " + to_string(rate) +
+        " fps (hours 0-23, minutes and seconds 0-59, frames 0-" + std::to_string(nominal_fps(rate) - 1) +
+        (rate == FrameRate::fps29_97df ? "; frames 00 and 01 do not exist at the start of a minute not divisible by 10" : "") +
+        ")");
   return t;
 }
 

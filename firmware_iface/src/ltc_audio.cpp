@@ -13,8 +13,7 @@ std::vector<float> encode_ltc_audio(const Timecode& start, std::size_t frames, d
   const double fps = frames_per_second(start.rate);
   const auto standard = start.rate == FrameRate::fps25 ? LTC_TV_625_50 : LTC_TV_525_60;
   const auto free_encoder = [](LTCEncoder* e) { ltc_encoder_free(e); };
-  const std::unique_ptr<LTCEncoder, decltype(free_encoder)> e(ltc_encoder_create(sample_rate, fps, standard, 0),
-                                                               free_encoder);
+  const std::unique_ptr<LTCEncoder, decltype(free_encoder)> e(ltc_encoder_create(sample_rate, fps, standard, 0), free_encoder);
   if (!e) throw std::runtime_error("LTC: libltc could not create an encoder");
   SMPTETimecode t{};
   std::snprintf(t.timezone, sizeof t.timezone, "+0000");

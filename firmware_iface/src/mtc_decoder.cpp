@@ -57,8 +57,8 @@ MtcVerdict MtcDecoder::decode(std::span<const std::uint8_t> message, TimecodeFix
     return quarter_frame(message[1], fix);
   }
   // Full frame: F0 7F <device> 01 01 hr mn sc fr F7.
-  const bool full_frame = message.size() >= 5 && message[0] == 0xF0 && message[1] == 0x7F && message[3] == 0x01 &&
-                          message[4] == 0x01;
+  const bool full_frame =
+      message.size() >= 5 && message[0] == 0xF0 && message[1] == 0x7F && message[3] == 0x01 && message[4] == 0x01;
   if (!full_frame) return MtcVerdict::not_timecode;
   if (message.size() != kFullFrameSize || message[9] != 0xF7) return MtcVerdict::malformed;
   for (std::size_t i = 5; i < 9; ++i)

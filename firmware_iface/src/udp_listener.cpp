@@ -85,9 +85,7 @@ void UdpListener::stop() noexcept {
   socket_fd_ = wake_fd_ = -1;
 }
 
-std::string UdpListener::where() const {
-  return host_ + ":" + std::to_string(bound_port_ != 0 ? bound_port_ : port_);
-}
+std::string UdpListener::where() const { return host_ + ":" + std::to_string(bound_port_ != 0 ? bound_port_ : port_); }
 
 bool UdpListener::reply_to_sender(std::span<const std::uint8_t> datagram) noexcept {
   const ssize_t n = ::sendto(socket_fd_, datagram.data(), datagram.size(), MSG_DONTWAIT,

@@ -70,8 +70,20 @@ class OscControlClient {
 };
 
 std::vector<std::string> osc_play_args(int port) {
-  return {AVAR_BINARY, "play", kOscShow, "--rig", kOscRig, "--sim", "--rate", "100", "--no-progress", "--priority", "0",
-          "--no-lock-memory", "--osc-control", "127.0.0.1:" + std::to_string(port)};
+  return {AVAR_BINARY,
+          "play",
+          kOscShow,
+          "--rig",
+          kOscRig,
+          "--sim",
+          "--rate",
+          "100",
+          "--no-progress",
+          "--priority",
+          "0",
+          "--no-lock-memory",
+          "--osc-control",
+          "127.0.0.1:" + std::to_string(port)};
 }
 
 TEST(OscControl, PlaySeekStateAndStopOverLoopback) {

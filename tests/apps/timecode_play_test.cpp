@@ -101,9 +101,24 @@ TEST(TimecodePlay, TwoControllersChaseOneArtnetSenderInStep) {
   const std::string trace_a = testing::temp_path("a.csv");
   const std::string trace_b = testing::temp_path("b.csv");
   const auto args = [&](int port, const std::string& trace) {
-    return std::vector<std::string>{AVAR_BINARY, "play", kTcShow, "--rig", kTcRig, "--sim", "--rate", "100", "--no-progress",
-                                    "--priority", "0", "--no-lock-memory", "--timecode", "artnet:" + std::to_string(port),
-                                    "--freewheel", "0.3", "--trace", trace};
+    return std::vector<std::string>{AVAR_BINARY,
+                                    "play",
+                                    kTcShow,
+                                    "--rig",
+                                    kTcRig,
+                                    "--sim",
+                                    "--rate",
+                                    "100",
+                                    "--no-progress",
+                                    "--priority",
+                                    "0",
+                                    "--no-lock-memory",
+                                    "--timecode",
+                                    "artnet:" + std::to_string(port),
+                                    "--freewheel",
+                                    "0.3",
+                                    "--trace",
+                                    trace};
   };
   testing::ChildProcess a(args(port_a, trace_a));
   testing::ChildProcess b(args(port_b, trace_b));
@@ -115,7 +130,8 @@ TEST(TimecodePlay, TwoControllersChaseOneArtnetSenderInStep) {
   testing::UdpSender sender;
   const auto start = std::chrono::steady_clock::now();
   std::array<std::uint8_t, firmware_iface::artnet::kTimeCodeSize> packet{};
-  const std::vector<std::vector<std::uint8_t>> junk{{}, {'A', 'r', 't'}, {'A', 'r', 't', '-', 'N', 'e', 't', 0, 0, 0x97, 0, 14, 0}};
+  const std::vector<std::vector<std::uint8_t>> junk{
+      {}, {'A', 'r', 't'}, {'A', 'r', 't', '-', 'N', 'e', 't', 0, 0, 0x97, 0, 14, 0}};
   for (int frame = 0; frame < 35; ++frame) {
     std::this_thread::sleep_until(start + std::chrono::milliseconds(40 * frame));
     (void)firmware_iface::artnet::encode_timecode(from_frame_number(frame, FrameRate::fps25), 0, packet);
@@ -131,8 +147,10 @@ TEST(TimecodePlay, TwoControllersChaseOneArtnetSenderInStep) {
   // Show time of B at each of A's running ticks (B's ticks come at other instants: interpolated
   // on the shared monotonic clock), compared in ticks.
   const auto ra = tcplay_read(trace_a), rb = tcplay_read(trace_b);
-  const auto sa = tcplay_column(ra, "show_time"), ca = tcplay_column(ra, "chase_clock_s"), ea = tcplay_column(ra, "chase_error_ms");
-  const auto sb = tcplay_column(rb, "show_time"), cb = tcplay_column(rb, "chase_clock_s"), eb = tcplay_column(rb, "chase_error_ms");
+  const auto sa = tcplay_column(ra, "show_time"), ca = tcplay_column(ra, "chase_clock_s"),
+             ea = tcplay_column(ra, "chase_error_ms");
+  const auto sb = tcplay_column(rb, "show_time"), cb = tcplay_column(rb, "chase_clock_s"),
+             eb = tcplay_column(rb, "chase_error_ms");
   std::vector<std::pair<double, double>> b_ticks;
   for (std::size_t k = 0; k < sb.size(); ++k)
     if (!std::isnan(eb[k]) && sb[k] > 0) b_ticks.emplace_back(cb[k], sb[k]);

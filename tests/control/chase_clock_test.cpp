@@ -149,7 +149,16 @@ TEST(ChaseClockStepped, RepeatedFramesArePausedNotNew) {
 Rig chase_rig() {
   Rig rig;
   rig.name = "chase";
-  rig.channels.push_back({.name = "jaw", .unit = "deg", .min = 0, .max = 30, .rest = 0, .max_velocity = 100, .max_acceleration = 800, .max_jerk = 8000, .ramp_velocity = 20, .where = {}});
+  rig.channels.push_back({.name = "jaw",
+                          .unit = "deg",
+                          .min = 0,
+                          .max = 30,
+                          .rest = 0,
+                          .max_velocity = 100,
+                          .max_acceleration = 800,
+                          .max_jerk = 8000,
+                          .ramp_velocity = 20,
+                          .where = {}});
   rig.links.emplace_back().name = "head";
   return rig;
 }

@@ -15,11 +15,15 @@ using Bytes = std::vector<std::uint8_t>;
 
 /// The eight quarter frames (F1 0nnn dddd) that name `t`, in sending order.
 std::vector<Bytes> tcdec_quarter_frames(const Timecode& t, bool reverse = false) {
-  const unsigned rate_bits = t.rate == FrameRate::fps24 ? 0 : t.rate == FrameRate::fps25 ? 1 : t.rate == FrameRate::fps29_97df ? 2 : 3;
-  const std::array<unsigned, 8> nibbles{static_cast<unsigned>(t.frames) & 0xF,  static_cast<unsigned>(t.frames) >> 4,
-                                        static_cast<unsigned>(t.seconds) & 0xF, static_cast<unsigned>(t.seconds) >> 4,
-                                        static_cast<unsigned>(t.minutes) & 0xF, static_cast<unsigned>(t.minutes) >> 4,
-                                        static_cast<unsigned>(t.hours) & 0xF,   (static_cast<unsigned>(t.hours) >> 4) | (rate_bits << 1)};
+  const unsigned rate_bits = t.rate == FrameRate::fps24        ? 0
+                             : t.rate == FrameRate::fps25      ? 1
+                             : t.rate == FrameRate::fps29_97df ? 2
+                                                               : 3;
+  const std::array<unsigned, 8> nibbles{
+      static_cast<unsigned>(t.frames) & 0xF,  static_cast<unsigned>(t.frames) >> 4,
+      static_cast<unsigned>(t.seconds) & 0xF, static_cast<unsigned>(t.seconds) >> 4,
+      static_cast<unsigned>(t.minutes) & 0xF, static_cast<unsigned>(t.minutes) >> 4,
+      static_cast<unsigned>(t.hours) & 0xF,   (static_cast<unsigned>(t.hours) >> 4) | (rate_bits << 1)};
   std::vector<Bytes> out;
   for (unsigned i = 0; i < 8; ++i) {
     const unsigned piece = reverse ? 7 - i : i;

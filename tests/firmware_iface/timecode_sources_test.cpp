@@ -48,12 +48,12 @@ TEST(TimecodeSourcesArtnet, PublishesGoodPacketsAndCountsBadOnes) {
   // Bad packets of every kind: counted, the position untouched.
   std::vector<std::vector<std::uint8_t>> bad;
   bad.emplace_back();                                          // empty
-  bad.emplace_back(std::vector<std::uint8_t>{'n', 'o', 'p'});   // not Art-Net
+  bad.emplace_back(std::vector<std::uint8_t>{'n', 'o', 'p'});  // not Art-Net
   auto p = std::vector<std::uint8_t>(packet.begin(), packet.end());
-  bad.emplace_back(p.begin(), p.begin() + 15);                  // cut short
-  bad.push_back(p), bad.back()[11] = 9;                         // old version
-  bad.push_back(p), bad.back()[18] = 7;                         // bad type
-  bad.push_back(p), bad.back()[15] = 61;                        // seconds out of range
+  bad.emplace_back(p.begin(), p.begin() + 15);  // cut short
+  bad.push_back(p), bad.back()[11] = 9;         // old version
+  bad.push_back(p), bad.back()[18] = 7;         // bad type
+  bad.push_back(p), bad.back()[15] = 61;        // seconds out of range
   for (const auto& b : bad) ASSERT_TRUE(sender.send(port, b));
   auto poll = p;
   poll[8] = 0x00, poll[9] = 0x20;  // an ArtPoll: ignored, not bad

@@ -33,7 +33,7 @@
 namespace avar::control {
 
 struct ChaseOptions {
-  double offset_s = 0;       ///< source time at show time 0, s
+  double offset_s = 0;  ///< source time at show time 0, s
   /// When set, the offset is this label, read at the source's rate when the first position
   /// arrives (replacing offset_s); frames beyond that rate's count are frames / fps.
   std::optional<Timecode> offset_label;
@@ -80,7 +80,7 @@ class ChaseClock final : public ShowClock {
   double phase_s_ = 0;          ///< chase clock (source seconds) at clock_s_
   double rate_ = 1;             ///< chase clock seconds per clock second
   double clock_s_ = 0;
-  double update_at_s_ = 0;      ///< clock time of the last loop update
+  double update_at_s_ = 0;  ///< clock time of the last loop update
   double error_s_ = 0;
   double worst_s_ = 0;
   std::uint64_t jumps_ = 0;

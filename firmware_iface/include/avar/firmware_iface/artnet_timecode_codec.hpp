@@ -19,12 +19,12 @@ std::size_t encode_timecode(const Timecode& t, std::uint8_t stream_id, std::span
 
 enum class TimeCodeVerdict {
   ok,
-  not_artnet,       ///< no Art-Net ID (or shorter than its header)
-  other_opcode,     ///< Art-Net, another packet (ArtPoll, ArtDmx ...): not an error
-  old_version,      ///< protocol version below 14
-  too_short,        ///< an ArtTimeCode shorter than 19 bytes
-  bad_type,         ///< Type above 3
-  out_of_range,     ///< a field out of range for the rate (a dropped drop-frame label included)
+  not_artnet,    ///< no Art-Net ID (or shorter than its header)
+  other_opcode,  ///< Art-Net, another packet (ArtPoll, ArtDmx ...): not an error
+  old_version,   ///< protocol version below 14
+  too_short,     ///< an ArtTimeCode shorter than 19 bytes
+  bad_type,      ///< Type above 3
+  out_of_range,  ///< a field out of range for the rate (a dropped drop-frame label included)
 };
 const char* to_string(TimeCodeVerdict v) noexcept;
 

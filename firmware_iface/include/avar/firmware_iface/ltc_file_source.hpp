@@ -33,9 +33,7 @@ class LtcFileSource final : public TimecodeSource {
   bool stepped() const noexcept override { return stepped_; }
   /// Stepped only: decodes the samples up to loop time now_ns (time 0: the file's first sample).
   void advance_to(std::int64_t now_ns) noexcept override;
-  double duration_s() const noexcept {
-    return static_cast<double>(audio_.samples.size()) / audio_.sample_rate;
-  }
+  double duration_s() const noexcept { return static_cast<double>(audio_.samples.size()) / audio_.sample_rate; }
 
  private:
   /// Decodes samples [fed_, end) with arrivals counted from start_ns.

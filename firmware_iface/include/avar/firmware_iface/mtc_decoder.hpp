@@ -43,9 +43,9 @@ class MtcDecoder {
   std::uint8_t nibbles_[8] = {};
   std::uint8_t have_ = 0;  ///< bit n: piece n seen in the present run
   int last_piece_ = -1;
-  int run_ = 0;            ///< pieces received in order, in the present direction
+  int run_ = 0;  ///< pieces received in order, in the present direction
   bool reverse_ = false;
-  bool locked_ = false;    ///< a whole sequence was assembled: pieces are fixes from here
+  bool locked_ = false;          ///< a whole sequence was assembled: pieces are fixes from here
   std::int64_t base_frame_ = 0;  ///< frame at which the present sequence's first piece was sent
   FrameRate rate_ = FrameRate::fps25;
 };

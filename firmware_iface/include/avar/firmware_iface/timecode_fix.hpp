@@ -9,12 +9,12 @@
 namespace avar::firmware_iface {
 
 struct TimecodeFix {
-  Timecode label;            ///< the frame the message names
+  Timecode label;  ///< the frame the message names
   /// Frames the source had moved past `label` when the message's last byte (or sample) arrived:
   /// 0 for Art-Net and MTC full frames, -0.25..1.5 for MTC quarter frames, ~1 for LTC (a frame's
   /// code ends as the next frame begins).
   double frames_after = 0;
-  bool reverse = false;      ///< the source runs backwards (MTC direction, LTC played reversed)
+  bool reverse = false;  ///< the source runs backwards (MTC direction, LTC played reversed)
 
   /// The source's position at arrival, seconds since 00:00:00:00.
   double seconds() const noexcept {
