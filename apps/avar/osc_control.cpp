@@ -106,26 +106,27 @@ void OscControlSurface::handle(std::span<const std::uint8_t> datagram) noexcept 
   reply_state();
 }
 
-void OscControlSurface::reply_state() noexcept {
-  lo_message m = lo_message_new();
-  lo_message_add_string(m, osc_phase_name(phase_.load()));
-  lo_message_add_float(m, static_cast<float>(show_time_.load()));
-  lo_message_add_string(m, show_name_.c_str());
+void OscControlSurface::send_reply(void* message, const char* path) noexcept {
+  auto* m = static_cast<lo_message>(message);
   std::size_t size = 0;
-  void* data = lo_message_serialise(m, "/avar/state", nullptr, &size);
+  void* data = lo_message_serialise(m, path, nullptr, &size);
   if (data) (void)listener_.reply_to_sender(std::span(static_cast<const std::uint8_t*>(data), size));
   std::free(data);
   lo_message_free(m);
 }
 
+void OscControlSurface::reply_state() noexcept {
+  lo_message m = lo_message_new();
+  lo_message_add_string(m, osc_phase_name(phase_.load()));
+  lo_message_add_float(m, static_cast<float>(show_time_.load()));
+  lo_message_add_string(m, show_name_.c_str());
+  send_reply(m, "/avar/state");
+}
+
 void OscControlSurface::reply_error(const std::string& why) noexcept {
   lo_message m = lo_message_new();
   lo_message_add_string(m, why.c_str());
-  std::size_t size = 0;
-  void* data = lo_message_serialise(m, "/avar/error", nullptr, &size);
-  if (data) (void)listener_.reply_to_sender(std::span(static_cast<const std::uint8_t*>(data), size));
-  std::free(data);
-  lo_message_free(m);
+  send_reply(m, "/avar/error");
 }
 
 control::ShowClockReading OscControlSurface::read(double now_s) noexcept {

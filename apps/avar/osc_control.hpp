@@ -55,6 +55,8 @@ class OscControlSurface final : public control::ShowClock, public control::TickO
   void handle(std::span<const std::uint8_t> datagram) noexcept;
   void reply_state() noexcept;
   void reply_error(const std::string& why) noexcept;
+  /// Serialises the lo_message `message` at `path`, sends it to the sender, frees it.
+  void send_reply(void* message, const char* path) noexcept;
 
   firmware_iface::UdpListener listener_;
   std::string show_name_;

@@ -1,22 +1,9 @@
 #include "avar/firmware_iface/artnet_timecode_codec.hpp"
 
 #include "avar/firmware_iface/artnet_header.hpp"
+#include "avar/firmware_iface/timecode_fix.hpp"
 
 namespace avar::firmware_iface::artnet {
-namespace {
-
-std::uint8_t artnet_timecode_type(FrameRate r) noexcept {
-  switch (r) {
-    case FrameRate::fps24: return 0;
-    case FrameRate::fps25: return 1;
-    case FrameRate::fps29_97df: return 2;
-    case FrameRate::fps30: return 3;
-  }
-  return 3;
-}
-
-}  // namespace
-
 const char* to_string(TimeCodeVerdict v) noexcept {
   switch (v) {
     case TimeCodeVerdict::ok: return "ok";
@@ -38,7 +25,7 @@ std::size_t encode_timecode(const Timecode& t, std::uint8_t stream_id, std::span
   out[15] = static_cast<std::uint8_t>(t.seconds);
   out[16] = static_cast<std::uint8_t>(t.minutes);
   out[17] = static_cast<std::uint8_t>(t.hours);
-  out[18] = artnet_timecode_type(t.rate);
+  out[18] = static_cast<std::uint8_t>(timecode_rate_code(t.rate));
   return kTimeCodeSize;
 }
 
@@ -48,9 +35,8 @@ TimeCodeVerdict decode_timecode(std::span<const std::uint8_t> datagram, Timecode
   if (*op != static_cast<std::uint16_t>(OpCode::time_code)) return TimeCodeVerdict::other_opcode;
   if (datagram.size() < kTimeCodeSize) return TimeCodeVerdict::too_short;
   if (!supported_version(datagram)) return TimeCodeVerdict::old_version;
-  static constexpr FrameRate kRates[] = {FrameRate::fps24, FrameRate::fps25, FrameRate::fps29_97df, FrameRate::fps30};
   if (datagram[18] > 3) return TimeCodeVerdict::bad_type;
-  const Timecode decoded{datagram[17], datagram[16], datagram[15], datagram[14], kRates[datagram[18]]};
+  const Timecode decoded{datagram[17], datagram[16], datagram[15], datagram[14], timecode_rate_from_code(datagram[18])};
   if (!valid(decoded)) return TimeCodeVerdict::out_of_range;
   t = decoded;
   if (stream_id) *stream_id = datagram[13];

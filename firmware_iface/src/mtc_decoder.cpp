@@ -6,25 +6,6 @@ namespace {
 constexpr std::uint8_t kQuarterFrame = 0xF1;
 constexpr std::size_t kFullFrameSize = 10;
 
-FrameRate mtc_rate(unsigned bits) noexcept {
-  switch (bits & 3U) {
-    case 0: return FrameRate::fps24;
-    case 1: return FrameRate::fps25;
-    case 2: return FrameRate::fps29_97df;
-    default: return FrameRate::fps30;
-  }
-}
-
-unsigned mtc_rate_bits(FrameRate r) noexcept {
-  switch (r) {
-    case FrameRate::fps24: return 0;
-    case FrameRate::fps25: return 1;
-    case FrameRate::fps29_97df: return 2;
-    case FrameRate::fps30: return 3;
-  }
-  return 3;
-}
-
 /// The nibble piece `piece` carries for label `t`.
 std::uint8_t mtc_nibble(const Timecode& t, int piece) noexcept {
   const auto low = [](int v) { return static_cast<std::uint8_t>(static_cast<unsigned>(v) & 0xFU); };
@@ -37,7 +18,7 @@ std::uint8_t mtc_nibble(const Timecode& t, int piece) noexcept {
     case 4: return low(t.minutes);
     case 5: return high(t.minutes);
     case 6: return low(t.hours);
-    default: return static_cast<std::uint8_t>(high(t.hours) | (mtc_rate_bits(t.rate) << 1U));
+    default: return static_cast<std::uint8_t>(high(t.hours) | (timecode_rate_code(t.rate) << 1U));
   }
 }
 
@@ -63,7 +44,7 @@ MtcVerdict MtcDecoder::decode(std::span<const std::uint8_t> message, TimecodeFix
   if (message.size() != kFullFrameSize || message[9] != 0xF7) return MtcVerdict::malformed;
   for (std::size_t i = 5; i < 9; ++i)
     if (message[i] > 0x7F) return MtcVerdict::malformed;
-  const Timecode t{message[5] & 0x1F, message[6], message[7], message[8], mtc_rate(static_cast<unsigned>(message[5]) >> 5U)};
+  const Timecode t{message[5] & 0x1F, message[6], message[7], message[8], timecode_rate_from_code(static_cast<unsigned>(message[5]) >> 5U)};
   if (!valid(t)) return MtcVerdict::malformed;
   reset();  // a locate: quarter frames start over from here
   fix = TimecodeFix{t, 0.0, false};
@@ -102,7 +83,7 @@ MtcVerdict MtcDecoder::quarter_frame(std::uint8_t data, TimecodeFix& fix) noexce
   if (run_ < 8) return MtcVerdict::partial;
   const Timecode t{(nibbles_[6] & 0xF) | ((nibbles_[7] & 1) << 4), (nibbles_[4] & 0xF) | ((nibbles_[5] & 3) << 4),
                    (nibbles_[2] & 0xF) | ((nibbles_[3] & 3) << 4), (nibbles_[0] & 0xF) | ((nibbles_[1] & 1) << 4),
-                   mtc_rate(static_cast<unsigned>(nibbles_[7]) >> 1U)};
+                   timecode_rate_from_code(static_cast<unsigned>(nibbles_[7]) >> 1U)};
   if (!valid(t)) {
     locked_ = false;
     return MtcVerdict::malformed;

@@ -87,6 +87,16 @@ void UdpListener::stop() noexcept {
 
 std::string UdpListener::where() const { return host_ + ":" + std::to_string(bound_port_ != 0 ? bound_port_ : port_); }
 
+std::string UdpListener::bound_address() const {
+  if (socket_fd_ < 0) return "";
+  sockaddr_in bound{};
+  socklen_t length = sizeof bound;
+  if (::getsockname(socket_fd_, reinterpret_cast<sockaddr*>(&bound), &length) != 0) return "";
+  char text[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &bound.sin_addr, text, sizeof text);
+  return std::string(text) + ":" + std::to_string(ntohs(bound.sin_port));
+}
+
 bool UdpListener::reply_to_sender(std::span<const std::uint8_t> datagram) noexcept {
   const ssize_t n = ::sendto(socket_fd_, datagram.data(), datagram.size(), MSG_DONTWAIT,
                              reinterpret_cast<const sockaddr*>(sender_.data()), sizeof(sockaddr_in));

@@ -8,6 +8,11 @@
 
 namespace avar::firmware_iface {
 
+/// The two-bit rate code MTC (hours byte bits 5-6) and ArtTimeCode (Type) share: 0 = 24, 1 = 25,
+/// 2 = 29.97 drop-frame, 3 = 30.
+inline unsigned timecode_rate_code(FrameRate r) noexcept { return static_cast<unsigned>(r); }
+inline FrameRate timecode_rate_from_code(unsigned code) noexcept { return static_cast<FrameRate>(code & 3U); }
+
 struct TimecodeFix {
   Timecode label;  ///< the frame the message names
   /// Frames the source had moved past `label` when the message's last byte (or sample) arrived:

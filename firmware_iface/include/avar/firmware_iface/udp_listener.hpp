@@ -35,6 +35,9 @@ class UdpListener {
   std::uint16_t bound_port() const noexcept { return bound_port_; }
   /// "127.0.0.1:6454" (the bound port once started).
   std::string where() const;
+  /// Where the socket is bound as the kernel says (getsockname), "127.0.0.1:9000"; "" when not
+  /// listening.
+  std::string bound_address() const;
   /// Sends `datagram` from the bound socket to the sender of the datagram being handled (state
   /// replies of a control surface). Handler thread only; false when it could not be sent.
   bool reply_to_sender(std::span<const std::uint8_t> datagram) noexcept;
