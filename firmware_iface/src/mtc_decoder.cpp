@@ -44,7 +44,8 @@ MtcVerdict MtcDecoder::decode(std::span<const std::uint8_t> message, TimecodeFix
   if (message.size() != kFullFrameSize || message[9] != 0xF7) return MtcVerdict::malformed;
   for (std::size_t i = 5; i < 9; ++i)
     if (message[i] > 0x7F) return MtcVerdict::malformed;
-  const Timecode t{message[5] & 0x1F, message[6], message[7], message[8], timecode_rate_from_code(static_cast<unsigned>(message[5]) >> 5U)};
+  const Timecode t{message[5] & 0x1F, message[6], message[7], message[8],
+                   timecode_rate_from_code(static_cast<unsigned>(message[5]) >> 5U)};
   if (!valid(t)) return MtcVerdict::malformed;
   reset();  // a locate: quarter frames start over from here
   fix = TimecodeFix{t, 0.0, false};
