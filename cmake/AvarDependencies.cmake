@@ -15,6 +15,8 @@ pkg_check_modules(LIBLO REQUIRED IMPORTED_TARGET liblo)
 pkg_check_modules(SNDFILE REQUIRED IMPORTED_TARGET sndfile)
 # Rhubarb Lip Sync's JSON mouth cues.
 find_package(nlohmann_json REQUIRED)
+# SMPTE linear timecode (LTC) decoding for the timecode chase.
+pkg_check_modules(LTC REQUIRED IMPORTED_TARGET ltc)
 if(AVAR_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -64,6 +64,7 @@ void declare_run_options(CLI::App* cmd, RunCli& r, bool plays_show) {
         cmd->add_flag("--fast", o.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
     rt_opt->excludes(fast_opt);
     r.loops_opt = cmd->add_option("--loops", r.loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
+    declare_show_control_options(cmd, o.timecode);
   } else {
     r.duration_opt =
         cmd->add_option("--duration", r.duration, "Without a show: stop after this many seconds (default: at Ctrl-C)")

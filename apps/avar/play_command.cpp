@@ -27,6 +27,7 @@
 #include "avar/idle_session.hpp"
 #include "avar/live_session.hpp"
 #include "avar/mocap_bake.hpp"
+#include "avar/osc_control.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
@@ -135,7 +136,7 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
 }
 
 void write_trace(const std::string& path, const rig::Rig& rig, const assembly::FigureLinks& figure, const PlayRecorder& r,
-                 const LiveSession* live) {
+                 const LiveSession* live, const std::vector<TraceColumn>& extra) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write trace file " + path);
   // Channels on smart buses also get what their devices report; smart buses, their wire counters.
@@ -159,6 +160,7 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
   // Live controls: each one's raw value as the tick read it (empty before it first moved).
   const std::size_t controls = live ? live->inputs().mailbox().size() : 0;
   for (std::size_t k = 0; k < controls; ++k) csv << ",input." << live->inputs().mailbox().name(k);
+  for (const TraceColumn& c : extra) csv << ',' << c.name;
   csv << '\n' << std::setprecision(9);
   const std::size_t n = rig.channels.size();
   for (std::size_t k = 0; k < r.seconds().size(); ++k) {
@@ -188,6 +190,10 @@ void write_trace(const std::string& path, const rig::Rig& rig, const assembly::F
     for (std::size_t j = 0; j < controls; ++j) {
       csv << ',';
       if (const double v = r.controls()[k * controls + j]; !std::isnan(v)) csv << v;
+    }
+    for (const TraceColumn& c : extra) {
+      csv << ',';
+      if (k < c.values.size() && !std::isnan(c.values[k])) csv << std::setprecision(12) << c.values[k] << std::setprecision(9);
     }
     csv << '\n';
   }
@@ -380,6 +386,33 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
 
+  // The timecode source opens before anything moves too: a bad spec or a busy port stops here.
+  std::unique_ptr<TimecodeRun> chase;
+  if (options.timecode.source) {
+    try {
+      chase = std::make_unique<TimecodeRun>(options.timecode, options.fast, static_cast<std::size_t>(600 * rate));
+      chase->start();
+    } catch (const std::exception& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitBadInput;
+    }
+  }
+
+  std::unique_ptr<OscControlSurface> surface;
+  if (options.timecode.osc_control) {
+    if (chase) {
+      err << "error: --osc-control and --timecode both drive show time; give one\n";
+      return kExitBadInput;
+    }
+    try {
+      surface = std::make_unique<OscControlSurface>(*options.timecode.osc_control, loaded->show.name);
+      surface->start();
+    } catch (const std::exception& e) {
+      err << "error: " << e.what() << '\n';
+      return kExitBadInput;
+    }
+  }
+
   // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
   // live mixer, start buttons for --wait-start.
   if (digital_inputs) {
@@ -422,6 +455,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     controller_options.lead_in_s = options.idle_before_s;
     controller_options.lead_out_s = options.idle_after_s;
   }
+  if (chase) controller_options.show_clock = &chase->clock();
+  if (surface) controller_options.show_clock = surface.get();
   control::Controller controller(rig, loaded->show, links, controller_options);
   if (idle) idle->watch(controller);
   controller.begin(0.0, start_pose);
@@ -455,20 +490,33 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   run_options.estop = &interrupts.estop();
   if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
   run_options.plant = figure.get();
-  const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
+  control::TickObserver* observer = &recorder;
+  if (chase) chase->forward_to(recorder), observer = chase.get();
+  if (surface) {
+    surface->forward_to(recorder), observer = surface.get();
+    run_options.estop_remote = &surface->estop();
+    err << "OSC control on udp " << surface->where() << ": waiting for /avar/show/play '" << loaded->show.name << "'"
+        << std::endl;
+  }
+  const control::RunResult run = control::run_loop(controller, run_options, *observer, interrupts.count());
   recorder.finish();
+  if (chase) chase->stop();
+  if (surface) surface->stop();
   if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
   print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate, live.get());
   if (idle) idle->describe(out);
+  if (chase) chase->summarize(out);
+  if (surface) surface->summarize(out);
   try {
     if (options.record_path) {
       if (const int code = write_take(options, *loaded, controller, recorder, live->inputs(), out, err); code != kExitOk)
         return code;
     }
     if (options.trace_path) {
-      write_trace(*options.trace_path, rig, *figure, recorder, live.get());
+      write_trace(*options.trace_path, rig, *figure, recorder, live.get(),
+                  chase ? chase->trace_columns() : std::vector<TraceColumn>{});
       out << "trace: " << *options.trace_path << '\n';
     }
     if (options.plot_path) {

@@ -250,9 +250,16 @@ void Controller::tick(double now_s) noexcept {
         break;
       }
       [[fallthrough]];
-    case Phase::running:
-      show_time_ = now_s - show_start_ - options_.lead_in_s;
-      if (!show_over(show_time_)) {
+    case Phase::running: {
+      bool clock_stop = false;
+      if (options_.show_clock) {
+        const ShowClockReading clock = options_.show_clock->read(now_s);
+        show_time_ = clock.show_time_s;
+        clock_stop = clock.stop;
+      } else {
+        show_time_ = now_s - show_start_ - options_.lead_in_s;
+      }
+      if (!clock_stop && !show_over(show_time_)) {
         // The lead-in holds the first frame and the lead-out the last (a looping show's too).
         sampler_.sample(std::clamp(show_time_, 0.0, show_end()), target_);
         sampled_show = true;
@@ -260,6 +267,7 @@ void Controller::tick(double now_s) noexcept {
       }
       ease_to(rest_, now_s);
       supervisor_.enter(Phase::stopping);
+    }
       [[fallthrough]];
     case Phase::stopping:
     case Phase::faulted: ramp_.sample(now_s - phase_start_, target_); break;

@@ -62,7 +62,8 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
       controller.request_stop(now);
     }
     const auto pressed = [](const std::atomic<bool>* e) { return e && e->load(std::memory_order_relaxed); };
-    if (pressed(options.estop) || pressed(options.estop_input)) controller.fault(FaultCause::estop, 0, 0, now);
+    if (pressed(options.estop) || pressed(options.estop_input) || pressed(options.estop_remote))
+      controller.fault(FaultCause::estop, 0, 0, now);
     if (result.deadline_misses > options.deadline_miss_budget)
       controller.fault(FaultCause::deadline_budget, 0, static_cast<double>(result.deadline_misses), now);
 

@@ -27,6 +27,7 @@
 #include "avar/control/live_layer.hpp"
 #include "avar/control/plant.hpp"
 #include "avar/control/ramp.hpp"
+#include "avar/control/show_clock.hpp"
 #include "avar/control/supervisor.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/core/status.hpp"
@@ -71,6 +72,9 @@ struct ControllerOptions {
   /// shows). show_time() runs from -lead_in_s. >= 0.
   double lead_in_s = 0;
   double lead_out_s = 0;
+  /// Show time while running (a timecode chase); borrowed, must outlive the controller, read on
+  /// the loop thread. nullptr: loop time since the show started.
+  ShowClock* show_clock = nullptr;
 };
 
 class Controller {

@@ -29,6 +29,8 @@ struct RunOptions {
   /// A second e-stop, watched the same way (the rig's GPIO e-stop input beside the keyboard's;
   /// nullptr: none).
   const std::atomic<bool>* estop_input = nullptr;
+  /// A third, from a remote control surface (OSC /avar/estop; nullptr: none).
+  const std::atomic<bool>* estop_remote = nullptr;
   /// The simulated figure, advanced by each tick's period after the tick (nullptr: none).
   Plant* plant = nullptr;
 };

@@ -20,6 +20,7 @@
 
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 #include "avar/firmware_iface/input_source.hpp"
+#include "avar/firmware_iface/udp_listener.hpp"
 
 namespace avar::firmware_iface {
 
@@ -51,23 +52,16 @@ class OscInput final : public InputSource {
 
   /// The port listened on: the one asked for, or the one the system chose for port 0 (0 before
   /// the first start()).
-  std::uint16_t bound_port() const noexcept { return bound_port_; }
+  std::uint16_t bound_port() const noexcept { return listener_.bound_port(); }
   /// Where the socket is bound as the kernel says (getsockname), "127.0.0.1:9000"; "" when not
   /// listening.
   std::string bound_address() const;
 
  private:
-  void receive_loop() noexcept;
-
-  std::string host_;  ///< dotted IPv4
-  std::uint16_t port_;
-  std::uint16_t bound_port_ = 0;
-  int socket_fd_ = -1;
-  int wake_fd_ = -1;  ///< eventfd: stop() wakes the thread's poll
+  UdpListener listener_;
+  bool listening_ = false;
   ControlSink* sink_ = nullptr;
   AtomicInputCounters counters_;
-  std::vector<std::uint8_t> buffer_;  ///< one datagram, the thread's
-  std::thread thread_;
 };
 
 }  // namespace avar::firmware_iface
