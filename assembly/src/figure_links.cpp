@@ -130,6 +130,8 @@ std::string FigureLinks::describe(std::size_t link) const {
   return (e.simulated && !e.chip ? "simulated " : "") + e.link->describe();
 }
 
+sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return entries_.at(link)->device.network_node.get(); }
+
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
 
 bool FigureLinks::reports_telemetry(std::size_t link) const {
