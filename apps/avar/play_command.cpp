@@ -25,6 +25,7 @@
 #include "avar/interrupts.hpp"
 #include "avar/fitted_track.hpp"
 #include "avar/live_session.hpp"
+#include "avar/cue_player.hpp"
 #include "avar/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
@@ -429,8 +430,11 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   run_options.estop = &interrupts.estop();
   if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
   run_options.plant = figure.get();
-  const control::RunResult run = control::run_loop(controller, run_options, recorder, interrupts.count());
+  CuePlayer cues(loaded->show, recorder);  // OSC cues go out from their own thread
+  const control::RunResult run = control::run_loop(controller, run_options, cues, interrupts.count());
+  cues.flush();
   recorder.finish();
+  if (cues.osc_cues() > 0) err << "cues: " << cues.sent() << " OSC message(s) sent, " << cues.failed() << " failed\n";
   if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 

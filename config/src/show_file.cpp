@@ -9,6 +9,7 @@
 #include "yaml_support.hpp"
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
+#include "show_cues.hpp"
 #include "show_tracks.hpp"
 #include "yaml_vectors.hpp"
 
@@ -270,7 +271,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 playback::Show load_show_file(const std::string& path) {
   const YAML::Node root_node = load_yaml_file(path);
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "cues"}, "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -304,6 +305,7 @@ playback::Show load_show_file(const std::string& path) {
     }
   }
   detail::read_clips_and_layers(root, show);
+  if (auto cues = root.find("cues")) detail::read_cues(*cues, show);
   return show;
 }
 

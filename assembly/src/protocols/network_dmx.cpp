@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "../setting_reading.hpp"
+#include "avar/assembly/dmx_protocol.hpp"
 #include "avar/assembly/network_dmx_protocol.hpp"
 #include "avar/firmware_iface/artnet_dmx_codec.hpp"
 #include "avar/sim/sim_dmx_node.hpp"
@@ -40,19 +41,6 @@ bool bool_setting(const rig::LinkSpec& link, const char* key, bool otherwise) {
 long long integer_setting(const rig::LinkSpec& link, const char* key, long long low, long long high, long long otherwise) {
   const ScalarValue* v = link.settings.find(key);
   return v ? integer_in(*v, key, low, high) : otherwise;
-}
-
-std::vector<firmware_iface::DmxActuator> universe_actuators(const rig::Rig& rig, std::size_t link) {
-  std::vector<firmware_iface::DmxActuator> out;
-  for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
-    firmware_iface::DmxActuator d;
-    d.channel = a.channel.value;
-    d.address = a.device_channel;
-    d.fine = a.fine;
-    d.calibration = a.calibration;
-    out.push_back(d);
-  }
-  return out;
 }
 
 std::uint16_t artnet_port_address(const rig::LinkSpec& link) {
@@ -145,6 +133,20 @@ SimulatedDevice simulated_node(sim::DmxNodeProtocol protocol, std::uint16_t univ
   return d;
 }
 
+/// A DMX-on-the-network protocol: no port, no baud, DMX slot addresses, its own link opener.
+Protocol network_protocol(const char* name, const char* device_name, const char* bauds_text,
+                          void (*validate)(const rig::LinkSpec&), SimulatedDevice (*make_simulated)(const rig::Rig&, std::size_t),
+                          std::unique_ptr<firmware_iface::ActuatorLink> (*open)(const rig::Rig&, std::size_t,
+                                                                                const std::string&)) {
+  Protocol g{name,           device_name,   0,    bauds_text, [](int) { return true; },
+             validate,       dmx_slot_rule, true, false,      [](const rig::LinkSpec&) { return false; },
+             no_serial_link, make_simulated};
+  g.port_optional = [](const rig::LinkSpec&) { return true; };
+  g.port_is_serial = [](const rig::LinkSpec&, const std::string&) { return false; };
+  g.open_link = open;
+  return g;
+}
+
 }  // namespace
 
 bool parse_cid(const std::string& text, firmware_iface::sacn::Cid& cid) {
@@ -177,7 +179,7 @@ firmware_iface::ArtnetLinkConfig artnet_config(const rig::Rig& rig, std::size_t 
   config.destination.broadcast = bool_setting(spec, "broadcast", false);
   config.port_address = artnet_port_address(spec);
   config.slot_count = slots_setting(spec);
-  config.actuators = universe_actuators(rig, link);
+  config.actuators = dmx_actuators(rig, link);
   return config;
 }
 
@@ -200,62 +202,32 @@ firmware_iface::SacnLinkConfig sacn_config(const rig::Rig& rig, std::size_t link
   if (bool_setting(spec, "discovery", true))
     config.discovery_every =
         static_cast<std::uint32_t>(std::max(1L, std::lround(rig.rate_hz * firmware_iface::sacn::kDiscoveryIntervalS)));
-  config.actuators = universe_actuators(rig, link);
+  config.actuators = dmx_actuators(rig, link);
   return config;
 }
 
 const Protocol& artnet_protocol() {
-  static const Protocol p = [] {
-    Protocol g{"artnet",
-               "Art-Net node",
-               0,
-               "none (Art-Net is on the network)",
-               [](int) { return true; },
-               validate_artnet,
-               dmx_slot_rule,
-               true,
-               false,
-               [](const rig::LinkSpec&) { return false; },
-               no_serial_link,
-               [](const rig::Rig& rig, std::size_t link) {
-                 return simulated_node(sim::DmxNodeProtocol::artnet, artnet_port_address(rig.links[link]));
-               }};
-    g.port_optional = [](const rig::LinkSpec&) { return true; };
-    g.port_is_serial = [](const rig::LinkSpec&, const std::string&) { return false; };
-    g.open_link = [](const rig::Rig& rig, std::size_t link,
-                     const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-      return std::make_unique<firmware_iface::ArtnetLink>(artnet_config(rig, link, port));
-    };
-    return g;
-  }();
+  static const Protocol p = network_protocol(
+      "artnet", "Art-Net node", "none (Art-Net is on the network)", validate_artnet,
+      [](const rig::Rig& rig, std::size_t link) {
+        return simulated_node(sim::DmxNodeProtocol::artnet, artnet_port_address(rig.links[link]));
+      },
+      [](const rig::Rig& rig, std::size_t link, const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+        return std::make_unique<firmware_iface::ArtnetLink>(artnet_config(rig, link, port));
+      });
   return p;
 }
 
 const Protocol& sacn_protocol() {
-  static const Protocol p = [] {
-    Protocol g{"sacn",
-               "sACN receiver",
-               0,
-               "none (sACN is on the network)",
-               [](int) { return true; },
-               validate_sacn,
-               dmx_slot_rule,
-               true,
-               false,
-               [](const rig::LinkSpec&) { return false; },
-               no_serial_link,
-               [](const rig::Rig& rig, std::size_t link) {
-                 const auto universe = static_cast<std::uint16_t>(integer_setting(rig.links[link], "universe", 1, 63999, 1));
-                 return simulated_node(sim::DmxNodeProtocol::sacn, universe);
-               }};
-    g.port_optional = [](const rig::LinkSpec&) { return true; };
-    g.port_is_serial = [](const rig::LinkSpec&, const std::string&) { return false; };
-    g.open_link = [](const rig::Rig& rig, std::size_t link,
-                     const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-      return std::make_unique<firmware_iface::SacnLink>(sacn_config(rig, link, port));
-    };
-    return g;
-  }();
+  static const Protocol p = network_protocol(
+      "sacn", "sACN receiver", "none (sACN is on the network)", validate_sacn,
+      [](const rig::Rig& rig, std::size_t link) {
+        const auto universe = static_cast<std::uint16_t>(integer_setting(rig.links[link], "universe", 1, 63999, 1));
+        return simulated_node(sim::DmxNodeProtocol::sacn, universe);
+      },
+      [](const rig::Rig& rig, std::size_t link, const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+        return std::make_unique<firmware_iface::SacnLink>(sacn_config(rig, link, port));
+      });
   return p;
 }
 
