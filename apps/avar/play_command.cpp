@@ -26,6 +26,7 @@
 #include "avar/fitted_track.hpp"
 #include "avar/idle_session.hpp"
 #include "avar/live_session.hpp"
+#include "avar/cue_player.hpp"
 #include "avar/mocap_bake.hpp"
 #include "avar/osc_control.hpp"
 #include "avar/play_recorder.hpp"
@@ -490,18 +491,21 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   run_options.estop = &interrupts.estop();
   if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
   run_options.plant = figure.get();
-  control::TickObserver* observer = &recorder;
-  if (chase) chase->forward_to(recorder), observer = chase.get();
+  CuePlayer cues(loaded->show, recorder);  // OSC cues go out from their own thread
+  control::TickObserver* observer = &cues;
+  if (chase) chase->forward_to(cues), observer = chase.get();
   if (surface) {
-    surface->forward_to(recorder), observer = surface.get();
+    surface->forward_to(cues), observer = surface.get();
     run_options.estop_remote = &surface->estop();
     err << "OSC control on udp " << surface->where() << ": waiting for /avar/show/play '" << loaded->show.name << "'"
         << std::endl;
   }
   const control::RunResult run = control::run_loop(controller, run_options, *observer, interrupts.count());
+  cues.flush();
   recorder.finish();
   if (chase) chase->stop();
   if (surface) surface->stop();
+  if (cues.osc_cues() > 0) err << "cues: " << cues.sent() << " OSC message(s) sent, " << cues.failed() << " failed\n";
   if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 

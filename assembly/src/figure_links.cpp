@@ -61,7 +61,10 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
       open_on_chip(rig, i, protocol, port, selection, *entry, gpio_chips_);
     } else {
       if (entry->simulated) entry->device = protocol.make_simulated(rig, i);
-      if (entry->device.usb_device) {
+      if (entry->device.network_node) {
+        // A simulated network node listens on loopback: the real driver sends to it there.
+        entry->link = protocol.open_link(rig, i, entry->device.network_node->endpoint());
+      } else if (entry->device.usb_device) {
         // A simulated USB device answers the real driver's control transfers in this process.
         entry->usb_host = std::make_unique<sim::UsbDeviceHost>(*entry->device.usb_device, entry->device.usb_name);
         entry->link = protocol.make_usb_link(rig, i, entry->usb_host->connect(), tuning);
@@ -127,6 +130,8 @@ std::string FigureLinks::describe(std::size_t link) const {
   return (e.simulated && !e.chip ? "simulated " : "") + e.link->describe();
 }
 
+sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return entries_.at(link)->device.network_node.get(); }
+
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
 
 bool FigureLinks::reports_telemetry(std::size_t link) const {
@@ -172,6 +177,15 @@ void FigureLinks::advance(double dt_s) {
         truth_known_[a.channel.value] = 1;
       }
     };
+    if (e->device.network_node) {
+      // Everything sent so far must have reached the node before its time moves on.
+      e->device.network_node->receive_until(e->link->counters().bytes_sent, std::chrono::seconds(2));
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        truth_[a.channel.value] = e->device.true_position(a);
+        truth_known_[a.channel.value] = 1;
+      }
+      continue;
+    }
     if (e->usb_host) {
       // Control transfers are answered as they are made: nothing is in flight.
       e->usb_host->with_device(step);

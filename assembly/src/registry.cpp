@@ -8,6 +8,7 @@
 #include "avar/assembly/feetech_protocol.hpp"
 #include "avar/assembly/gpio_protocol.hpp"
 #include "avar/assembly/maestro_protocol.hpp"
+#include "avar/assembly/network_dmx_protocol.hpp"
 #include "avar/assembly/ssc32_protocol.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 
@@ -16,7 +17,7 @@ namespace avar::assembly {
 const std::vector<const Protocol*>& protocols() {
   static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(),
                                                 &ssc32_protocol(),   &dmx_protocol(),       &can_protocol(),
-                                                &gpio_protocol()};
+                                                &gpio_protocol(),    &artnet_protocol(),    &sacn_protocol()};
   return all;
 }
 

@@ -68,6 +68,14 @@ std::string Finding::to_string() const { return avar::to_string(where) + ": " + 
 
 ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig) {
   ShowCheck result;
+  // A digital cue switches a digital channel (its step track is checked with the tracks below).
+  for (const playback::Cue& cue : show.cues) {
+    if (cue.is_osc()) continue;
+    const auto ci = rig.find_channel(cue.digital_channel);
+    if (ci && !rig.channels[*ci].digital())
+      result.errors.push_back({cue.where, "a digital cue switches channel '" + cue.digital_channel +
+                                              "', which is analog; give the channel kind: digital or key it with a track"});
+  }
   std::vector<bool> driven(rig.channels.size(), false);
   for (const playback::Track& track : show.tracks) {
     const auto ci = rig.find_channel(track.channel);

@@ -9,6 +9,7 @@
 #include "yaml_support.hpp"
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
+#include "show_cues.hpp"
 #include "show_tracks.hpp"
 #include "show_visemes.hpp"
 #include "yaml_vectors.hpp"
@@ -268,7 +269,8 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 
 playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes", "cues"},
+                        "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -304,6 +306,7 @@ playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& pa
     }
   }
   detail::read_clips_and_layers(root, show);
+  if (auto cues = root.find("cues")) detail::read_cues(*cues, show);
   return show;
 }
 

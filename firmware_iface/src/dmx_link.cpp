@@ -1,34 +1,13 @@
 #include "avar/firmware_iface/dmx_link.hpp"
 
-#include <algorithm>
 #include <array>
-#include <cmath>
-#include <stdexcept>
 
 namespace avar::firmware_iface {
 
 DmxLink::DmxLink(ByteTransport& transport, DmxLinkConfig config)
-    : transport_(transport), config_(std::move(config)), table_(config_.actuators) {
-  if (config_.actuators.empty()) throw std::invalid_argument("a DMX link needs at least one actuator");
-  std::array<bool, dmx::kUniverseSize + 1> used{};
-  std::size_t highest = 0;
-  for (const DmxActuator& a : config_.actuators) {
-    const int last = a.address + (a.fine ? 1 : 0);
-    if (a.address < 1 || last > static_cast<int>(dmx::kUniverseSize))
-      throw std::invalid_argument("DMX address " + std::to_string(a.address) + (a.fine ? " (16-bit)" : "") +
-                                  " does not fit in 1..512");
-    for (int s = a.address; s <= last; ++s) {
-      if (used[static_cast<std::size_t>(s)]) throw std::invalid_argument("DMX slot " + std::to_string(s) + " is used twice");
-      used[static_cast<std::size_t>(s)] = true;
-    }
-    highest = std::max(highest, static_cast<std::size_t>(last));
-  }
-  if (config_.slot_count > dmx::kUniverseSize || (config_.slot_count != 0 && config_.slot_count < highest))
-    throw std::invalid_argument("DMX slot count " + std::to_string(config_.slot_count) + " must cover slot " +
-                                std::to_string(highest) + " and stay within 512");
-  slots_.assign(std::max(config_.slot_count == 0 ? highest : config_.slot_count, dmx::kMinSlots), 0);
-  packet_.resize(dmx::send_dmx_size(slots_.size()));
-  description_ = "DMX USB Pro (" + std::to_string(slots_.size()) + " slots) on " + transport_.name();
+    : transport_(transport), config_(std::move(config)), universe_(config_.actuators, config_.slot_count, dmx::kMinSlots) {
+  packet_.resize(dmx::send_dmx_size(universe_.slots().size()));
+  description_ = "DMX USB Pro (" + std::to_string(universe_.slots().size()) + " slots) on " + transport_.name();
 }
 
 Status DmxLink::start() {
@@ -50,34 +29,20 @@ Status DmxLink::start() {
 Status DmxLink::read_positions(std::span<double>, std::span<bool>) { return Status::ok; }
 
 Status DmxLink::send(std::span<const double> frame) noexcept {
-  for (std::size_t i = 0; i < config_.actuators.size(); ++i) {
-    const DmxActuator& a = config_.actuators[i];
-    long level = 0;
-    if (!table_.released(i)) level = std::clamp(std::lround(table_.to_device(i, frame)), 0L, a.fine ? 65535L : 255L);
-    const auto at = static_cast<std::size_t>(a.address - 1);
-    if (a.fine) {
-      slots_[at] = static_cast<std::uint8_t>(level >> 8);
-      slots_[at + 1] = static_cast<std::uint8_t>(level & 0xFF);
-    } else {
-      slots_[at] = static_cast<std::uint8_t>(level);
-    }
-  }
+  universe_.fill(frame);
   return write_frame();
 }
 
 Status DmxLink::write_frame() noexcept {
-  last_send_size_ = dmx::encode_send_dmx(packet_, slots_);
+  last_send_size_ = dmx::encode_send_dmx(packet_, universe_.slots());
   return reconnector_.write(transport_, std::span(packet_.data(), last_send_size_));
 }
 
 Status DmxLink::release() noexcept {
-  for (const DmxActuator& a : config_.actuators) {
-    slots_[static_cast<std::size_t>(a.address - 1)] = 0;
-    if (a.fine) slots_[static_cast<std::size_t>(a.address)] = 0;
-  }
+  universe_.zero_all();
   return write_frame();
 }
 
-void DmxLink::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }
+void DmxLink::release_channel(std::size_t channel) noexcept { universe_.release_channel(channel); }
 
 }  // namespace avar::firmware_iface

@@ -24,16 +24,22 @@ SimulatedDevice simulated_dmx(const rig::Rig& rig, std::size_t link) {
 
 }  // namespace
 
-firmware_iface::DmxLinkConfig dmx_config(const rig::Rig& rig, std::size_t link) {
-  firmware_iface::DmxLinkConfig config;
+std::vector<firmware_iface::DmxActuator> dmx_actuators(const rig::Rig& rig, std::size_t link) {
+  std::vector<firmware_iface::DmxActuator> out;
   for (const rig::ActuatorSpec& a : rig.actuators_on(rig::LinkIndex{link})) {
     firmware_iface::DmxActuator d;
     d.channel = a.channel.value;
     d.address = a.device_channel;
     d.fine = a.fine;
     d.calibration = a.calibration;
-    config.actuators.push_back(d);
+    out.push_back(d);
   }
+  return out;
+}
+
+firmware_iface::DmxLinkConfig dmx_config(const rig::Rig& rig, std::size_t link) {
+  firmware_iface::DmxLinkConfig config;
+  config.actuators = dmx_actuators(rig, link);
   return config;
 }
 

@@ -71,6 +71,9 @@ class FigureLinks final : public control::PositionSource, public control::Plant 
   /// device under its lock, set_plugged to unplug it). Throws std::invalid_argument for a link
   /// that is not simulated on USB.
   void with_simulated_usb(std::size_t link, const std::function<void(sim::UsbDeviceHost&)>& f);
+  /// A link's simulated network node (Art-Net, sACN), for tests to watch or to send it bad
+  /// packets between ticks; nullptr for other links. On the loop thread, between ticks.
+  sim::SimDmxNode* simulated_node(std::size_t link) const;
   /// One link's wire counters (ActuatorLink::counters), any thread.
   firmware_iface::LinkCounters counters(std::size_t link) const;
   /// What the device driving `channel` said of its fault (ActuatorLink::channel_problem); after

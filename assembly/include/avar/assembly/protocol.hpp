@@ -18,6 +18,7 @@
 #include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/sim/byte_device.hpp"
+#include "avar/sim/sim_dmx_node.hpp"
 #include "avar/sim/usb_control_device.hpp"
 
 namespace avar::assembly {
@@ -43,6 +44,9 @@ struct SimulatedDevice {
   /// the driver of make_usb_link, its connection named usb_name ("USB (serial 00012345)").
   std::unique_ptr<sim::UsbControlDevice> usb_device = nullptr;
   std::string usb_name = {};
+  /// Instead of `device`, a node on the network (Art-Net, sACN) listening on loopback: the
+  /// protocol's open_link sends to its endpoint().
+  std::unique_ptr<sim::SimDmxNode> network_node = nullptr;
 };
 
 /// What the assembly asks of a driver beyond the rig.

@@ -9,21 +9,12 @@
 #include <vector>
 
 #include "avar/firmware_iface/actuator_link.hpp"
-#include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/dmx_codec.hpp"
-#include "avar/firmware_iface/linear_calibration.hpp"
+#include "avar/firmware_iface/dmx_universe.hpp"
 #include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
-
-struct DmxActuator {
-  std::size_t channel = 0;  ///< rig channel index
-  int address = 1;          ///< DMX slot, 1..512 (1..511 when fine)
-  bool fine = false;        ///< 16-bit: address = coarse (high byte), address + 1 = fine (low byte)
-  /// Channel units -> DMX level: 0..255, or 0..65535 when fine.
-  LinearCalibration calibration{0, 1, 0, 255, false, 0};
-};
 
 struct DmxLinkConfig {
   /// Slots sent per frame: 0 = up to the highest slot an actuator uses (at least 24).
@@ -49,14 +40,14 @@ class DmxLink final : public ActuatorLink {
   Status release() noexcept override;
   /// From the next send on, the channel's slots go to level 0.
   void release_channel(std::size_t channel) noexcept override;
-  std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
+  std::uint64_t saturated_pulses() const noexcept override { return universe_.saturated(); }
   const std::string& describe() const noexcept override { return description_; }
   /// Only reconnects: the device does not answer every tick.
   LinkCounters counters() const noexcept override { return reconnector_.counters(); }
 
   /// The widget's parameters as start() read them.
   const dmx::WidgetParameters& widget_parameters() const noexcept { return parameters_; }
-  std::size_t slot_count() const noexcept { return slots_.size(); }
+  std::size_t slot_count() const noexcept { return universe_.slots().size(); }
   std::size_t last_send_size() const noexcept { return last_send_size_; }
 
  private:
@@ -65,8 +56,7 @@ class DmxLink final : public ActuatorLink {
   ByteTransport& transport_;
   DmxLinkConfig config_;
   std::string description_;
-  ActuatorTable table_;
-  std::vector<std::uint8_t> slots_;   ///< the universe, slot 1 at index 0
+  DmxUniverse universe_;
   std::vector<std::uint8_t> packet_;
   dmx::WidgetParameters parameters_;
   std::size_t last_send_size_ = 0;

@@ -48,6 +48,29 @@ struct TargetTrack {
   bool has_orientation() const noexcept { return kind == TargetKind::orientation || kind == TargetKind::pose; }
 };
 
+/// One argument of an OSC cue's message.
+struct CueArgument {
+  char type = 'f';  ///< 'f' float, 'i' 32-bit integer, 's' string
+  double number = 0;
+  std::string text;
+};
+
+/// Something a show fires once at a time of each pass (`cues:` in a show file): an OSC message
+/// to a UDP address, or a digital channel switched (played as a step track of that channel, so
+/// the limiter, safety gate and fail-safe apply to it as to any channel).
+struct Cue {
+  double time = 0;       ///< seconds within the show
+  std::string osc_host;  ///< OSC: numeric IPv4 address ("" for a digital cue)
+  int osc_port = 0;
+  std::string osc_address;  ///< OSC: "/path"
+  std::vector<CueArgument> osc_arguments;
+  std::string digital_channel;  ///< digital: the channel switched
+  double digital_value = 0;     ///< digital: 0 off, 1 on
+  SourceLocation where;
+
+  bool is_osc() const noexcept { return !osc_address.empty(); }
+};
+
 struct Show {
   std::string name;
   double duration = 0;  ///< seconds, > 0
@@ -56,6 +79,7 @@ struct Show {
   std::vector<TargetTrack> targets;
   std::vector<Clip> clips;    ///< the clips the layers place (none for a plain show)
   std::vector<Layer> layers;  ///< applied bottom (first) to top over `tracks`; none for a plain show
+  std::vector<Cue> cues;      ///< in time order
   SourceLocation where;
 
   bool layered() const noexcept { return !layers.empty(); }

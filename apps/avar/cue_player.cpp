@@ -1,0 +1,46 @@
+#include "avar/cue_player.hpp"
+
+#include "avar/control/controller.hpp"
+
+namespace avar::app {
+
+CuePlayer::CuePlayer(const playback::Show& show, control::TickObserver& next) : show_(show), next_(next) {
+  std::vector<firmware_iface::OscCueMessage> messages;
+  for (const playback::Cue& cue : show.cues) {
+    if (!cue.is_osc()) continue;
+    firmware_iface::OscCueMessage m;
+    m.host = cue.osc_host;
+    m.port = cue.osc_port;
+    m.address = cue.osc_address;
+    for (const playback::CueArgument& a : cue.osc_arguments) m.arguments.push_back({a.type, a.number, a.text});
+    messages.push_back(std::move(m));
+    times_.push_back(cue.time);
+  }
+  if (!messages.empty()) sender_ = std::make_unique<firmware_iface::OscCueSender>(messages);
+}
+
+void CuePlayer::fire_until(double t) noexcept {
+  while (next_cue_ < times_.size() && times_[next_cue_] <= t) {
+    (void)sender_->fire(next_cue_++);
+    ++fired_;
+  }
+}
+
+void CuePlayer::after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& c) {
+  next_.after_tick(tick, now_s, dt_s, lateness_s, c);
+  if (!sender_ || c.phase() != control::Phase::running) return;
+  const double t = show_.local_time(now_s - c.show_start_time());
+  if (t < last_time_) {
+    // A looping show wrapped: the rest of the last pass, then a new pass.
+    fire_until(show_.duration);
+    next_cue_ = 0;
+  }
+  last_time_ = t;
+  fire_until(t);
+}
+
+void CuePlayer::flush() {
+  if (sender_) sender_->flush();
+}
+
+}  // namespace avar::app
