@@ -13,7 +13,7 @@ AVAR = $(BUILD)/apps/avar
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: all deps configure build demo lint test test-fast test-sanitize test-tsan bench clean
+.PHONY: all deps configure build demo lint test test-fast test-sanitize test-tsan bench package clean
 
 all: build
 
@@ -70,6 +70,12 @@ bench: EXTRA_DEPS = liborocos-kdl-dev
 bench: BENCH = ON
 bench: build
 	@set -e; for b in $(BUILD)/bench/avar-bench-*; do echo "== $$b"; $$b; done
+
+# A Debian package of the optimised build (the avar binary, the libraries, headers and CMake
+# package under /usr): $(BUILD)/avar_<version>_<arch>.deb.
+package: build
+	@cd $(BUILD) && cpack -G DEB
+	@dpkg-deb -I $(BUILD)/avar_*.deb | sed -n '/Package:/p;/Version:/p;/Depends:/p'
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD)
