@@ -17,7 +17,7 @@ AVAR = $(BUILD)/apps/avar
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: all deps configure build demo demo-talking lint test test-fast test-sanitize test-tsan bench fuzz clean
+.PHONY: all deps configure build demo demo-talking lint test test-fast test-sanitize test-tsan bench fuzz package clean
 
 all: build
 
@@ -94,6 +94,12 @@ fuzz: deps
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DAVAR_LIBFUZZER=ON -DAVAR_BUILD_TESTS=OFF -DAVAR_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target avar_fuzz_all
 	@scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# A Debian package of the optimised build (the avar binary, the libraries, headers and CMake
+# package under /usr): $(BUILD)/avar_<version>_<arch>.deb.
+package: build
+	@cd $(BUILD) && cpack -G DEB
+	@dpkg-deb -I $(BUILD)/avar_*.deb | sed -n '/Package:/p;/Version:/p;/Depends:/p'
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD) $(FUZZ_BUILD)

@@ -1,18 +1,23 @@
 # avar_module(NAME SOURCES ... DEPS ...) declares the library of one top-level folder:
 # target avar_NAME, alias avar::NAME, public headers under NAME/include/avar/NAME/.
-# A folder with headers only becomes an INTERFACE library.
+# A folder with headers only becomes an INTERFACE library. Every module is installed and exported
+# as avar::NAME (cmake/AvarPackage.cmake); the project's warning flags stay in the build tree.
 function(avar_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  set(include_dir ${CMAKE_CURRENT_SOURCE_DIR}/include)
   if(ARG_SOURCES)
     add_library(avar_${name} STATIC ${ARG_SOURCES})
-    target_include_directories(avar_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
-    target_link_libraries(avar_${name} PUBLIC ${ARG_DEPS} PRIVATE avar_build_flags)
+    target_include_directories(avar_${name} PUBLIC $<BUILD_INTERFACE:${include_dir}>
+                                                   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+    target_link_libraries(avar_${name} PUBLIC ${ARG_DEPS} PRIVATE $<BUILD_INTERFACE:avar_build_flags>)
   else()
     add_library(avar_${name} INTERFACE)
-    target_include_directories(avar_${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    target_include_directories(avar_${name} INTERFACE $<BUILD_INTERFACE:${include_dir}>
+                                                      $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     target_link_libraries(avar_${name} INTERFACE ${ARG_DEPS})
   endif()
   add_library(avar::${name} ALIAS avar_${name})
+  avar_install_library(avar_${name} ${name} ${include_dir})
 endfunction()
 
 # avar_test(NAME SOURCES ... DEPS ...) builds one GoogleTest executable and registers its tests.

@@ -8,6 +8,7 @@
 
 #include "avar/core/format.hpp"
 #include "avar/playback/runtime/sampler.hpp"
+#include "played_span.hpp"
 
 namespace avar::config {
 namespace {
@@ -251,11 +252,15 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig:
     if (c.digital()) continue;
     const auto& keys = track.raw.keys;
     for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
-      const double t0 = keys[k].time, t1 = keys[k + 1].time;
+      // Only what plays: a segment before 0 or after the end shapes the curve, it never moves.
+      const auto span = detail::played_part(keys[k].time, keys[k + 1].time, show.duration);
+      if (!span) continue;
+      const double t0 = span->t0, t1 = span->t1;
       const Infeasible base{Infeasible::Kind::speed, c.name, c.unit, t0, t1, 0, 0, keys[k].where};
       if (keys[k].interpolation == playback::Interpolation::step) {
+        // The step is taken at the next key: in the show only if that key plays.
         const double jump = std::abs(keys[k + 1].value - keys[k].value);
-        if (jump > 0) {
+        if (jump > 0 && keys[k + 1].time <= show.duration) {
           Infeasible f = base;
           f.kind = Infeasible::Kind::jump;
           f.required = jump;
@@ -285,14 +290,21 @@ playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
       const auto& keys = track.raw.keys;
       for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
         if (keys[k].interpolation == playback::Interpolation::step) continue;
-        const double f = stretch_needed(measure(track.curve, keys[k].time, keys[k + 1].time), rig.channels[*ci]);
+        // Measured on its played part; stretched whole (keys outside the show included), so that
+        // it keeps its shape.
+        const auto span = detail::played_part(keys[k].time, keys[k + 1].time, out.duration);
+        if (!span) continue;
+        const double f = stretch_needed(measure(track.curve, span->t0, span->t1), rig.channels[*ci]);
         // A little more than just enough, so that the measurement's own rounding cannot leave a
         // segment a hair over the limit.
         if (f > 1 + 1e-9) spans.push_back({keys[k].time, keys[k + 1].time, f * (1 + 1e-6)});
       }
     }
     if (spans.empty()) break;
-    const TimeWarp warp = warp_for(spans);
+    const TimeWarp stretch = warp_for(spans);
+    // The show still starts at 0: a stretch before it pushes earlier keys further back.
+    const double zero = stretch(0);
+    const auto warp = [&](double t) { return stretch(t) - zero; };
     for (playback::Track& track : out.tracks) {
       for (playback::RawKey& key : track.raw.keys) {
         // Handles move with the time around them, so a stretched segment keeps its shape.

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "played_span.hpp"
+
 namespace avar::config {
 namespace {
 
@@ -11,15 +13,14 @@ std::string limits_text(const rig::ChannelSpec& c) {
   return "[" + format_number(c.min) + ", " + format_number(c.max) + "]" + (c.unit.empty() ? "" : " " + c.unit);
 }
 
-/// Scans the curve between two keys on a fine grid for its extreme values.
-void check_segment_overshoot(const playback::Track& track, std::size_t k, const rig::ChannelSpec& c,
+/// Scans the played part [t0, t1] of the curve between keys k and k + 1 on a fine grid for its
+/// extreme values.
+void check_segment_overshoot(const playback::Track& track, std::size_t k, double t0, double t1, const rig::ChannelSpec& c,
                              std::vector<Finding>& warnings) {
   const auto& keys = track.raw.keys;
-  const double t0 = keys[k].time;
-  const double t1 = keys[k + 1].time;
   constexpr int kSamplesPerSegment = 256;
-  double lo = std::min(keys[k].value, keys[k + 1].value);
-  double hi = std::max(keys[k].value, keys[k + 1].value);
+  double lo = std::min(track.curve.evaluate(t0), track.curve.evaluate(t1));
+  double hi = std::max(track.curve.evaluate(t0), track.curve.evaluate(t1));
   for (int i = 1; i < kSamplesPerSegment; ++i) {
     const double v = track.curve.evaluate(t0 + (t1 - t0) * i / kSamplesPerSegment);
     lo = std::min(lo, v);
@@ -49,6 +50,27 @@ void check_layers(const playback::Show& show, const rig::Rig& rig, std::vector<b
       for (const playback::Track& track : show.clips[p.clip].tracks)
         if (const auto ci = rig.find_channel(track.channel); ci && layer.touches(track.channel)) driven[*ci] = true;
   }
+}
+
+/// A key outside the show (before 0, after its duration) is not played as it is: the curve it
+/// shapes is, from the show's start or up to its end. An error when that value is outside the
+/// channel's limits, named at the nearest key outside. Returns whether both ends are in range.
+bool check_played_ends(const playback::Track& track, double duration, const rig::ChannelSpec& c, std::vector<Finding>& errors) {
+  const auto& keys = track.raw.keys;
+  bool in_range = true;
+  const auto check = [&](double t, const playback::RawKey& outside, const char* end) {
+    const double v = track.curve.evaluate(t);
+    if (v >= c.min && v <= c.max) return;
+    in_range = false;
+    errors.push_back({outside.where, "the curve of '" + c.name + "' is at " + format_number(v) + " at the show's " + end + " (" +
+                                         format_number(t) + " s), shaped by the key at " + format_number(outside.time) +
+                                         " s outside the show; expected it within the channel's limits " + limits_text(c)});
+  };
+  const auto first_played = std::find_if(keys.begin(), keys.end(), [](const playback::RawKey& k) { return k.time >= 0; });
+  if (first_played != keys.begin()) check(0, *(first_played - 1), "start");
+  const auto after = std::find_if(keys.begin(), keys.end(), [&](const playback::RawKey& k) { return k.time > duration; });
+  if (after != keys.end()) check(duration, *after, "end");
+  return in_range;
 }
 
 /// Whether a track of the show, or of a clip that a layer lets touch it, drives `channel`.
@@ -87,8 +109,9 @@ ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig
     driven[*ci] = true;
     const rig::ChannelSpec& c = rig.channels[*ci];
     const auto& keys = track.raw.keys;
-    bool keys_in_range = true;
+    bool keys_in_range = check_played_ends(track, show.duration, c, result.errors);
     for (const playback::RawKey& key : keys) {
+      if (!detail::played(key.time, show.duration)) continue;
       if (key.value < c.min || key.value > c.max) {
         keys_in_range = false;
         result.errors.push_back({key.where, "value " + format_number(key.value) + " at " + format_number(key.time) + " s is outside channel '" +
@@ -96,8 +119,11 @@ ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig
       }
     }
     if (!keys_in_range) continue;
-    for (std::size_t k = 0; k + 1 < keys.size(); ++k)
-      if (keys[k].interpolation == playback::Interpolation::bezier) check_segment_overshoot(track, k, c, result.warnings);
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+      if (keys[k].interpolation != playback::Interpolation::bezier) continue;
+      if (const auto span = detail::played_part(keys[k].time, keys[k + 1].time, show.duration))
+        check_segment_overshoot(track, k, span->t0, span->t1, c, result.warnings);
+    }
   }
   check_layers(show, rig, driven, result);
   // Targets: the rig must have the effector; the joints that move it drive their channels, which

@@ -15,8 +15,8 @@ using playback::ClipMode;
 
 std::string seconds(double s) { return format_number(s) + " s"; }
 
-/// Key times of a clip's track lie in [0, clip duration]; checked before the track is read so
-/// that the message names the clip (read_track speaks of the show).
+/// Key times of a clip's track lie in [0, clip duration]: a clip is placed, stretched and looped by
+/// its span. Checked before the track is read.
 void check_key_times(const YamlRef& body, const Clip& clip, const std::string& channel) {
   const YamlRef keys = body.is_map() && body.has("keys") ? body.at("keys", "") : body;
   if (!keys.is_sequence()) return;  // read_track says what is wrong
@@ -52,7 +52,7 @@ Clip read_clip(const YamlRef& name, const YamlRef& body) {
     if (!seen.insert(channel.as_string("a channel name")).second)
       channel.fail("channel '" + channel.node.Scalar() + "' has two tracks in " + what + "; expected one track per channel");
     check_key_times(keys, clip, channel.node.Scalar());
-    clip.tracks.push_back(read_track(channel, keys, clip.duration));
+    clip.tracks.push_back(read_track(channel, keys));
   }
   return clip;
 }

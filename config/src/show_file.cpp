@@ -23,7 +23,7 @@ using detail::read_name;
 using detail::read_track;
 
 /// Three curves of a target from `names` (x, y, z or roll, pitch, yaw), or a static `vector`.
-void read_triple(const YamlRef& name, const YamlRef& body, double duration, const std::string& what, const char* vector,
+void read_triple(const YamlRef& name, const YamlRef& body, const std::string& what, const char* vector,
                  const char* const (&names)[3], const char* unit, std::array<playback::RawCurve, 3>& raw,
                  std::array<playback::Curve, 3>& curves) {
   if (auto v = body.find(vector)) {
@@ -40,8 +40,7 @@ void read_triple(const YamlRef& name, const YamlRef& body, double duration, cons
   for (std::size_t i = 0; i < 3; ++i) {
     const YamlRef curve = body.at(names[i], what + " (a static " + vector + ", or " + names[0] + ", " + names[1] + " and " +
                                                  names[2] + " curves in " + unit + ")");
-    playback::Track track =
-        read_track(YamlRef{YAML::Node(name.node.Scalar() + "." + names[i]), name.file}, curve, duration);
+    playback::Track track = read_track(YamlRef{YAML::Node(name.node.Scalar() + "." + names[i]), name.file}, curve);
     raw[i] = std::move(track.raw);
     curves[i] = std::move(track.curve);
   }
@@ -73,7 +72,7 @@ playback::DistanceTime read_speed(const YamlRef& node, const std::string& what, 
     return playback::DistanceTime(shape, k[0], k[1]);
   }
   // A user curve: normalised time -> normalised distance, written as a track's keys (named <effector>.speed).
-  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node, 1.0);
+  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node);
   return playback::DistanceTime::from_keys(track.raw);
 }
 
@@ -177,7 +176,7 @@ playback::PathTrack read_path(const YamlRef& node, double duration, const std::s
 }
 
 /// orientation_keys: {order: xyz, interpolation: slerp | squad, keys: [{time, quaternion: [w, x, y, z] | euler: [x, y, z]}]}
-playback::OrientationKeyTrack read_orientation_keys(const YamlRef& node, double duration, const std::string& what) {
+playback::OrientationKeyTrack read_orientation_keys(const YamlRef& node, const std::string& what) {
   const std::string owhat = "the orientation keys of " + what;
   node.expect_map(owhat + " (a map {order, interpolation, keys})");
   node.expect_only_keys({"order", "interpolation", "keys"}, owhat);
@@ -198,7 +197,7 @@ playback::OrientationKeyTrack read_orientation_keys(const YamlRef& node, double 
     k.expect_only_keys({"time", "quaternion", "euler"}, kwhat);
     playback::OrientationKeySpec key;
     key.where = k.where();
-    key.time = read_key_time(k, kwhat, duration);
+    key.time = read_key_time(k, kwhat);
     if (k.has("quaternion") == k.has("euler"))
       k.fail("expected " + kwhat + " to have either quaternion or euler, not " + (k.has("euler") ? "both" : "neither"));
     if (auto q = k.find("quaternion")) {
@@ -238,7 +237,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
       keys->fail(what + " has both orientation_keys and an orientation (orientation or roll, pitch, yaw); expected one or the other");
     if (target.path && target.path->orients())
       keys->fail(what + " has orientation_keys and a path that orients it; expected one or the other");
-    target.orientation_keys.emplace(read_orientation_keys(*keys, duration, what));
+    target.orientation_keys.emplace(read_orientation_keys(*keys, what));
   }
   if (target.path && target.path->orients() && curves_orientation)
     body.fail("expected " + what + " to take its orientation from its path or from orientation / roll, pitch, yaw, not both");
@@ -258,8 +257,8 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
   }
   static const char* const kXyz[3] = {"x", "y", "z"};
   static const char* const kRpy[3] = {"roll", "pitch", "yaw"};
-  if (curves_point) read_triple(name, body, duration, what, "point", kXyz, "m", target.raw, target.xyz);
-  if (curves_orientation) read_triple(name, body, duration, what, "orientation", kRpy, "rad", target.raw_rpy, target.rpy);
+  if (curves_point) read_triple(name, body, what, "point", kXyz, "m", target.raw, target.xyz);
+  if (curves_orientation) read_triple(name, body, what, "orientation", kRpy, "rad", target.raw_rpy, target.rpy);
   target.kind = !point                 ? playback::TargetKind::orientation
                 : orientation          ? playback::TargetKind::pose
                 : body.has("aim")      ? playback::TargetKind::aim
@@ -292,7 +291,7 @@ playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& pa
     const YamlRef name{it->first, &path};
     const std::string channel = name.as_string("a channel name");
     if (!seen.insert(channel).second) name.fail("channel '" + channel + "' has two tracks; expected one track per channel");
-    show.tracks.push_back(read_track(name, YamlRef{it->second, &path}, show.duration));
+    show.tracks.push_back(read_track(name, YamlRef{it->second, &path}));
   }
   if (auto visemes = root.find("visemes")) detail::read_show_visemes(*visemes, show);
   if (targets) {

@@ -35,7 +35,7 @@ constexpr FieldRule kFieldRules[] = {
      "keys that end a hermite segment (after a hermite key)"},
 };
 
-playback::RawKey read_key(const YamlRef& node, double duration, const std::string& channel, std::optional<Interpolation> previous) {
+playback::RawKey read_key(const YamlRef& node, const std::string& channel, std::optional<Interpolation> previous) {
   const std::string what = "a key of track '" + channel + "'";
   node.expect_map(what);
   node.expect_only_keys({"time", "value", "interpolation", "left", "right", "left_type", "right_type", "easing", "back", "amplitude",
@@ -43,7 +43,7 @@ playback::RawKey read_key(const YamlRef& node, double duration, const std::strin
                         what);
   playback::RawKey key;
   key.where = node.where();
-  key.time = read_key_time(node, what, duration);
+  key.time = read_key_time(node, what);
   key.value = node.at("value", what).as_double("the key value");
   if (auto interp = node.find("interpolation"))
     key.interpolation = read_name(*interp, "interpolation", playback::interpolation_from_name, playback::interpolation_names());
@@ -88,15 +88,11 @@ playback::Cycles read_cycles(const YamlRef& node, const std::string& channel) {
 
 }  // namespace
 
-double read_key_time(const YamlRef& key, std::string_view what, double duration) {
-  const YamlRef time = key.at("time", what);
-  const double t = time.as_double("the key time (seconds)");
-  if (t < 0 || t > duration)
-    time.fail("key time " + format_number(t) + " s is outside the show, which runs from 0 to " + format_number(duration) + " s");
-  return t;
+double read_key_time(const YamlRef& key, std::string_view what) {
+  return key.at("time", what).as_double("the key time (seconds)");
 }
 
-playback::Track read_track(const YamlRef& name, const YamlRef& body, double duration) {
+playback::Track read_track(const YamlRef& name, const YamlRef& body) {
   const std::string channel = name.as_string("a channel name");
   playback::Track track;
   track.channel = channel;
@@ -121,7 +117,7 @@ playback::Track read_track(const YamlRef& name, const YamlRef& body, double dura
   if (keys.size() == 0) name.fail("track '" + channel + "' has no keys; expected at least one");
   std::optional<Interpolation> previous;
   for (std::size_t i = 0; i < keys.size(); ++i) {
-    track.raw.keys.push_back(read_key(keys[i], duration, channel, previous));
+    track.raw.keys.push_back(read_key(keys[i], channel, previous));
     previous = track.raw.keys.back().interpolation;
   }
   track.curve = playback::Curve::build(track.raw);

@@ -21,11 +21,13 @@ auto read_name(const YamlRef& node, std::string_view what, Parse parse, std::str
 }
 
 /// One track: `name` is the channel (the YAML key), `body` a list of keys or a map {extrapolation,
-/// cycles, auto_smoothing, keys}; key times must lie in [0, duration] seconds.
-playback::Track read_track(const YamlRef& name, const YamlRef& body, double duration);
+/// cycles, auto_smoothing, keys}. Key times may lie outside the span that plays (before 0 or
+/// after the show's end, as Blender scenes keyed from frame 0 export them): they shape the curve
+/// inside it.
+playback::Track read_track(const YamlRef& name, const YamlRef& body);
 
-/// The `time` of a key map (`what` names the key), seconds within [0, duration].
-double read_key_time(const YamlRef& key, std::string_view what, double duration);
+/// The `time` of a key map (`what` names the key), in seconds: any finite number.
+double read_key_time(const YamlRef& key, std::string_view what);
 
 /// A constant one-key curve of `value`, for a static quantity; `raw` receives its keys.
 playback::Curve constant_curve(double value, const SourceLocation& where, playback::RawCurve& raw);

@@ -4,8 +4,51 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <unordered_map>
+#include <vector>
 
 namespace avar::config {
+namespace {
+
+/// Refuses what yaml-cpp accepts but a rig or show must not hold: a key twice in one map (the
+/// second silently won), and a document that aliases expand past kMaxValues values (a billion
+/// laughs, or an anchor that contains itself). Walks without recursion, so a cycle cannot
+/// exhaust the stack: the budget ends it.
+void check_document(const YAML::Node& root, const std::string& path) {
+  constexpr std::size_t kMaxValues = 1'000'000;
+  const auto at = [&](const YAML::Node& n) {
+    const YAML::Mark m = n.Mark();
+    return m.is_null() ? SourceLocation{path, 0, 0} : SourceLocation{path, m.line + 1, m.column + 1};
+  };
+  std::vector<YAML::Node> pending{root};
+  std::size_t visited = 0;
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (++visited > kMaxValues)
+      throw InputError(at(node), "the document expands to more than " + std::to_string(kMaxValues) +
+                                     " values (aliases repeating an anchor); expected a rig or show without such nesting");
+    if (node.IsSequence()) {
+      for (const YAML::Node& item : node) pending.push_back(item);
+    } else if (node.IsMap()) {
+      std::unordered_map<std::string, YAML::Mark> seen;
+      for (const auto& entry : node) {
+        if (entry.first.IsScalar()) {
+          const auto [first, inserted] = seen.emplace(entry.first.Scalar(), entry.first.Mark());
+          if (!inserted)
+            throw InputError(at(entry.first), "duplicate key '" + entry.first.Scalar() + "' (first at line " +
+                                                  std::to_string(first->second.line + 1) + ", column " +
+                                                  std::to_string(first->second.column + 1) +
+                                                  "); expected each key once in a map");
+        }
+        pending.push_back(entry.first);
+        pending.push_back(entry.second);
+      }
+    }
+  }
+}
+
+}  // namespace
 
 YAML::Node load_yaml_file(const std::string& path) {
   std::ifstream in(path);
@@ -19,6 +62,7 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& path) {
   try {
     YAML::Node root = YAML::Load(text);
     if (!root || root.IsNull()) throw InputError({path, 1, 1}, "the file is empty; expected a YAML map");
+    check_document(root, path);
     return root;
   } catch (const YAML::Exception& e) {
     throw InputError({path, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);

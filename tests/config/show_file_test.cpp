@@ -189,7 +189,10 @@ TEST(ShowFile, RejectsEachBadInputWithWhereAndWhat) {
   EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolaton: step}\n"),
             ":4:27: unknown field 'interpolaton' in a key of track 'jaw'; expected one of: time, value, interpolation, left, right, "
             "left_type, right_type, easing, back, amplitude, period, in_slope, out_slope, tension, continuity, bias");
-  EXPECT_EQ(show_error(head + "    - {time: 4, value: 1}\n"), ":4:14: key time 4 s is outside the show, which runs from 0 to 3 s");
+  // A key outside the show is no error: it shapes the curve inside (keys_outside_show_test.cpp).
+  EXPECT_EQ(show_error(head + "    - {time: -0.0333333, value: 1}\n    - {time: 4, value: 2}\n"), "");
+  EXPECT_EQ(show_error(head + "    - {time: .inf, value: 1}\n"),
+            ":4:14: expected the key time (seconds) to be a finite number, found '.inf'");
   EXPECT_EQ(show_error(head + "    - {time: 0, value: .nan}\n"), ":4:24: expected the key value to be a finite number, found '.nan'");
   EXPECT_EQ(show_error(head + "    - {time: 0, value: 1, interpolation: bezier, right_type: free}\n    - {time: 1, value: 2}\n"),
             ":4:7: the right handle of the key at 0 s is free but not given; expected right: [time, value], or right_type auto, "

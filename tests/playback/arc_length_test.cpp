@@ -46,6 +46,19 @@ TEST(ArcLength, KnownLengths) {
   EXPECT_EQ(arc_length(parabola, 1, 1, kTol), 0.0);
 }
 
+/// A curve whose derivative overflows (a path point at 1e308 did this): infinite length.
+struct Overflowing : ParametricCurve {
+  double u_begin() const noexcept override { return 0; }
+  double u_end() const noexcept override { return 1; }
+  Eigen::Vector3d position(double u) const noexcept override { return {1e308 * u, 0, 0}; }
+  Eigen::Vector3d derivative(double) const noexcept override { return {1e308, -1e308, 1e308}; }
+};
+
+TEST(ArcLength, NonFiniteLengthReturnsAtOnceInsteadOfSubdividingForever) {
+  // Before: inf - inf never met the tolerance, and the quadrature split to depth 40 everywhere.
+  EXPECT_FALSE(std::isfinite(arc_length(Overflowing{}, 0, 1, kTol)));
+}
+
 TEST(ArcLength, LooserToleranceStillWithinItsBound) {
   const Parabola parabola;
   for (double tol : {1e-2, 1e-4, 1e-6}) EXPECT_NEAR(arc_length(parabola, 0, 2, tol), parabola.length(), tol) << tol;

@@ -215,7 +215,12 @@ TEST(PathTrack, BadPathsAreRejectedAtTheirLocation) {
   PathSpec bad_handle = spec_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, PathSpline::bezier);
   bad_handle.point_where = {{"path.yaml", 8, 7}, {"path.yaml", 9, 7}, {"path.yaml", 10, 7}};
   bad_handle.right = {std::nullopt, Eigen::Vector3d(1, NAN, 0), std::nullopt};
-  EXPECT_EQ(message(bad_handle), "path.yaml:9:7: expected a path handle of finite numbers");
+  EXPECT_EQ(message(bad_handle), "path.yaml:9:7: expected a path handle of finite numbers within ±1e6 m");
+  // Huge but finite: the differences would overflow (and the arc length with them).
+  PathSpec huge = bad_handle;
+  huge.right = {};
+  huge.points[1] = Eigen::Vector3d(1, -1e308, 0);
+  EXPECT_EQ(message(huge), "path.yaml:9:7: expected a path point of finite numbers within ±1e6 m");
   PathSpec not_bezier = bad_handle;
   not_bezier.spline = PathSpline::catmull_rom;
   not_bezier.right = {std::nullopt, Eigen::Vector3d(1, 1, 0), std::nullopt};

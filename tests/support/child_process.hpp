@@ -3,11 +3,13 @@
 // that need real signals and exit codes.
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,37 @@ class ChildProcess {
     exited_ = true;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
+  /// Returned by wait_for when the process outlived its time and was killed.
+  static constexpr int kTimedOut = -2;
+
+  /// wait(), but within `limit`: collects both streams until they close, then the exit code; a
+  /// process still running at the deadline is killed and kTimedOut returned.
+  int wait_for(std::chrono::milliseconds limit) {
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    pollfd fds[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
+    std::string* texts[2] = {&out_text_, &err_text_};
+    while (fds[0].fd >= 0 || fds[1].fd >= 0) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0 || ::poll(fds, 2, static_cast<int>(left.count())) == 0) {
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, nullptr, 0);
+        exited_ = true;
+        return kTimedOut;
+      }
+      for (int i = 0; i < 2; ++i) {
+        if (fds[i].fd < 0 || fds[i].revents == 0) continue;
+        char buf[4096];
+        const ssize_t n = ::read(fds[i].fd, buf, sizeof buf);
+        if (n <= 0) fds[i].fd = -1;  // closed: poll ignores negative descriptors
+        else texts[i]->append(buf, static_cast<std::size_t>(n));
+      }
+    }
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    exited_ = true;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
   const std::string& out() const { return out_text_; }
   const std::string& err() const { return err_text_; }
 

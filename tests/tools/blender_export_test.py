@@ -203,6 +203,36 @@ def rig_for(channels):
     return "\n".join(lines) + "\n"
 
 
+def check_keyed_from_frame_0(avar, tmp):
+    """A scene keyed from frame 0 and starting at frame 1 (Blender's default range) exports a first
+    key at -1/30 s; avar samples it (matching Blender from that key on), checks it and plays it."""
+    blend, golden_path = os.path.join(tmp, "early.blend"), os.path.join(tmp, "early.json")
+    made = blender(None, GENERATOR, ["--out", blend, "--golden", golden_path, "--keyed-from-frame-0"])
+    check(made.returncode == 0 and os.path.exists(blend), "the frame-0 scene generator: %s%s" % (made.stdout, made.stderr))
+    if made.returncode != 0:
+        return
+    with open(golden_path) as f:
+        golden = json.load(f)
+    show_path = os.path.join(tmp, "early.yaml")
+    result = export(blend, show_path)
+    check(result.returncode == 0, "export of the frame-0 scene exits 0: %s" % result.stderr)
+    if result.returncode != 0:
+        return
+    show = load_show(show_path)
+    check(close(keys_of(show, "location_x")[0]["time"], -1 / 30, 1e-9), "frame 0 is at -1/30 s: %s" % keys_of(show, "location_x")[0])
+    check(close(show["duration"], 139 / 30, 1e-9), "duration is the last key's time: %r" % show["duration"])
+    channels = {"location_x": "HeadNod:location[0]", "jaw_open": 'HeadNod:["jaw open"][0]'}
+    compare_with_blender(avar, show_path, channels, golden, "frame-0 scene")
+    rig_path = os.path.join(tmp, "early-rig.yaml")
+    with open(rig_path, "w") as f:
+        f.write(rig_for(sorted(channels)))
+    checked = run([avar, "check", show_path, "--rig", rig_path])
+    check(checked.returncode == 0, "avar check accepts the frame-0 scene: %s%s" % (checked.stdout, checked.stderr))
+    trace = os.path.join(tmp, "early.csv")
+    played = run([avar, "play", show_path, "--rig", rig_path, "--sim", "--fast", "--no-progress", "--trace", trace])
+    check(played.returncode == 0, "avar play --sim --fast plays the frame-0 scene: %s%s" % (played.stdout, played.stderr))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--avar", required=True, help="the avar binary")
@@ -296,6 +326,8 @@ def main():
         alt_reduced = os.path.join(tmp, "alt-reduced.yaml")
         reduced_show(alt, alt_reduced)
         compare_with_blender(args.avar, alt_reduced, {"location_y": "PropAlt:location[1]"}, golden, "PropAlt")
+
+        check_keyed_from_frame_0(args.avar, tmp)
 
         # The full file: every track (the Noise modifier's aside), once avar's loader knows the whole format.
         # A probe show with every field tells whether it does; if it does, the export must load and match.

@@ -23,6 +23,11 @@ Objects:
 - "Prop", an empty with its own action "PropAction" (location[1]), and a second action
   "PropAlt" that no object uses.
 
+With --keyed-from-frame-0, another scene instead, as Blender makes one by default and animators
+key it: 30 fps from frame 1, object "Head" with action "HeadNod" keyed from frame 0 (one frame
+before the scene starts, so at -1/30 s in the show): location[0] (Bezier, auto-clamped) and
+["jaw open"] (linear, then Bezier).
+
 golden.json: {"fps": ..., "frame_start": ..., "curves": {"<data_path>[<index>]": {"frames": [...],
 "values": [...]}}} with FCurve.evaluate on a half-frame grid from 45 frames before the first
 key to 45 frames after the last.
@@ -44,6 +49,8 @@ def parse_args():
     parser = argparse.ArgumentParser(prog="make_fixture_blend.py")
     parser.add_argument("--out", required=True, help="the .blend to write")
     parser.add_argument("--golden", required=True, help="JSON of Blender's evaluated curves")
+    parser.add_argument("--keyed-from-frame-0", action="store_true",
+                        help="the scene keyed from frame 0 (starting at frame 1) instead of the main fixture")
     return parser.parse_args(argv)
 
 
@@ -174,6 +181,24 @@ def make_prop(scene):
     return prop
 
 
+def make_keyed_from_frame_0():
+    """Blender's default frame range (from 1) with keys from frame 0; returns the scene and action."""
+    scene = empty_scene()
+    scene.render.fps = 30
+    scene.render.fps_base = 1.0
+    scene.frame_start = 1
+    scene.frame_end = 140
+    head = bpy.data.objects.new("Head", None)
+    scene.collection.objects.link(head)
+    head["jaw open"] = 0.0
+    action = bpy.data.actions.new("HeadNod")
+    head.animation_data_create().action = action
+    keyed_curve(action, "location", 0, [(0, 0.0, {}), (30, 1.0, {}), (140, 0.5, {})])
+    keyed_curve(action, '["jaw open"]', 0, [(0, 0.2, {"interpolation": "LINEAR"}), (60, 0.8, {}), (120, 0.0, {})])
+    bpy.context.view_layer.objects.active = head
+    return scene, action
+
+
 def golden_of(actions):
     curves = {}
     for action in actions:
@@ -191,6 +216,14 @@ def golden_of(actions):
 
 def main():
     args = parse_args()
+    if args.keyed_from_frame_0:
+        scene, action = make_keyed_from_frame_0()
+        golden = {"fps": scene.render.fps / scene.render.fps_base, "frame_start": scene.frame_start,
+                  "curves": golden_of([action])}
+        with open(args.golden, "w") as out:
+            json.dump(golden, out)
+        bpy.ops.wm.save_as_mainfile(filepath=args.out)
+        return
     scene = empty_scene()
     prop = make_prop(scene)
     figure = make_armature(scene)

@@ -20,7 +20,9 @@ Array properties other than transforms get the index as a suffix (_0, _1, ...); 
 Time: seconds = (frame - scene.frame_start) / (scene.render.fps / scene.render.fps_base), for
 keys, handles and elastic periods. Values are in Blender's units (rotations in radians); with
 --degrees, Euler rotations and axis-angle angles (values, handles, elastic amplitudes) in degrees.
-The show's `duration` is the last key's time, its `name` the action's name.
+The show's `duration` is the last key's time, its `name` the action's name. Keys before the
+scene's start frame (a scene keyed from frame 0 starts at frame 1) get negative times: avar reads
+them, they shape the curve, and the show plays from time 0.
 
 Exit codes: 0 written (warnings, if any, on standard error), 1 nothing written (error on
 standard error), 2 bad command line.
@@ -279,10 +281,6 @@ def show_text(source, obj, action, clock, degrees):
         lines.append("    keys:")
         for point in curve.keyframe_points:
             lines.append("      - " + key_text(point, clock, label, unit))
-        first_frame = curve.keyframe_points[0].co[0]
-        if first_frame < clock.start:
-            warn("curve %s: a key at frame %g lies before the scene's start frame %d, at a negative time"
-                 % (label, first_frame, clock.start))
         end = clock.seconds(curve.keyframe_points[-1].co[0])
         last_time = end if last_time is None else max(last_time, end)
         tracks.append("\n".join(lines))

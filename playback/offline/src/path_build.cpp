@@ -88,9 +88,14 @@ class PathTrack::Parametric final : public ParametricCurve {
 std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
   if (spec.points.size() < 2)
     throw InputError(spec.where, "a path needs at least 2 points; found " + std::to_string(spec.points.size()));
+  // Huge coordinates are refused with the non-finite ones: their differences overflow, and the
+  // path's length with them.
+  constexpr double kMaxCoordinate = 1e6;  // metres
+  const auto bounded = [&](const Eigen::Vector3d& v) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= kMaxCoordinate; };
   for (std::size_t i = 0; i < spec.points.size(); ++i)
-    if (!spec.points[i].allFinite())
-      throw InputError(i < spec.point_where.size() ? spec.point_where[i] : spec.where, "expected a path point of finite numbers");
+    if (!bounded(spec.points[i]))
+      throw InputError(i < spec.point_where.size() ? spec.point_where[i] : spec.where,
+                       "expected a path point of finite numbers within ±1e6 m");
   if (!std::isfinite(spec.from) || !std::isfinite(spec.to) || !(spec.to > spec.from))
     throw InputError(spec.where, "expected a path's end time `to` (" + format_number(spec.to) +
                                      " s) after its start time `from` (" + format_number(spec.from) + " s)");
@@ -108,7 +113,8 @@ std::vector<PathTrack::Cubic> PathTrack::build_cubics(const PathSpec& spec) {
       throw InputError(spec.where, "expected one handle entry per path point (" + std::to_string(spec.points.size()) +
                                        "), found " + std::to_string(handles->size()));
     for (std::size_t i = 0; i < handles->size(); ++i)
-      if ((*handles)[i] && !(*handles)[i]->allFinite()) throw InputError(where_of(i), "expected a path handle of finite numbers");
+      if ((*handles)[i] && !bounded(*(*handles)[i]))
+        throw InputError(where_of(i), "expected a path handle of finite numbers within ±1e6 m");
   }
   if (spec.spline == PathSpline::bezier) return bezier_cubics(spec);
 

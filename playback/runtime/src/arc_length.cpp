@@ -23,7 +23,10 @@ double gauss5(const ParametricCurve& c, double a, double b) noexcept {
 double adaptive(const ParametricCurve& c, double a, double b, double whole, double tolerance, int depth) noexcept {
   const double m = 0.5 * (a + b);
   const double left = gauss5(c, a, m), right = gauss5(c, m, b);
-  if (depth >= kMaxArcLengthDepth || std::abs(left + right - whole) <= tolerance) return left + right;
+  // A non-finite length (an overflowing derivative) cannot converge: subdividing would only
+  // visit all 2^kMaxArcLengthDepth intervals.
+  if (depth >= kMaxArcLengthDepth || std::abs(left + right - whole) <= tolerance || !std::isfinite(left + right))
+    return left + right;
   return adaptive(c, a, m, left, 0.5 * tolerance, depth + 1) + adaptive(c, m, b, right, 0.5 * tolerance, depth + 1);
 }
 

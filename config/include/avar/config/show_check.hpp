@@ -24,9 +24,10 @@ struct ShowCheck {
 };
 
 /// Errors: a track, a clip's track or a layer's mask naming a channel the rig does not have; a
-/// key value of a show track outside its channel's limits; a channel moved both by a target and
-/// by a track (of the show or of a clip a layer places). Warnings: a curve that overshoots the limits between keys (it will be clamped), and
-/// rig channels that no track drives (they hold their rest pose).
+/// key value of a show track outside its channel's limits (for keys outside the show, before 0 or
+/// after its duration, the curve's value where the show starts or ends instead); a channel moved both by a target and
+/// by a track (of the show or of a clip a layer places). Warnings: a curve that overshoots the limits between keys (it will be
+/// clamped), and rig channels that no track drives (they hold their rest pose).
 ShowCheck check_show_against_rig(const playback::Show& show, const rig::Rig& rig);
 
 }  // namespace avar::config
