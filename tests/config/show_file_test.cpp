@@ -202,7 +202,7 @@ TEST(ShowFile, RejectsEachBadInputWithWhereAndWhat) {
   EXPECT_EQ(show_error(head + "    - {value: 1}\n"), ":4:7: missing field 'time' in a key of track 'jaw'");
   EXPECT_EQ(show_error(head + "    []\n"), ":3:3: track 'jaw' has no keys; expected at least one");
   EXPECT_EQ(show_error(head + "    - {time: 0, value: 1}\n  jaw:\n    - {time: 0, value: 1}\n"),
-            ":5:3: channel 'jaw' has two tracks; expected one track per channel");
+            ":5:3: duplicate key 'jaw' (first at line 3, column 3); expected each key once in a map");
   EXPECT_EQ(show_error("duration: -1\ntracks: {}\n"), ":1:11: expected the duration to be more than 0 seconds, found '-1'");
   EXPECT_EQ(show_error("tracks: {}\n"), ":1:1: missing field 'duration' in the show file");
   EXPECT_EQ(show_error("duration: 3\ntracks:\n  jaw: 5\n"), ":3:8: expected the keys of track 'jaw' to be a list, found '5'");
