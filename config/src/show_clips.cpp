@@ -52,7 +52,7 @@ Clip read_clip(const YamlRef& name, const YamlRef& body) {
     if (!seen.insert(channel.as_string("a channel name")).second)
       channel.fail("channel '" + channel.node.Scalar() + "' has two tracks in " + what + "; expected one track per channel");
     check_key_times(keys, clip, channel.node.Scalar());
-    clip.tracks.push_back(read_track(channel, keys));
+    clip.tracks.push_back(read_track(channel, keys, clip.duration));
   }
   return clip;
 }

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "avar/firmware_iface/udp_sender.hpp"
+#include "avar/core/format.hpp"
 #include "show_tracks.hpp"
 
 namespace avar::config::detail {
@@ -83,7 +84,12 @@ void read_cues(const YamlRef& list, playback::Show& show) {
     node.expect_only_keys({"time", "osc", "digital"}, what);
     playback::Cue cue;
     cue.where = node.where();
-    cue.time = read_key_time(node, what, show.duration);
+    cue.time = read_key_time(node, what);
+    // Keys may lie outside the played span (they shape the curve inside it); a cue outside it
+    // would never fire.
+    if (cue.time < 0 || cue.time > show.duration)
+      node.at("time", what).fail(what + " at " + format_number(cue.time) + " s never fires: the show runs from 0 to " +
+                                 format_number(show.duration) + " s");
     const auto osc = node.find("osc");
     const auto digital = node.find("digital");
     if (osc.has_value() == digital.has_value())

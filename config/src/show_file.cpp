@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <tuple>
 #include <utility>
+
 
 #include "yaml_support.hpp"
 #include "avar/core/format.hpp"
@@ -40,7 +42,8 @@ void read_triple(const YamlRef& name, const YamlRef& body, const std::string& wh
   for (std::size_t i = 0; i < 3; ++i) {
     const YamlRef curve = body.at(names[i], what + " (a static " + vector + ", or " + names[0] + ", " + names[1] + " and " +
                                                  names[2] + " curves in " + unit + ")");
-    playback::Track track = read_track(YamlRef{YAML::Node(name.node.Scalar() + "." + names[i]), name.file}, curve);
+    playback::Track track = read_track(YamlRef{YAML::Node(name.node.Scalar() + "." + names[i]), name.file}, curve,
+                                       std::numeric_limits<double>::infinity());
     raw[i] = std::move(track.raw);
     curves[i] = std::move(track.curve);
   }
@@ -72,7 +75,7 @@ playback::DistanceTime read_speed(const YamlRef& node, const std::string& what, 
     return playback::DistanceTime(shape, k[0], k[1]);
   }
   // A user curve: normalised time -> normalised distance, written as a track's keys (named <effector>.speed).
-  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node);
+  const playback::Track track = read_track(YamlRef{YAML::Node(effector + ".speed"), node.file}, node, 1.0);
   return playback::DistanceTime::from_keys(track.raw);
 }
 
@@ -291,7 +294,7 @@ playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& pa
     const YamlRef name{it->first, &path};
     const std::string channel = name.as_string("a channel name");
     if (!seen.insert(channel).second) name.fail("channel '" + channel + "' has two tracks; expected one track per channel");
-    show.tracks.push_back(read_track(name, YamlRef{it->second, &path}));
+    show.tracks.push_back(read_track(name, YamlRef{it->second, &path}, show.duration));
   }
   if (auto visemes = root.find("visemes")) detail::read_show_visemes(*visemes, show);
   if (targets) {

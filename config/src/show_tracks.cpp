@@ -92,7 +92,7 @@ double read_key_time(const YamlRef& key, std::string_view what) {
   return key.at("time", what).as_double("the key time (seconds)");
 }
 
-playback::Track read_track(const YamlRef& name, const YamlRef& body) {
+playback::Track read_track(const YamlRef& name, const YamlRef& body, double span_s) {
   const std::string channel = name.as_string("a channel name");
   playback::Track track;
   track.channel = channel;
@@ -101,7 +101,7 @@ playback::Track read_track(const YamlRef& name, const YamlRef& body) {
   YamlRef keys = body;
   if (body.is_map() && body.has("audio")) {
     body.expect_only_keys({"audio"}, "track '" + channel + "' made from audio (audio: {file, open, ...} and nothing else)");
-    return read_audio_track(name, body.at("audio", "track '" + channel + "'"), duration);
+    return read_audio_track(name, body.at("audio", "track '" + channel + "'"), span_s);
   }
   if (body.is_map()) {
     const std::string what = "track '" + channel + "'";

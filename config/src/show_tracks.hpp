@@ -24,7 +24,8 @@ auto read_name(const YamlRef& node, std::string_view what, Parse parse, std::str
 /// cycles, auto_smoothing, keys}. Key times may lie outside the span that plays (before 0 or
 /// after the show's end, as Blender scenes keyed from frame 0 export them): they shape the curve
 /// inside it.
-playback::Track read_track(const YamlRef& name, const YamlRef& body);
+/// `span_s`: the show's (or clip's) duration, where a track made from audio is cut.
+playback::Track read_track(const YamlRef& name, const YamlRef& body, double span_s);
 
 /// The `time` of a key map (`what` names the key), in seconds: any finite number.
 double read_key_time(const YamlRef& key, std::string_view what);
