@@ -47,7 +47,7 @@ struct PlayOptions {
   std::optional<std::uint64_t> seed;  ///< default: a fresh one, printed in the summary
   double idle_before_s = 0;           ///< idle alone this long before the show plays
   double idle_after_s = 0;            ///< and after it ends
-  ShowControlOptions timecode;  ///< --timecode (show time chases a timecode source), --osc-control
+  ShowControlOptions timecode;        ///< --timecode (show time chases a timecode source), --osc-control
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

@@ -88,8 +88,9 @@ void read_cues(const YamlRef& list, playback::Show& show) {
     // Keys may lie outside the played span (they shape the curve inside it); a cue outside it
     // would never fire.
     if (cue.time < 0 || cue.time > show.duration)
-      node.at("time", what).fail(what + " at " + format_number(cue.time) + " s never fires: the show runs from 0 to " +
-                                 format_number(show.duration) + " s");
+      node.at("time", what)
+          .fail(what + " at " + format_number(cue.time) + " s never fires: the show runs from 0 to " +
+                format_number(show.duration) + " s");
     const auto osc = node.find("osc");
     const auto digital = node.find("digital");
     if (osc.has_value() == digital.has_value())

@@ -7,7 +7,6 @@
 #include <tuple>
 #include <utility>
 
-
 #include "yaml_support.hpp"
 #include "avar/core/format.hpp"
 #include "show_clips.hpp"
@@ -271,8 +270,7 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 
 playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes", "cues"},
-                        "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes", "cues"}, "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};

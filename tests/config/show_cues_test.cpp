@@ -55,8 +55,7 @@ TEST(ShowCues, ReadsOscAndDigitalCuesInTimeOrder) {
 }
 
 TEST(ShowCues, NamesEveryBadCueWhereItStands) {
-  EXPECT_EQ(cue_show_error("{time: 3, osc", "{time: 5, osc"),
-            ":6:12: cue 1 at 5 s never fires: the show runs from 0 to 4 s");
+  EXPECT_EQ(cue_show_error("{time: 3, osc", "{time: 5, osc"), ":6:12: cue 1 at 5 s never fires: the show runs from 0 to 4 s");
   EXPECT_EQ(cue_show_error("value: 1}}", "value: 2}}"), ":7:49: expected the value of cue 2 to be 0 (off) or 1 (on), found '2'");
   EXPECT_EQ(cue_show_error("address: /scene", "address: scene"),
             ":6:50: expected an OSC address such as /lights/go (starting with /, no spaces or # * , ? [ ] { }), found 'scene'");
