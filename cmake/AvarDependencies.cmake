@@ -17,6 +17,8 @@ pkg_check_modules(SNDFILE REQUIRED IMPORTED_TARGET sndfile)
 find_package(nlohmann_json REQUIRED)
 # SMPTE linear timecode (LTC) decoding for the timecode chase.
 pkg_check_modules(LTC REQUIRED IMPORTED_TARGET ltc)
+# ALSA PCM capture: LTC from a sound card input (--timecode ltc:alsa:DEVICE).
+pkg_check_modules(ALSA REQUIRED IMPORTED_TARGET alsa)
 if(AVAR_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

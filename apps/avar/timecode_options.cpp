@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
+#include "avar/firmware_iface/alsa_ltc_source.hpp"
 #include "avar/firmware_iface/ltc_file_source.hpp"
 #include "avar/firmware_iface/timecode_inputs.hpp"
 
@@ -29,9 +30,10 @@ std::uint16_t timecode_port(std::string_view text, const std::string& spec) {
 }  // namespace
 
 void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o) {
-  cmd->add_option("--timecode", o.source,
-                  "Chase a timecode source: ltc:FILE.wav, mtc:PORT, artnet[:PORT] or artnet:HOST:PORT (show time follows "
-                  "it; the run stops when it is gone for --freewheel seconds)");
+  cmd->add_option(
+      "--timecode", o.source,
+      "Chase a timecode source: ltc:FILE.wav, ltc:alsa:DEVICE, mtc:PORT, artnet[:PORT] or artnet:HOST:PORT (show time follows "
+      "it; the run stops when it is gone for --freewheel seconds)");
   cmd->add_option("--offset", o.offset, "Timecode at show time 0, HH:MM:SS:FF (default 00:00:00:00)");
   cmd->add_option("--freewheel", o.freewheel_s, "Seconds to run on without timecode before easing to rest (default 2)")
       ->check(CLI::Range(0.0, 3600.0));
@@ -46,10 +48,13 @@ std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
   if (kind == "ltc") {
     if (rest.empty()) throw std::invalid_argument("--timecode ltc: needs a file, ltc:FILE.wav");
-    if (rest.rfind("alsa:", 0) == 0)
-      throw std::invalid_argument("--timecode " + spec +
-                                  ": LTC from an ALSA capture device is not built (this build decodes LTC from sound "
-                                  "files only; record the LTC to a WAV file, or send MTC or Art-Net timecode instead)");
+    if (rest.rfind("alsa:", 0) == 0) {
+      const std::string device = rest.substr(5);
+      if (device.empty())
+        throw std::invalid_argument("--timecode " + spec + ": needs a capture device, ltc:alsa:DEVICE (default, hw:1,0 ...)");
+      if (fast) throw std::invalid_argument("--timecode " + spec + ": a live timecode source needs the wall clock; drop --fast");
+      return std::make_unique<firmware_iface::AlsaLtcSource>(device);
+    }
     return std::make_unique<firmware_iface::LtcFileSource>(rest, fast);
   }
   if (fast) throw std::invalid_argument("--timecode " + spec + ": a live timecode source needs the wall clock; drop --fast");

@@ -16,7 +16,7 @@ constexpr std::size_t kLtcBlockSamples = 256;  // an audio device's period
 }  // namespace
 
 LtcFileSource::LtcFileSource(std::string path, bool stepped)
-    : path_(std::move(path)), stepped_(stepped), audio_(read_mono_audio(path_)), decoder_(audio_.sample_rate) {}
+    : path_(std::move(path)), stepped_(stepped), audio_(read_mono_audio(path_)), feed_(audio_.sample_rate) {}
 
 LtcFileSource::~LtcFileSource() { stop(); }
 
@@ -27,15 +27,10 @@ std::string LtcFileSource::describe() const {
 
 void LtcFileSource::decode_until(std::size_t end, std::int64_t start_ns) noexcept {
   end = std::min(end, audio_.samples.size());
-  if (end <= fed_) return;
-  const std::uint64_t bad_before = decoder_.bad_frames();
-  decoder_.feed(std::span(audio_.samples.data() + fed_, end - fed_), [&](const TimecodeFix& fix, std::int64_t last) {
-    const auto at = static_cast<std::int64_t>(std::llround(static_cast<double>(last + 1) * 1e9 / audio_.sample_rate));
-    mailbox_.publish(fix, start_ns + at);
-    AtomicTimecodeCounters::bump(counters_.fixes);
-  });
-  for (std::uint64_t i = bad_before; i < decoder_.bad_frames(); ++i) AtomicTimecodeCounters::bump(counters_.bad);
-  fed_ = end;
+  const auto fed = static_cast<std::size_t>(feed_.fed());
+  if (end <= fed) return;
+  const auto end_ns = static_cast<std::int64_t>(std::llround(static_cast<double>(end) * 1e9 / audio_.sample_rate));
+  feed_.feed(std::span(audio_.samples.data() + fed, end - fed), start_ns + end_ns);
 }
 
 void LtcFileSource::advance_to(std::int64_t now_ns) noexcept {
@@ -56,7 +51,8 @@ void LtcFileSource::stop() noexcept {
 
 void LtcFileSource::play() noexcept {
   const std::int64_t start_ns = input_arrival_now_ns();
-  for (std::size_t end = kLtcBlockSamples; fed_ < audio_.samples.size() && !stopping_.load(); end += kLtcBlockSamples) {
+  for (std::size_t end = kLtcBlockSamples; static_cast<std::size_t>(feed_.fed()) < audio_.samples.size() && !stopping_.load();
+       end += kLtcBlockSamples) {
     // The block is there once its last sample has played.
     const auto due = start_ns + static_cast<std::int64_t>(static_cast<double>(end) * 1e9 / audio_.sample_rate);
     const timespec deadline{static_cast<time_t>(due / 1'000'000'000), static_cast<long>(due % 1'000'000'000)};

@@ -85,7 +85,8 @@ TEST(TimecodePlay, BadSourcesAndOffsetsAreRefusedBeforeAnythingMoves) {
     EXPECT_EQ(r.out.find("played"), std::string::npos) << r.out;
   };
   refused({"--timecode", "smpte"}, "expected ltc:FILE.wav, ltc:alsa:DEVICE, mtc:PORT, artnet");
-  refused({"--timecode", "ltc:alsa:hw:0"}, "LTC from an ALSA capture device is not built");
+  refused({"--timecode", "ltc:alsa:no_such_avar_pcm"}, "ALSA capture device 'no_such_avar_pcm': cannot open (");
+  refused({"--timecode", "ltc:alsa:"}, "needs a capture device, ltc:alsa:DEVICE");
   refused({"--timecode", "ltc:/nonexistent.wav"}, "/nonexistent.wav: cannot read");
   refused({"--timecode", "artnet", "--fast"}, "a live timecode source needs the wall clock; drop --fast");
   refused({"--timecode", "artnet:70000"}, "'70000' is not a UDP port");

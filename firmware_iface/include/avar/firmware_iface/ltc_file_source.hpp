@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "avar/firmware_iface/ltc_audio.hpp"
-#include "avar/firmware_iface/ltc_decoder.hpp"
+#include "avar/firmware_iface/ltc_feed.hpp"
 #include "avar/firmware_iface/timecode_source.hpp"
 
 namespace avar::firmware_iface {
@@ -27,8 +27,8 @@ class LtcFileSource final : public TimecodeSource {
 
   void start() override;
   void stop() noexcept override;
-  TimecodeReading latest() const noexcept override { return mailbox_.read(); }
-  TimecodeCounters counters() const noexcept override { return counters_.snapshot(); }
+  TimecodeReading latest() const noexcept override { return feed_.latest(); }
+  TimecodeCounters counters() const noexcept override { return feed_.counters(); }
   std::string describe() const override;
   bool stepped() const noexcept override { return stepped_; }
   /// Stepped only: decodes the samples up to loop time now_ns (time 0: the file's first sample).
@@ -36,17 +36,14 @@ class LtcFileSource final : public TimecodeSource {
   double duration_s() const noexcept { return static_cast<double>(audio_.samples.size()) / audio_.sample_rate; }
 
  private:
-  /// Decodes samples [fed_, end) with arrivals counted from start_ns.
+  /// Decodes the samples not yet fed up to `end`, with arrivals counted from start_ns.
   void decode_until(std::size_t end, std::int64_t start_ns) noexcept;
   void play() noexcept;
 
   std::string path_;
   bool stepped_;
   MonoAudio audio_;
-  LtcDecoder decoder_;
-  std::size_t fed_ = 0;
-  TimecodeMailbox mailbox_;
-  AtomicTimecodeCounters counters_;
+  LtcFeed feed_;
   std::atomic<bool> stopping_{false};
   std::thread thread_;
 };
