@@ -36,6 +36,7 @@ template <std::size_t N>
 void get_name(std::span<const std::uint8_t> in, std::size_t at, NameField<N>& name) noexcept {
   std::transform(in.begin() + static_cast<std::ptrdiff_t>(at), in.begin() + static_cast<std::ptrdiff_t>(at + N),
                  name.chars.begin(), [](std::uint8_t c) { return static_cast<char>(c); });
+  name.chars[N - 1] = '\0';  // a field sent without its NUL keeps N - 1 characters, as put_name sends
 }
 
 }  // namespace

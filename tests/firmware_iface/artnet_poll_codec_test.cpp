@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
 namespace avar::firmware_iface::artnet {
@@ -121,6 +123,23 @@ TEST(ArtPollCodec, PollReplyNamesAreCutAndTerminated) {
   EXPECT_EQ(out[26 + 17], 0);
   r.num_ports = 5;
   EXPECT_EQ(encode_poll_reply(out, r), 0U);
+}
+
+// Found by fuzz/artnet_poll_fuzz.cpp: a reply whose name fields lack their NUL decoded to names of
+// N characters, one more than NameField holds and than the encoder sends back.
+TEST(ArtPollCodec, PollReplyNamesWithoutTheirNulAreCutOnDecode) {
+  PollReply r;
+  std::array<std::uint8_t, kPollReplySize> bytes{};
+  ASSERT_EQ(encode_poll_reply(bytes, r), kPollReplySize);
+  std::fill(bytes.begin() + 26, bytes.begin() + 172, std::uint8_t{'n'});  // ShortName, LongName, NodeReport
+  const auto back = decode_poll_reply(bytes);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->short_name.view(), std::string(kShortNameSize - 1, 'n'));
+  EXPECT_EQ(back->long_name.view(), std::string(kLongNameSize - 1, 'n'));
+  EXPECT_EQ(back->node_report.view(), std::string(kNodeReportSize - 1, 'n'));
+  std::array<std::uint8_t, kPollReplySize> again{};
+  ASSERT_EQ(encode_poll_reply(again, *back), kPollReplySize);
+  EXPECT_EQ(decode_poll_reply(again)->short_name.view(), back->short_name.view());
 }
 
 TEST(ArtPollCodec, PollReplyDecoderAcceptsShortOldRepliesAndRefusesMalformedOnes) {
