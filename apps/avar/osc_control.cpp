@@ -80,7 +80,7 @@ void OscControlSurface::handle(std::span<const std::uint8_t> datagram) noexcept 
   lo_arg** argv = lo_message_get_argv(message);
   std::string error;
   if (path == "/avar/show/play") {
-    if (argc == 1 && types[0] == LO_STRING && show_name_ == &argv[0]->s) play_.store(true);
+    if (argc == 1 && types[0] == LO_STRING && show_name_ == reinterpret_cast<const char*>(argv[0])) play_.store(true);
     else error = "/avar/show/play takes the show's name: '" + show_name_ + "'";
   } else if (path == "/avar/show/stop") {
     stop_.store(true);

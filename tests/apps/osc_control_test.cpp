@@ -1,6 +1,8 @@
 // `avar play --osc-control`: the OSC control surface end to end over loopback, against the built
 // binary: play, seek, state replies, stop; bad messages answered and ignored; the e-stop.
 #include <gtest/gtest.h>
+
+#include <cstring>
 #include <lo/lo.h>
 
 #include <chrono>
@@ -58,8 +60,13 @@ class OscControlClient {
     auto* self = static_cast<OscControlClient*>(user);
     OscReply r;
     r.path = path;
-    if (argc >= 1 && types[0] == LO_STRING) r.phase = &argv[0]->s;
-    if (argc >= 2 && types[1] == LO_FLOAT) r.show_time = argv[1]->f;
+    // liblo's arguments are 4-byte aligned, not as lo_arg's union (8): read the bytes.
+    if (argc >= 1 && types[0] == LO_STRING) r.phase = reinterpret_cast<const char*>(argv[0]);
+    if (argc >= 2 && types[1] == LO_FLOAT) {
+      float v = 0;
+      std::memcpy(&v, argv[1], sizeof v);
+      r.show_time = v;
+    }
     self->replies_.push_back(r);
     return 0;
   }

@@ -4,6 +4,9 @@
 #include "avar/firmware_iface/osc_cue_sender.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
 #include <lo/lo.h>
 
 #include <string>
@@ -23,10 +26,20 @@ TEST(OscCueSender, SendsEachFiredMessageOnceInOrderWithItsArguments) {
       server, nullptr, nullptr,
       [](const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* user) -> int {
         std::string s = std::string(path) + " " + types;
+        // liblo's arguments are 4-byte aligned, not as lo_arg's union (8): read the bytes.
         for (int i = 0; i < argc; ++i) {
-          if (types[i] == 'i') s += " " + std::to_string(argv[i]->i);
-          if (types[i] == 'f') s += " " + std::to_string(argv[i]->f);
-          if (types[i] == 's') s += std::string(" ") + &argv[i]->s;
+          const auto* bytes = reinterpret_cast<const char*>(argv[i]);
+          if (types[i] == 'i') {
+            std::int32_t v = 0;
+            std::memcpy(&v, bytes, sizeof v);
+            s += " " + std::to_string(v);
+          }
+          if (types[i] == 'f') {
+            float v = 0;
+            std::memcpy(&v, bytes, sizeof v);
+            s += " " + std::to_string(v);
+          }
+          if (types[i] == 's') s += std::string(" ") + bytes;
         }
         static_cast<std::vector<std::string>*>(user)->push_back(s);
         return 0;
