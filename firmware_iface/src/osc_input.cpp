@@ -105,10 +105,11 @@ void OscInput::start(ControlSink& sink) {
     if (sink_ == &sink) return;
     throw std::logic_error(describe() + " already delivers into another sink");
   }
-  listener_.start([this](std::span<const std::uint8_t> datagram, std::int64_t arrived) {
-    counters_.add(dispatch_osc_packet(datagram, *sink_, arrived));
-  });
+  // The sink is set before the thread starts, and the thread uses its own copy of the pointer.
   sink_ = &sink;
+  listener_.start([this, target = &sink](std::span<const std::uint8_t> datagram, std::int64_t arrived) {
+    counters_.add(dispatch_osc_packet(datagram, *target, arrived));
+  });
   listening_ = true;
 }
 

@@ -110,7 +110,8 @@ TEST(TimecodeSourcesLtcFile, RealTimePlaybackStampsTheMonotonicClock) {
   source.start();
   ASSERT_TRUE(tcsrc_eventually([&] { return source.latest().sequence >= 7; }));
   const TimecodeReading r = source.latest();
-  EXPECT_NEAR(static_cast<double>(r.arrival_ns - before) * 1e-9, r.seconds, 0.01);
+  // Within 30 ms: the playback thread starts a little after `before`, more so under the sanitizers.
+  EXPECT_NEAR(static_cast<double>(r.arrival_ns - before) * 1e-9, r.seconds, 0.03);
   source.stop();
 }
 
