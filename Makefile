@@ -8,6 +8,8 @@ FUZZ_BUILD ?= build-fuzz
 # `make fuzz`: seconds per target, and which targets (empty: all of fuzz/CMakeLists.txt).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS ?=
+# ... and at most this many executions each (empty: no cap).
+FUZZ_RUNS ?=
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 # The project's own trees treat warnings as errors (a plain CMake build does not: AVAR_WERROR).
@@ -93,7 +95,7 @@ fuzz: deps
 	@cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DAVAR_LIBFUZZER=ON -DAVAR_BUILD_TESTS=OFF -DAVAR_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target avar_fuzz_all
-	@scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+	@FUZZ_RUNS=$(FUZZ_RUNS) scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # A Debian package of the optimised build (the avar binary, the libraries, headers and CMake
 # package under /usr): $(BUILD)/avar_<version>_<arch>.deb.

@@ -5,6 +5,8 @@
 #   fuzz,target=<name>,seconds=<s>,execs=<n>,execs_per_s=<r>,cov=<edges>,ft=<features>,corpus=<files>,crashes=<k>
 # Crashes, leaks, timeouts (-timeout=2 s: a hang) and out-of-memory inputs are saved in
 # <build>/artifacts/ and make the script exit 1. Usage: scripts/fuzz.sh BUILD SECONDS [TARGET...]
+# FUZZ_RUNS=N in the environment also ends a target after N executions (whichever comes first), so
+# a long report run (FUZZ_RUNS=1000000 FUZZ_SECONDS=3600) spends on each target only what it needs.
 set -uo pipefail
 build=${1:?usage: fuzz.sh BUILD SECONDS [TARGET...]}
 seconds=${2:?usage: fuzz.sh BUILD SECONDS [TARGET...]}
@@ -26,6 +28,8 @@ for name in "${targets[@]}"; do
   rm -rf "$work"
   mkdir -p "$work/corpus"
   cp -r "$source_dir/fuzz/corpus/$name/." "$work/corpus/" 2>/dev/null
+  runs=()
+  [ -n "${FUZZ_RUNS:-}" ] && runs=("-runs=$FUZZ_RUNS")
   dict=()
   [ -f "$source_dir/fuzz/dict/$name.dict" ] && dict=("-dict=$source_dir/fuzz/dict/$name.dict")
   start=$(date +%s)
@@ -33,7 +37,7 @@ for name in "${targets[@]}"; do
   # -close_fd_mask=3: the targets' own output (urdfdom's console) is dropped; libFuzzer's and the
   # sanitizers' reports still reach the log.
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    "$binary" "$work/corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=8192 \
+    "$binary" "$work/corpus" "${dict[@]}" "${runs[@]}" -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=8192 \
     -print_final_stats=1 -close_fd_mask=3 -artifact_prefix="$artifacts/$name-" > "$work/log" 2>&1
   status=$?
   took=$(($(date +%s) - start))
