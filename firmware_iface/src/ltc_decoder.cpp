@@ -2,6 +2,7 @@
 
 #include <ltc.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -56,7 +57,9 @@ bool LtcDecoder::next(TimecodeFix& fix, std::int64_t& end_sample) noexcept {
     // Forward, a frame's code fills the frame: it ends as the next frame begins. Played in
     // reverse, it ends where the labelled frame begins.
     fix = TimecodeFix{t, frame.reverse ? 0.0 : 1.0, frame.reverse != 0};
-    end_sample = frame.reverse ? frame.off_start : frame.off_end;
+    // libltc extrapolates a frame's edges from its bit lengths; for a frame cut by the first
+    // sample (or by noise that only looks like code) they can fall outside the audio fed.
+    end_sample = std::clamp<std::int64_t>(frame.reverse ? frame.off_start : frame.off_end, 0, fed_);
     return true;
   }
   return false;

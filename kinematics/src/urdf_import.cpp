@@ -3,14 +3,17 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "avar/core/format.hpp"
+#include "avar/core/utf8.hpp"
 #include "avar/kinematics/model_builder.hpp"
 
 namespace avar::kinematics {
@@ -164,9 +167,29 @@ void add_below(const urdf::Link& link, const std::string& parent_joint, ModelBui
   for (const urdf::LinkSharedPtr& child : link.child_links) add_below(*child, child->parent_joint->name, builder, places);
 }
 
+/// TinyXML trusts its text: a multi-byte sequence cut short makes it read past the end, and a NUL
+/// ends the document early. Both are refused first, located.
+void check_urdf_characters(const std::string& text, const std::string& file) {
+  const std::size_t nul = text.find('\0');
+  const std::optional<std::size_t> bad = first_invalid_utf8(text);
+  if (nul == std::string::npos && !bad) return;
+  const std::size_t at = bad ? std::min(*bad, nul) : nul;
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < at; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  }
+  throw InputError({file, line, static_cast<int>(at - line_start) + 1},
+                   at == nul ? "found a NUL byte; expected XML text" : "found a byte that is not UTF-8; expected UTF-8 XML text");
+}
+
 }  // namespace
 
 Model model_from_urdf_text(const std::string& text, const std::string& file) {
+  check_urdf_characters(text, file);
   TiXmlDocument document;
   document.Parse(text.c_str());
   if (document.Error())

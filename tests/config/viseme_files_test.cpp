@@ -64,6 +64,11 @@ TEST(VisemeCues, BadLinesNameFileLineAndColumn) {
   EXPECT_EQ(testing::load_error(load, R"({"cues": []})"),
             R"(:1:1: found no 'mouthCues' list; expected Rhubarb's JSON output {"mouthCues": [{"start", "end", "value"}]})");
   EXPECT_EQ(testing::load_error(load, "\n\n"), ":1:1: found no mouth cues; expected at least one");
+  EXPECT_EQ(testing::load_error(load, "{\"mouthCues\": [\n  {\"start\": 0,, }]}"),
+            ":2:15: not valid JSON; expected Rhubarb's JSON output");
+  // A fuzzer's find: a number past a double's range once escaped as a foreign exception.
+  EXPECT_EQ(testing::load_error(load, "{\"mouthCues\": [\n  {\"start\": 61e308, \"end\": 1, \"value\": \"A\"}]}"),
+            ":2:13: number '61e308' out of range; expected a time in seconds");
 }
 
 constexpr const char* kVisemeRig = AVAR_SOURCE_DIR "/examples/rigs/talking-skull.yaml";

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "avar/firmware_iface/artnet_timecode_codec.hpp"
@@ -202,6 +203,40 @@ TEST(TimecodeDecodersLtc, DecodesGeneratedAudioAtEveryRate) {
       EXPECT_TRUE(crossed) << "the drop-frame minute boundary was not decoded";
     }
   }
+}
+
+// A fuzzer's find: 232 samples at 8 kHz that libltc reads as a reversed frame whose start it
+// extrapolates to 4 samples before the audio began. End samples stay within the audio fed.
+TEST(TimecodeDecodersLtc, EndSamplesStayWithinTheAudioFed) {
+  const std::vector<std::int16_t> pcm{
+      20859, 20859, 20859, -21094, -21094, 20859, 20859, -21094, -21094, -21094, 20859, 20859, 20859, -21094,
+      -21094, -21094, 10138, -10201, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10087,
+      -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -9768,
+      10200, 10023, -10201, 10200, -10201, 10200, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023,
+      -10194, -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201,
+      -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, -10201, 10200, 10023, -10201,
+      -10024, 10200, 10023, -10201, -10024, 10200, 10047, -10201, -10024, 10200, 10023, -10201, -10024, 2264,
+      5749, -28672, 97, 9984, 10027, 10023, -10024, -10024, 10023, 10023, -10024, -10024, 10023, 10023,
+      -10024, -10024, 10023, -10024, 10023, 10023, -10024, -10024, 10023, 8487, -10024, -10024, 10023, -10201,
+      -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, 7463, 0, 9984, 10098,
+      -10201, -10024, 10200, 10023, -10201, -10024, 10200, -10201, 10200, -10201, 10200, 10023, -10201,
+      -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 26407, -10201, -10024, 10200,
+      10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, 10030, -10201, -10024, 10200, 10023,
+      -10201, -10024, 10200, 10023, -10201, -10024, 10200, 10023, -10201, -10024, 10200, -10024, -10201,
+      -10024, 10200, -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200,
+      -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200, -10201, 10200, 10023, -26073,
+      -25939, 31661, 31569, 31569, -26031, -25939, -25939, 16301, 31661, -10159};
+  std::vector<float> audio;
+  for (const std::int16_t v : pcm) audio.push_back(static_cast<float>(v) / 32768.0F);
+  LtcDecoder d(8000);
+  std::uint64_t seen = 0;
+  d.feed(audio, [&](const TimecodeFix&, std::int64_t end) {
+    ++seen;
+    EXPECT_GE(end, 0);
+    EXPECT_LE(end, static_cast<std::int64_t>(audio.size()));
+  });
+  EXPECT_EQ(seen, d.frames());
+  EXPECT_GE(seen, 1U) << "the input no longer decodes to a frame: the regression is not exercised";
 }
 
 TEST(TimecodeDecodersLtc, RejectsAbsurdSampleRates) { EXPECT_THROW(LtcDecoder(100.0), std::invalid_argument); }

@@ -129,6 +129,10 @@ TEST(UrdfImport, OtherBadDescriptionsAreRejectedWithWhereAndWhat) {
       "    <limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/></joint>\n",
       5, "lower 1, upper -1");
   expect_text_rejected("  <joint name=\"j\" type=\"fixed\">\n  <parent link=\"a\"/>\n", 6, "not well-formed XML");
+  // Fuzzers' finds: TinyXML read past the end of a truncated multi-byte sequence.
+  expect_text_rejected("  <link name=\"c\xE5", 4, "not UTF-8");
+  expect_text_rejected("  <link name=\"c\xC3\xA9\"/>\n  <!-- \xC0\xAF -->\n", 5, "not UTF-8");
+  expect_text_rejected(std::string("  <link name=\"c\"/>\0<link name=\"d\"/>\n", 36), 4, "NUL byte");
 }
 
 TEST(UrdfImport, MissingFileIsNamed) {
