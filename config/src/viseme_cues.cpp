@@ -103,8 +103,7 @@ std::vector<playback::VisemeCue> read_json_cues(const std::string& path, const s
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte counts from 1 and points just past the offending character.
-    throw InputError(json_cue_place(path, text, e.byte > 0 ? e.byte - 1 : 0),
-                     "not valid JSON; expected Rhubarb's JSON output");
+    throw InputError(json_cue_place(path, text, e.byte > 0 ? e.byte - 1 : 0), "not valid JSON; expected Rhubarb's JSON output");
   } catch (const nlohmann::json::out_of_range& e) {
     // A number beyond a double's range (the message quotes it): located at its first occurrence.
     const std::string what = e.what();
