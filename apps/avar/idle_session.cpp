@@ -17,8 +17,7 @@ playback::IdleSpec idle_spec_of(const rig::Rig& rig) {
 }  // namespace
 
 IdleSession::IdleSession(const rig::Rig& rig, const playback::Show& show, std::uint64_t seed)
-    : seed_(seed),
-      idle_(idle_spec_of(rig), seed, control::show_drives(rig, show), rig.kinematics ? &*rig.kinematics : nullptr) {}
+    : seed_(seed), idle_(idle_spec_of(rig), seed, control::show_drives(rig, show), rig.kinematics ? &*rig.kinematics : nullptr) {}
 
 control::LiveLayer* IdleSession::layers(control::LiveLayer* above) {
   if (!above) return &idle_;

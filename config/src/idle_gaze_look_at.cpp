@@ -50,7 +50,8 @@ void read_gaze_look_at(const rig::Rig& rig, const YamlRef& node, playback::GazeS
   const YamlRef look = node.at("look_at", "the gaze");
   look.expect_map("look_at ({effectors: [EYE, ...], aim: [x, y, z]})");
   look.expect_only_keys({"effectors", "aim"}, "look_at");
-  if (!rig.kinematics) look.fail("look-at gaze aims the eyes through the rig's kinematics; expected a kinematics section in the rig");
+  if (!rig.kinematics)
+    look.fail("look-at gaze aims the eyes through the rig's kinematics; expected a kinematics section in the rig");
   const rig::RigKinematics& kin = *rig.kinematics;
   const kinematics::Model& model = kin.model;
   playback::GazeLookAt out;
@@ -103,7 +104,8 @@ void read_gaze_look_at(const rig::Rig& rig, const YamlRef& node, playback::GazeS
       const std::size_t c = kin.bindings[joint.q_index].channel;
       const rig::ChannelSpec& ch = rig.channels[c];
       if (joint.type != kinematics::JointType::revolute)
-        eyes[i].fail("eye '" + eye + "' is moved by joint '" + joint.name + "', which slides; look-at gaze turns eyes on revolute joints");
+        eyes[i].fail("eye '" + eye + "' is moved by joint '" + joint.name +
+                     "', which slides; look-at gaze turns eyes on revolute joints");
       if (!gaze_look_at_angular_unit(ch.unit))
         eyes[i].fail("eye '" + eye + "' is turned by channel '" + ch.name + "' in '" + ch.unit +
                      "'; look-at gaze needs the eye channels in deg or rad");
@@ -121,7 +123,8 @@ void read_gaze_look_at(const rig::Rig& rig, const YamlRef& node, playback::GazeS
   // The rest pose: the gaze frame, the eyes' spacing and the parallax of a near target.
   std::vector<double> q(model.dof(), 0.0);
   for (const rig::JointBinding& b : kin.bindings)
-    q[b.q_index] = std::clamp(b.to_joint(rig.channels[b.channel].rest), model.lower_limits()[b.q_index], model.upper_limits()[b.q_index]);
+    q[b.q_index] =
+        std::clamp(b.to_joint(rig.channels[b.channel].rest), model.lower_limits()[b.q_index], model.upper_limits()[b.q_index]);
   kinematics::Workspace ws(model);
   (void)kinematics::forward_kinematics(model, q, ws);
   const Eigen::Vector3d axis = Eigen::Vector3d(out.aim_axis[0], out.aim_axis[1], out.aim_axis[2]).normalized();

@@ -147,7 +147,8 @@ playback::GazeSpec read_gaze(const rig::Rig& rig, const YamlRef& node, std::vect
     channel_at(eyes, "tilt", s.eyes_tilt);
     if (s.left_pan.has_value() != s.right_pan.has_value()) eyes.fail("expected both left_pan and right_pan, or neither");
     if (s.eyes_pan && s.left_pan) eyes.fail("expected either pan or left_pan and right_pan, not both");
-    if (!s.eyes_pan && !s.left_pan && !s.eyes_tilt) eyes.fail("expected at least one eye channel (pan, left_pan/right_pan, tilt)");
+    if (!s.eyes_pan && !s.left_pan && !s.eyes_tilt)
+      eyes.fail("expected at least one eye channel (pan, left_pan/right_pan, tilt)");
   }
   if (auto head = node.find("head")) {
     head->expect_map("head ({pan: CH, tilt: CH, follow, delay_s, smoothing_s})");

@@ -26,10 +26,12 @@ kinematics::Model gaze_look_at_eye_model(const kinematics::Model& figure, const 
                                          std::vector<rig::JointBinding>& eye_bindings) {
   std::vector<char> own(figure.joint_count(), 0);
   for (const std::size_t e : spec.effectors) {
-    if (e >= figure.effector_count()) throw std::invalid_argument("look-at gaze: no effector " + std::to_string(e) + " in the model");
+    if (e >= figure.effector_count())
+      throw std::invalid_argument("look-at gaze: no effector " + std::to_string(e) + " in the model");
     for (std::size_t j = figure.effector(e).joint; j != spec.mount_joint; j = figure.joint(j).parent) {
       if (j == kinematics::Joint::kNoParent)
-        throw std::invalid_argument("look-at gaze: effector '" + figure.effector(e).name + "' does not hang from the eyes' mount");
+        throw std::invalid_argument("look-at gaze: effector '" + figure.effector(e).name +
+                                    "' does not hang from the eyes' mount");
       own[j] = 1;
     }
   }
@@ -45,7 +47,8 @@ kinematics::Model gaze_look_at_eye_model(const kinematics::Model& figure, const 
     js.axis = joint.movable() ? joint.axis : Eigen::Vector3d::UnitZ();
     if (joint.movable()) {
       rig::JointBinding b = bindings.at(joint.q_index);
-      if (b.channel >= limits.size()) throw std::invalid_argument("look-at gaze: joint '" + joint.name + "' drives no channel of the frame");
+      if (b.channel >= limits.size())
+        throw std::invalid_argument("look-at gaze: joint '" + joint.name + "' drives no channel of the frame");
       const double a = b.to_joint(limits[b.channel].low()), z = b.to_joint(limits[b.channel].high());
       js.lower = std::max(joint.lower, std::min(a, z));
       js.upper = std::min(joint.upper, std::max(a, z));
@@ -83,12 +86,14 @@ GazeLookAt::GazeLookAt(const rig::RigKinematics& kinematics, const playback::Gaz
   if (mount_ != playback::GazeLookAt::kOnBase && mount_ >= figure_.joint_count())
     throw std::invalid_argument("look-at gaze: no joint " + std::to_string(mount_) + " to hang the eyes from");
   for (const rig::JointBinding& b : bindings_)
-    if (b.channel >= limits.size()) throw std::invalid_argument("look-at gaze: the kinematics drive channels the frame does not have");
+    if (b.channel >= limits.size())
+      throw std::invalid_argument("look-at gaze: the kinematics drive channels the frame does not have");
   const Eigen::Vector3d axis = gaze_look_at_vector(spec.aim_axis);
   for (std::size_t i = 0; i < spec.effectors.size(); ++i) goals_.push_back(kinematics::IkGoal::aiming(i, axis, centre_ + ahead_));
   // The first seed: the eyes at rest.
   for (const rig::JointBinding& b : eye_bindings_)
-    q_[b.q_index] = std::clamp(b.to_joint(limits[b.channel].rest), eyes_.lower_limits()[b.q_index], eyes_.upper_limits()[b.q_index]);
+    q_[b.q_index] =
+        std::clamp(b.to_joint(limits[b.channel].rest), eyes_.lower_limits()[b.q_index], eyes_.upper_limits()[b.q_index]);
 }
 
 Eigen::Vector3d GazeLookAt::world_point(const playback::GazePoint& point) const noexcept {

@@ -43,7 +43,6 @@ std::vector<char> show_drives(const rig::Rig& rig, const playback::Show& show) {
   return drives;
 }
 
-
 IdleLayer::IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::vector<char> show_drives,
                      const rig::RigKinematics* kinematics)
     : look_at_(idle_layer_look_at(spec, kinematics)),

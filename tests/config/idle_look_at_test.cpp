@@ -116,17 +116,21 @@ TEST(IdleLookAt, TheExampleRigReadsItsEyesFromTheKinematics) {
 
 TEST(IdleLookAt, MistakesAreNamedWhereTheyStand) {
   const std::string rig = look_at_rig_text();
-  const std::string unknown = look_at_error(testing::replace(rig, "effectors: [left_eye, right_eye]", "effectors: [left_eye, rigth_eye]"));
+  const std::string unknown =
+      look_at_error(testing::replace(rig, "effectors: [left_eye, right_eye]", "effectors: [left_eye, rigth_eye]"));
   EXPECT_NE(unknown.find("expected an effector of the rig's kinematics, found 'rigth_eye'"), std::string::npos) << unknown;
   EXPECT_EQ(unknown.rfind(":", 0), 0u);  // file:line:col first
-  const std::string units = look_at_error(testing::replace(
-      testing::replace(rig, "eye_l_pan:      {unit: deg", "eye_l_pan:      {unit: step"), "channel: eye_l_pan}", "channel: eye_l_pan, scale: 0.01}"));
+  const std::string units =
+      look_at_error(testing::replace(testing::replace(rig, "eye_l_pan:      {unit: deg", "eye_l_pan:      {unit: step"),
+                                     "channel: eye_l_pan}", "channel: eye_l_pan, scale: 0.01}"));
   EXPECT_NE(units.find("needs the eye channels in deg or rad"), std::string::npos) << units;
   const std::string both = look_at_error(testing::replace(rig, "    look_at:", "    eyes: {pan: eye_l_pan}\n    look_at:"));
   EXPECT_NE(both.find("either eyes (channels) or look_at (effectors)"), std::string::npos) << both;
-  const std::string near = look_at_error(testing::replace(rig, "distance: {far: 2.0, near: 0.3", "distance: {far: 2.0, near: 0.05"));
+  const std::string near =
+      look_at_error(testing::replace(rig, "distance: {far: 2.0, near: 0.3", "distance: {far: 2.0, near: 0.05"));
   EXPECT_NE(near.find("expected the near distance at least"), std::string::npos) << near;
-  const std::string order = look_at_error(testing::replace(rig, "distance: {far: 2.0, near: 0.3", "distance: {far: 0.2, near: 0.3"));
+  const std::string order =
+      look_at_error(testing::replace(rig, "distance: {far: 2.0, near: 0.3", "distance: {far: 0.2, near: 0.3"));
   EXPECT_NE(order.find("near distance at most the far one"), std::string::npos) << order;
   const std::string shared =
       look_at_error(testing::replace(rig, "lids: {lid_left: {open: 80, closed: 0}", "lids: {eye_l_pan: {open: 0, closed: 10}"));
@@ -135,7 +139,8 @@ TEST(IdleLookAt, MistakesAreNamedWhereTheyStand) {
   EXPECT_NE(headless.find("has no joint of its own below the head's"), std::string::npos) << headless;
   // Without kinematics (hello-head): look-at gaze cannot aim.
   const std::string hello = look_at_rig_text(std::string(AVAR_SOURCE_DIR) + "/examples/rigs/hello-head.yaml");
-  const std::string no_kin = look_at_error(testing::replace(hello, "eyes: {pan: eyes_pan, tilt: eyes_tilt}", "look_at: {effectors: [eyes]}"));
+  const std::string no_kin =
+      look_at_error(testing::replace(hello, "eyes: {pan: eyes_pan, tilt: eyes_tilt}", "look_at: {effectors: [eyes]}"));
   EXPECT_NE(no_kin.find("expected a kinematics section in the rig"), std::string::npos) << no_kin;
   const std::string distance = look_at_error(testing::replace(hello, "fixation_s: [0.4, 2.5]", "distance: {far: 2}"));
   EXPECT_NE(distance.find("distance is for look-at gaze"), std::string::npos) << distance;
@@ -200,7 +205,7 @@ TEST(IdleLookAt, SightLinesMeetAtANearTargetAndRunNearlyParallelForAFarOne) {
   }
   EXPECT_GT(near_checked, 200u);
   EXPECT_GT(far_checked, 1000u);
-  EXPECT_LT(worst_near, 1e-3);  // m
+  EXPECT_LT(worst_near, 1e-3);                            // m
   EXPECT_LT(largest_far * 180 / std::numbers::pi, 1.84);  // far: nearly parallel
   EXPECT_GT(smallest_near, 4 * largest_far);              // near: converging (12.2° straight ahead)
   // The eyes stay on the target while the head follows (they counter-turn): checked on ticks
@@ -245,8 +250,9 @@ TEST(IdleLookAt, NoChannelLeavesItsRangeOrOutrunsItsVelocityOverALongSeededRun) 
 TEST(IdleLookAt, TheHeadFollowsAfterItsDelay) {
   // Long fixations, so the head has settled before each saccade.
   const std::string path = testing::write_temp_file(
-      "look_at_delay.yaml", testing::replace(testing::replace(look_at_rig_text(), "fixation_s: [0.4, 2.5]", "fixation_s: [3, 3.5]"),
-                                             "breathing: {period_s: 4.5, jitter: 0.1, channels: {neck_tilt: 1.5}}", ""));
+      "look_at_delay.yaml",
+      testing::replace(testing::replace(look_at_rig_text(), "fixation_s: [0.4, 2.5]", "fixation_s: [3, 3.5]"),
+                       "breathing: {period_s: 4.5, jitter: 0.1, channels: {neck_tilt: 1.5}}", ""));
   const LookAtFigure fig(path);
   const double delay = fig.spec.gaze->head_delay_s;  // 0.15 s
   ASSERT_DOUBLE_EQ(delay, 0.15);

@@ -284,8 +284,11 @@ TEST(IdleGaze, LookAtDrawsFarOrNearPointsWithinTheEyesLimitsAndTurnsTheHeadInIts
     ASSERT_DOUBLE_EQ(frame[7], std::clamp(aim.last.pan_deg, spec.limits[7].low(), spec.limits[7].high()));
     // The direction (and the eyes' inward turn) moves within 80 % of the eyes' limits in degrees.
     if (samples > 1) {
-      const double vergence = look.half_interocular_m * std::abs(1 / aim.last.distance_m - 1 / previous.distance_m) * 180 / std::numbers::pi;
-      worst_rate = std::max(worst_rate, (std::abs(aim.last.pan_deg - previous.pan_deg) + std::abs(aim.last.tilt_deg - previous.tilt_deg) + vergence) / dt);
+      const double vergence =
+          look.half_interocular_m * std::abs(1 / aim.last.distance_m - 1 / previous.distance_m) * 180 / std::numbers::pi;
+      worst_rate = std::max(
+          worst_rate,
+          (std::abs(aim.last.pan_deg - previous.pan_deg) + std::abs(aim.last.tilt_deg - previous.tilt_deg) + vergence) / dt);
     }
     previous = aim.last;
     if (gaze.saccades() != seen && seen > 0) {

@@ -45,8 +45,8 @@ class GazeLookAt final : public playback::GazeAim {
   const IkStats& stats() const noexcept { return stats_; }
 
  private:
-  kinematics::Model figure_;                 ///< the whole figure
-  std::vector<rig::JointBinding> bindings_;  ///< the figure's, in its q order
+  kinematics::Model figure_;                     ///< the whole figure
+  std::vector<rig::JointBinding> bindings_;      ///< the figure's, in its q order
   std::vector<rig::JointBinding> eye_bindings_;  ///< per entry of the eyes' q (filled with eyes_)
   kinematics::Model eyes_;                       ///< the eyes' own joints, on the head's frame
   std::size_t mount_;                            ///< figure joint the eyes hang from, or kOnBase
