@@ -29,6 +29,10 @@ void IdleSession::describe(std::ostream& out) const {
   const playback::IdleGenerator& g = idle_.generator();
   out << "  idle: seed " << seed_ << " (repeat with --seed " << seed_ << ")";
   if (g.gaze()) out << ", " << g.gaze()->saccades() << " saccades";
+  if (const control::GazeLookAt* look = idle_.look_at()) {
+    const control::IkStats& s = look->stats();
+    out << " (eyes aimed: " << s.converged << " converged, " << s.degraded << " out of reach, " << s.failed << " failed)";
+  }
   out << '\n';
 }
 

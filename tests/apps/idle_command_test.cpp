@@ -87,7 +87,8 @@ TEST(IdleCommand, LookAtGazeConvergesTheEyesOnNearTargetsThroughTheKinematics) {
   const testing::CliResult run =
       testing::run_avar({"idle", "--rig", rig_path, "--sim", "--fast", "--duration", "20", "--seed", "5", "--trace", path});
   ASSERT_EQ(run.code, 0) << run.err;
-  EXPECT_NE(run.out.find("saccades"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("saccades (eyes aimed: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(" 0 failed)"), std::string::npos) << run.out;
   const IdleTrace trace(path);
   // Each eye turns inwards by atan(0.032 / distance): about 0.9° for a far target (2 m), 6.1° for
   // a near one (0.3 m), so the two pans differ by 1.8° or up to 12.2° (less off to a side).
