@@ -119,7 +119,7 @@ TEST(IdleLookAt, MistakesAreNamedWhereTheyStand) {
   const std::string unknown =
       look_at_error(testing::replace(rig, "effectors: [left_eye, right_eye]", "effectors: [left_eye, rigth_eye]"));
   EXPECT_NE(unknown.find("expected an effector of the rig's kinematics, found 'rigth_eye'"), std::string::npos) << unknown;
-  EXPECT_EQ(unknown.rfind(":", 0), 0u);  // file:line:col first
+  EXPECT_EQ(unknown.rfind(':', 0), 0u);  // file:line:col first
   const std::string units =
       look_at_error(testing::replace(testing::replace(rig, "eye_l_pan:      {unit: deg", "eye_l_pan:      {unit: step"),
                                      "channel: eye_l_pan}", "channel: eye_l_pan, scale: 0.01}"));
