@@ -138,8 +138,11 @@ TEST(IdleLookAt, MistakesAreNamedWhereTheyStand) {
   const std::string headless = look_at_error(testing::replace(rig, "effectors: [left_eye, right_eye]", "effectors: [eyes]"));
   EXPECT_NE(headless.find("has no joint of its own below the head's"), std::string::npos) << headless;
   // A head channel that drives no joint cannot turn the head through the kinematics.
-  std::string unbound = testing::replace(rig, "  lid_left:       {unit:", "  brow:           {unit: deg, min: -10, max: 10, rest: 0}\n  lid_left:       {unit:");
-  unbound = testing::replace(unbound, "  - {channel: lid_left, ", "  - {channel: brow,          link: head, device_channel: 7, calibration: {min_us: 1000, max_us: 2000}}\n  - {channel: lid_left, ");
+  std::string unbound = testing::replace(
+      rig, "  lid_left:       {unit:", "  brow:           {unit: deg, min: -10, max: 10, rest: 0}\n  lid_left:       {unit:");
+  unbound = testing::replace(unbound, "  - {channel: lid_left, ",
+                             "  - {channel: brow,          link: head, device_channel: 7, calibration: {min_us: 1000, max_us: "
+                             "2000}}\n  - {channel: lid_left, ");
   unbound = testing::replace(unbound, "tilt: neck_tilt, follow", "tilt: brow, follow");
   const std::string head = look_at_error(unbound);
   EXPECT_NE(head.find("channel 'brow' drives no joint of it"), std::string::npos) << head;
