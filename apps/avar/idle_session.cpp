@@ -17,7 +17,7 @@ playback::IdleSpec idle_spec_of(const rig::Rig& rig) {
 }  // namespace
 
 IdleSession::IdleSession(const rig::Rig& rig, const playback::Show& show, std::uint64_t seed)
-    : seed_(seed), idle_(idle_spec_of(rig), seed, control::show_drives(rig, show)) {}
+    : seed_(seed), idle_(idle_spec_of(rig), seed, control::show_drives(rig, show), rig.kinematics ? &*rig.kinematics : nullptr) {}
 
 control::LiveLayer* IdleSession::layers(control::LiveLayer* above) {
   if (!above) return &idle_;
@@ -29,6 +29,10 @@ void IdleSession::describe(std::ostream& out) const {
   const playback::IdleGenerator& g = idle_.generator();
   out << "  idle: seed " << seed_ << " (repeat with --seed " << seed_ << ")";
   if (g.gaze()) out << ", " << g.gaze()->saccades() << " saccades";
+  if (const control::GazeLookAt* look = idle_.look_at()) {
+    const control::IkStats& s = look->stats();
+    out << " (eyes aimed: " << s.converged << " converged, " << s.degraded << " out of reach, " << s.failed << " failed)";
+  }
   out << '\n';
 }
 

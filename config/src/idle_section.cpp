@@ -1,6 +1,7 @@
 #include "avar/config/idle_section.hpp"
 
 #include "idle_section.hpp"
+#include "idle_gaze_look_at.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -121,24 +122,34 @@ double idle_degrees_per_unit(const rig::ChannelSpec& c, const YamlRef& where) {
 playback::GazeSpec read_gaze(const rig::Rig& rig, const YamlRef& node, std::vector<const char*>& owner) {
   const std::string what = "the gaze";
   node.expect_map(what);
-  node.expect_only_keys({"eyes", "head", "field", "fixation_s", "near"}, what);
+  node.expect_only_keys({"eyes", "head", "field", "fixation_s", "near", "look_at", "distance"}, what);
   playback::GazeSpec s;
-  const YamlRef eyes = node.at("eyes", what);
-  eyes.expect_map("eyes ({pan: CH, tilt: CH} or {left_pan: CH, right_pan: CH, tilt: CH})");
-  eyes.expect_only_keys({"pan", "tilt", "left_pan", "right_pan"}, "eyes");
+  // Eye channels moved by offsets, or (look_at) eye effectors aimed through the kinematics.
+  const bool look_at = node.has("look_at");
+  if (look_at && node.has("eyes")) node.at("eyes", what).fail("expected either eyes (channels) or look_at (effectors), not both");
+  if (!look_at && node.has("distance"))
+    node.at("distance", what).fail("distance is for look-at gaze (look_at: {effectors}); eye channels take near");
+  if (look_at && node.has("near"))
+    node.at("near", what).fail("near is for eye channels; look-at gaze takes distance: {far, near, near_probability}");
   const auto channel_at = [&](const YamlRef& map, std::string_view key, std::optional<std::size_t>& out) {
     if (auto n = map.find(key)) {
       out = idle_channel(rig, *n, std::string(key) + " channel");
       idle_claim(owner, *out, "gaze", *n, rig);
     }
   };
-  channel_at(eyes, "pan", s.eyes_pan);
-  channel_at(eyes, "left_pan", s.left_pan);
-  channel_at(eyes, "right_pan", s.right_pan);
-  channel_at(eyes, "tilt", s.eyes_tilt);
-  if (s.left_pan.has_value() != s.right_pan.has_value()) eyes.fail("expected both left_pan and right_pan, or neither");
-  if (s.eyes_pan && s.left_pan) eyes.fail("expected either pan or left_pan and right_pan, not both");
-  if (!s.eyes_pan && !s.left_pan && !s.eyes_tilt) eyes.fail("expected at least one eye channel (pan, left_pan/right_pan, tilt)");
+  if (!look_at) {
+    const YamlRef eyes = node.at("eyes", what);
+    eyes.expect_map("eyes ({pan: CH, tilt: CH} or {left_pan: CH, right_pan: CH, tilt: CH})");
+    eyes.expect_only_keys({"pan", "tilt", "left_pan", "right_pan"}, "eyes");
+    channel_at(eyes, "pan", s.eyes_pan);
+    channel_at(eyes, "left_pan", s.left_pan);
+    channel_at(eyes, "right_pan", s.right_pan);
+    channel_at(eyes, "tilt", s.eyes_tilt);
+    if (s.left_pan.has_value() != s.right_pan.has_value()) eyes.fail("expected both left_pan and right_pan, or neither");
+    if (s.eyes_pan && s.left_pan) eyes.fail("expected either pan or left_pan and right_pan, not both");
+    if (!s.eyes_pan && !s.left_pan && !s.eyes_tilt)
+      eyes.fail("expected at least one eye channel (pan, left_pan/right_pan, tilt)");
+  }
   if (auto head = node.find("head")) {
     head->expect_map("head ({pan: CH, tilt: CH, follow, delay_s, smoothing_s})");
     head->expect_only_keys({"pan", "tilt", "follow", "delay_s", "smoothing_s"}, "head");
@@ -161,10 +172,14 @@ playback::GazeSpec read_gaze(const rig::Rig& rig, const YamlRef& node, std::vect
     if (auto p = field->find("pan")) std::tie(s.pan_min, s.pan_max) = idle_range(*p, "the field's pan", false);
     if (auto t = field->find("tilt")) std::tie(s.tilt_min, s.tilt_max) = idle_range(*t, "the field's tilt", false);
   }
-  for (const auto& c : {s.eyes_pan, s.left_pan, s.right_pan}) room(c, s.pan_min, s.pan_max);
-  room(s.eyes_tilt, s.tilt_min, s.tilt_max);
-  if (!s.eyes_tilt) s.tilt_min = s.tilt_max = 0;
-  if (!s.eyes_pan && !s.left_pan) s.pan_min = s.pan_max = 0;
+  if (look_at) {
+    read_gaze_look_at(rig, node, s, owner);  // the field is in degrees of the gaze's direction
+  } else {
+    for (const auto& c : {s.eyes_pan, s.left_pan, s.right_pan}) room(c, s.pan_min, s.pan_max);
+    room(s.eyes_tilt, s.tilt_min, s.tilt_max);
+    if (!s.eyes_tilt) s.tilt_min = s.tilt_max = 0;
+    if (!s.eyes_pan && !s.left_pan) s.pan_min = s.pan_max = 0;
+  }
   if (s.pan_min > s.pan_max || s.tilt_min > s.tilt_max)
     node.fail("the gaze field does not overlap the eye channels' ranges (inside their soft margins)");
   if (auto f = node.find("fixation_s")) std::tie(s.fixation_min, s.fixation_max) = idle_range(*f, "fixation_s", true);

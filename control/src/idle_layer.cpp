@@ -20,6 +20,12 @@ std::vector<MixerLayer> idle_mixer_layers(const std::vector<std::size_t>& channe
   return layers;
 }
 
+std::unique_ptr<GazeLookAt> idle_layer_look_at(const playback::IdleSpec& spec, const rig::RigKinematics* kinematics) {
+  if (!spec.gaze || !spec.gaze->look_at) return nullptr;
+  if (!kinematics) throw std::invalid_argument("look-at gaze needs the rig's kinematics");
+  return std::make_unique<GazeLookAt>(*kinematics, *spec.gaze->look_at, spec.limits);
+}
+
 }  // namespace
 
 std::vector<char> show_drives(const rig::Rig& rig, const playback::Show& show) {
@@ -37,8 +43,10 @@ std::vector<char> show_drives(const rig::Rig& rig, const playback::Show& show) {
   return drives;
 }
 
-IdleLayer::IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::vector<char> show_drives)
-    : idle_(spec, seed),
+IdleLayer::IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::vector<char> show_drives,
+                     const rig::RigKinematics* kinematics)
+    : look_at_(idle_layer_look_at(spec, kinematics)),
+      idle_(spec, seed),
       show_drives_(std::move(show_drives)),
       channels_(idle_layer_channels(idle_)),
       layer_of_(spec.limits.size(), channels_.size()),
@@ -49,6 +57,7 @@ IdleLayer::IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::ve
                                 std::to_string(spec.limits.size()));
   for (std::size_t i = 0; i < channels_.size(); ++i) layer_of_[channels_[i]] = i;
   for (std::size_t c = 0; c < idle_frame_.size(); ++c) idle_frame_[c] = spec.limits[c].rest;
+  idle_.set_gaze_aim(look_at_.get());
 }
 
 bool IdleLayer::show_playing() const noexcept {
@@ -60,6 +69,11 @@ bool IdleLayer::show_playing() const noexcept {
 
 void IdleLayer::apply(double now_s, std::span<double> frame) noexcept {
   if (frame.size() != idle_frame_.size()) return;
+  // The channels idle leaves alone pose the figure as the layers under it do (the look-at
+  // eyes are aimed with it).
+  const std::span<const char> drives = idle_.drives();
+  for (std::size_t c = 0; c < frame.size(); ++c)
+    if (!drives[c]) idle_frame_[c] = frame[c];
   idle_.sample(now_s, idle_frame_);
   const bool playing = show_playing();
   for (std::size_t i = 0; i < channels_.size(); ++i) {

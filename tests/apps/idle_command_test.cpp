@@ -80,6 +80,35 @@ TEST(IdleCommand, IdleAloneStaysWithinEveryLimitAndASeedRepeatsIt) {
   EXPECT_LT(lid_lowest, 10);  // the lids blinked
 }
 
+TEST(IdleCommand, LookAtGazeConvergesTheEyesOnNearTargetsThroughTheKinematics) {
+  const std::string rig_path = std::string(AVAR_SOURCE_DIR) + "/examples/rigs/gaze-eyes.yaml";
+  const rig::Rig rig = config::load_rig_file(rig_path);
+  const std::string path = testing::temp_path("look_at.csv");
+  const testing::CliResult run =
+      testing::run_avar({"idle", "--rig", rig_path, "--sim", "--fast", "--duration", "20", "--seed", "5", "--trace", path});
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("saccades (eyes aimed: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(" 0 failed)"), std::string::npos) << run.out;
+  const IdleTrace trace(path);
+  // Each eye turns inwards by atan(0.032 / distance): about 0.9° for a far target (2 m), 6.1° for
+  // a near one (0.3 m), so the two pans differ by 1.8° or up to 12.2° (less off to a side).
+  double widest = 0, narrowest = 1e9;
+  for (std::size_t k = trace.first_running() + 100; k < trace.rows.size(); ++k) {
+    if (trace.rows[k][trace.column("phase")] != "running") break;
+    const double apart = trace.at(k, "eye_r_pan.target") - trace.at(k, "eye_l_pan.target");
+    widest = std::max(widest, apart);
+    narrowest = std::min(narrowest, apart);
+    for (const rig::ChannelSpec& ch : rig.channels) {
+      ASSERT_GE(trace.at(k, ch.name + ".command"), ch.min) << ch.name;
+      ASSERT_LE(trace.at(k, ch.name + ".command"), ch.max) << ch.name;
+    }
+  }
+  EXPECT_GT(widest, 9);
+  EXPECT_LT(widest, 12.5);
+  EXPECT_GT(narrowest, 1.0);
+  EXPECT_LT(narrowest, 1.9);
+}
+
 TEST(IdleCommand, PlayWithIdleKeepsTheShowOnItsChannelsAndIdleBeforeAndAfter) {
   const std::string show = testing::write_temp_file("roll.yaml",
                                                     "name: roll\nduration: 4\ntracks:\n"

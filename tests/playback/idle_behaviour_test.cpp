@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
+#include <span>
 #include <vector>
 
 #include "avar/playback/runtime/breathing_generator.hpp"
@@ -229,6 +231,78 @@ TEST(IdleGaze, NearTargetsTurnTheEyesInwards) {
   while (gaze.saccades() < 3) gaze.sample(t += 0.001, frame);
   while (t < gaze.saccade_start() + gaze.last_saccade_s() + 0.01) gaze.sample(t += 0.001, frame);
   EXPECT_NEAR(frame[8] - frame[7], 2 * g.vergence, 1e-9);
+}
+
+/// Records the points look-at gaze asks for and marks the frame where the eyes would go.
+class IdleRecordingAim final : public GazeAim {
+ public:
+  void aim(const GazePoint& point, std::span<double> frame) noexcept override {
+    last = point;
+    ++calls;
+    frame[7] = point.pan_deg;
+    frame[8] = -point.pan_deg;
+  }
+  GazePoint last;
+  std::uint64_t calls = 0;
+};
+
+TEST(IdleGaze, LookAtDrawsFarOrNearPointsWithinTheEyesLimitsAndTurnsTheHeadInItsUnits) {
+  IdleSpec spec;
+  spec.limits = idle_test_limits();
+  GazeSpec g;
+  g.head_pan = 0;
+  g.head_tilt = 1;
+  g.pan_min = -20;
+  g.pan_max = 20;
+  g.near_probability = 0.3;
+  GazeLookAt look;
+  look.eye_channels = {7, 8};
+  look.far_m = 2;
+  look.near_m = 0.3;
+  look.half_interocular_m = 0.032;
+  look.eye_limits = {-30, 30, 0, 0, 300, 3000, 60000};
+  look.head_units_per_degree = {-2, 0.5};  // a reversed pan servo; a tilt in half degrees
+  g.look_at = look;
+  spec.gaze = g;
+  IdleGenerator idle(spec, 17);
+  EXPECT_TRUE(idle.drives()[7] && idle.drives()[8]);
+  IdleRecordingAim aim;
+  idle.set_gaze_aim(&aim);
+  const GazeGenerator& gaze = *idle.gaze();
+  std::vector<double> frame(spec.limits.size(), 0.0);
+  const double dt = 0.002;
+  std::uint64_t samples = 0, seen = 0, near = 0;
+  GazePoint previous;
+  double worst_rate = 0;
+  for (double t = 0; t < 150; t += dt) {
+    idle.sample(t, frame);
+    ++samples;
+    // The head in its channels' units; the aim asked once per sample, after the head moved.
+    ASSERT_NEAR(frame[0], std::clamp(-2 * gaze.head_pan(), spec.limits[0].low(), spec.limits[0].high()), 1e-9);
+    ASSERT_NEAR(frame[1], std::clamp(0.5 * gaze.head_tilt(), spec.limits[1].low(), spec.limits[1].high()), 1e-9);
+    ASSERT_EQ(aim.calls, samples);
+    ASSERT_DOUBLE_EQ(frame[7], std::clamp(aim.last.pan_deg, spec.limits[7].low(), spec.limits[7].high()));
+    // The direction (and the eyes' inward turn) moves within 80 % of the eyes' limits in degrees.
+    if (samples > 1) {
+      const double vergence =
+          look.half_interocular_m * std::abs(1 / aim.last.distance_m - 1 / previous.distance_m) * 180 / std::numbers::pi;
+      worst_rate = std::max(
+          worst_rate,
+          (std::abs(aim.last.pan_deg - previous.pan_deg) + std::abs(aim.last.tilt_deg - previous.tilt_deg) + vergence) / dt);
+    }
+    previous = aim.last;
+    if (gaze.saccades() != seen && seen > 0) {
+      // The last fixation was on a point far or near.
+      const bool is_near = std::abs(previous.distance_m - 0.3) < 1e-9;
+      EXPECT_TRUE(is_near || std::abs(previous.distance_m - 2) < 1e-9) << previous.distance_m;
+      near += is_near ? 1 : 0;
+    }
+    seen = gaze.saccades();
+  }
+  EXPECT_GT(seen, 80u);
+  EXPECT_NEAR(static_cast<double>(near) / static_cast<double>(seen), 0.3, 0.12);
+  EXPECT_LE(worst_rate, kGazeSaccadeShare * look.eye_limits.max_velocity * (1 + 1e-6));
+  EXPECT_GT(worst_rate, 0.3 * look.eye_limits.max_velocity);  // real saccades
 }
 
 TEST(IdleBreathing, CyclesStayWithinTheirJitterAndJoinSmoothly) {

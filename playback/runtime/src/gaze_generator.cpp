@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "avar/playback/runtime/min_jerk.hpp"
 
@@ -10,6 +11,11 @@ namespace avar::playback {
 namespace {
 
 constexpr double kGazeHeadStep = 0.005;  // s, the head filter's longest integration step
+
+/// Look-at gaze: the vergence of a target `distance` m away, as its inverse distance (1/m): the
+/// target's distance moves evenly in it, as each eye's inward turn atan(half interocular ×
+/// 1/distance) nearly does.
+double gaze_inverse_distance(double distance) noexcept { return 1.0 / distance; }
 
 double gaze_channel_speed(const std::optional<std::size_t>& c, std::span<const IdleChannelLimits> limits) noexcept {
   return c ? limits[*c].max_velocity : std::numeric_limits<double>::infinity();
@@ -22,26 +28,55 @@ double saccade_duration(double amplitude_deg) noexcept { return 0.021 + 0.0022 *
 GazeGenerator::GazeGenerator(const GazeSpec& spec, std::span<const IdleChannelLimits> limits, std::uint64_t seed)
     : spec_(spec), limits_(limits.begin(), limits.end()), random_(seed) {
   // The head's counter-turn must leave the eyes their share: its speed is capped by the eyes'.
-  const double eye_pan_speed = std::min({gaze_channel_speed(spec_.eyes_pan, limits), gaze_channel_speed(spec_.left_pan, limits),
-                                         gaze_channel_speed(spec_.right_pan, limits)});
-  const double eye_tilt_speed = gaze_channel_speed(spec_.eyes_tilt, limits);
+  std::array<double, 2> eye_speed{};
+  if (spec_.look_at) {
+    // Gaze units are degrees; the eyes' limits come in degrees of gaze, the head's are converted.
+    eye_speed = {spec_.look_at->eye_limits.max_velocity, spec_.look_at->eye_limits.max_velocity};
+    head_scale_ = spec_.look_at->head_units_per_degree;
+    gaze_[2] = from_[2] = to_[2] = gaze_inverse_distance(spec_.look_at->far_m);
+  } else {
+    eye_speed = {std::min({gaze_channel_speed(spec_.eyes_pan, limits), gaze_channel_speed(spec_.left_pan, limits),
+                           gaze_channel_speed(spec_.right_pan, limits)}),
+                 gaze_channel_speed(spec_.eyes_tilt, limits)};
+  }
   const std::array<std::optional<std::size_t>, 2> head{spec_.head_pan, spec_.head_tilt};
-  const std::array<double, 2> eye_speed{eye_pan_speed, eye_tilt_speed};
   for (std::size_t a = 0; a < 2; ++a) {
     if (!head[a]) continue;
-    head_speed_cap_[a] = std::min(kGazeSaccadeShare * limits[*head[a]].max_velocity, kGazeHeadShare * eye_speed[a]);
-    head_accel_cap_[a] = kGazeSaccadeShare * limits[*head[a]].max_acceleration;
+    const double units = std::max(std::abs(head_scale_[a]), 1e-12);  // head channel units per gaze unit
+    head_speed_cap_[a] = std::min(kGazeSaccadeShare * limits[*head[a]].max_velocity / units, kGazeHeadShare * eye_speed[a]);
+    head_accel_cap_[a] = kGazeSaccadeShare * limits[*head[a]].max_acceleration / units;
   }
+}
+
+void GazeGenerator::aim_eyes(std::span<double> frame) noexcept {
+  if (spec_.look_at && aim_) aim_->aim(gaze_point(), frame);
+}
+
+GazePoint GazeGenerator::gaze_point() const noexcept {
+  return {gaze_[0], gaze_[1], gaze_[2] > 0 ? 1.0 / gaze_[2] : std::numeric_limits<double>::infinity()};
 }
 
 void GazeGenerator::begin_saccade(double t) noexcept {
   from_ = gaze_;
   to_[0] = random_.uniform(spec_.pan_min, spec_.pan_max);
   to_[1] = random_.uniform(spec_.tilt_min, spec_.tilt_max);
-  to_[2] = random_.chance(spec_.near_probability) ? spec_.vergence : 0.0;
+  const bool near = random_.chance(spec_.near_probability);
+  if (spec_.look_at) to_[2] = gaze_inverse_distance(near ? spec_.look_at->near_m : spec_.look_at->far_m);
+  else to_[2] = near ? spec_.vergence : 0.0;
   const double dpan = to_[0] - from_[0], dtilt = to_[1] - from_[1], dverg = to_[2] - from_[2];
   amplitude_ = std::hypot(dpan, dtilt);
   double d = saccade_duration(amplitude_);
+  // Look-at: the target's direction and vergence move along the minimum-jerk profile and the eyes
+  // are solved for it every sample (the head moves on through the fixations, so the eyes need a
+  // solve per sample to counter-turn anyway, and the sight line sweeps straight to the target).
+  // No eye joint turns faster than the direction's pan, tilt and vergence together (a pan-tilt
+  // eye turns by at most that much of one of them per degree of gaze), times the parallax gain
+  // of a near target, which eye_limits already takes off the joints' limits. Each eye's inward
+  // turn atan(h/distance) changes by at most h × the change of 1/distance (radians).
+  if (spec_.look_at) {
+    const double dverg_deg = spec_.look_at->half_interocular_m * std::abs(dverg) * 180 / std::numbers::pi;
+    d = min_jerk_duration(std::abs(dpan) + std::abs(dtilt) + dverg_deg, spec_.look_at->eye_limits, kGazeSaccadeShare, d);
+  }
   // Each eye channel moves its own component (a per-eye pan also its vergence).
   if (spec_.eyes_pan) d = min_jerk_duration(dpan, limits_[*spec_.eyes_pan], kGazeSaccadeShare, d);
   if (spec_.left_pan) d = min_jerk_duration(std::abs(dpan) + std::abs(dverg), limits_[*spec_.left_pan], kGazeSaccadeShare, d);
@@ -96,6 +131,11 @@ void GazeGenerator::sample(double t, std::span<double> frame) noexcept {
     const IdleChannelLimits& l = limits_[*channel];
     frame[*channel] = std::clamp(l.rest + about_rest, l.low(), l.high());
   };
+  if (spec_.look_at) {
+    put(spec_.head_pan, head_[0] * head_scale_[0]);
+    put(spec_.head_tilt, head_[1] * head_scale_[1]);
+    return;
+  }
   const double head_pan = spec_.head_pan ? head_[0] : 0.0;
   const double head_tilt = spec_.head_tilt ? head_[1] : 0.0;
   put(spec_.eyes_pan, gaze_[0] - head_pan);

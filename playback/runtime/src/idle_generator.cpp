@@ -45,6 +45,8 @@ IdleGenerator::IdleGenerator(const IdleSpec& spec, std::uint64_t seed)
     const GazeSpec& g = *spec_.gaze;
     for (const auto& c : {g.eyes_pan, g.eyes_tilt, g.left_pan, g.right_pan, g.head_pan, g.head_tilt})
       if (c) mark(*c, "gaze", true);
+    if (g.look_at)
+      for (const std::size_t c : g.look_at->eye_channels) mark(c, "gaze", true);
     gaze_.emplace(g, spec_.limits, behaviour_seed(seed, 2));
   }
   if (spec_.breathing) {
@@ -66,6 +68,12 @@ void IdleGenerator::sample(double t, std::span<double> frame) noexcept {
   if (breathing_) breathing_->add(t, frame);
   for (std::size_t c = 0; c < frame.size(); ++c)
     if (drives_[c]) frame[c] = std::clamp(frame[c], spec_.limits[c].low(), spec_.limits[c].high());
+  // Look-at eyes last: they are aimed with the head where noise and breathing have put it.
+  if (gaze_ && spec_.gaze->look_at) {
+    gaze_->aim_eyes(frame);
+    for (const std::size_t c : spec_.gaze->look_at->eye_channels)
+      frame[c] = std::clamp(frame[c], spec_.limits[c].low(), spec_.limits[c].high());
+  }
 }
 
 }  // namespace avar::playback

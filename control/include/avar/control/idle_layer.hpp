@@ -9,11 +9,13 @@
 // Construction allocates; apply() is real-time safe (loop thread).
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "avar/control/control_mixer.hpp"
 #include "avar/control/controller.hpp"
+#include "avar/control/gaze_look_at.hpp"
 #include "avar/control/live_layer.hpp"
 #include "avar/playback/runtime/idle_generator.hpp"
 #include "avar/playback/runtime/show.hpp"
@@ -29,7 +31,11 @@ class IdleLayer final : public LiveLayer {
  public:
   /// `show_drives`: per frame channel (spec.limits.size()), 1 where the show drives it. Without
   /// watch(), the show counts as never playing (idle drives every one of its channels).
-  IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::vector<char> show_drives);
+  /// `kinematics` (copied; needed when the gaze is look-at, ignored otherwise) aims the eyes; they
+  /// are solved with the figure posed as the frame under idle, and idle's own channels as idle
+  /// puts them. Throws std::invalid_argument for look-at gaze without kinematics.
+  IdleLayer(const playback::IdleSpec& spec, std::uint64_t seed, std::vector<char> show_drives,
+            const rig::RigKinematics* kinematics = nullptr);
 
   /// Follows `controller`'s show clock (borrowed; outlives this layer): the show plays from
   /// show time 0 to Controller::show_end().
@@ -39,12 +45,15 @@ class IdleLayer final : public LiveLayer {
 
   const playback::IdleGenerator& generator() const noexcept { return idle_; }
   const ControlMixer& mixer() const noexcept { return mixer_; }
+  /// Look-at gaze's eye solver, when the gaze is look-at.
+  const GazeLookAt* look_at() const noexcept { return look_at_.get(); }
   /// The eased weight idle had on `channel` at the last apply (0 where it does not drive it).
   double weight(std::size_t channel) const noexcept;
 
  private:
   bool show_playing() const noexcept;
 
+  std::unique_ptr<GazeLookAt> look_at_;  ///< on the heap: the generator keeps its address
   playback::IdleGenerator idle_;
   std::vector<char> show_drives_;
   std::vector<std::size_t> channels_;  ///< mixer layer -> channel

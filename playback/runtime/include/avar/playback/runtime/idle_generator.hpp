@@ -33,6 +33,10 @@ class IdleGenerator {
   std::span<const char> drives() const noexcept { return drives_; }
   const IdleSpec& spec() const noexcept { return spec_; }
   const std::optional<GazeGenerator>& gaze() const noexcept { return gaze_; }
+  /// Look-at gaze: what aims the eyes (GazeGenerator::set_aim); borrowed, outlives this.
+  void set_gaze_aim(GazeAim* aim) noexcept {
+    if (gaze_) gaze_->set_aim(aim);
+  }
   const std::optional<BlinkGenerator>& blinks() const noexcept { return blinks_; }
 
  private:
