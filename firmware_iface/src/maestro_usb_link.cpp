@@ -74,7 +74,10 @@ Status MaestroUsbLink::read_records() noexcept {
   std::size_t got = 0;
   const Status s = transfer(maestro_usb::get_positions(config_.channel_count), reply_, &got);
   if (s != Status::ok) return s;
-  if (got != reply_.size()) return Status::bad_data;
+  if (got != reply_.size()) {
+    AtomicLinkCounters::add(counters_.framing_errors);  // a short reply: counted, as a bus counts a broken packet
+    return Status::bad_data;
+  }
   AtomicLinkCounters::add(counters_.replies);
   return Status::ok;
 }
