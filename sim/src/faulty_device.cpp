@@ -17,6 +17,7 @@ bool FaultyDevice::chance(double p) {
 }
 
 void FaultyDevice::receive(std::span<const std::uint8_t> bytes) {
+  bytes_received_ += bytes.size();
   if (chance(plan_.drop_command)) {
     ++counts_.commands_dropped;
     return;

@@ -17,7 +17,9 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/sim/faulty_device.hpp"
+#include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/sim/faulty_usb_device.hpp"
+#include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/sim_wire.hpp"
 #include "avar/sim/usb_device_host.hpp"
 #include "fault_cases.hpp"
@@ -109,6 +111,12 @@ class Figure final : public control::Plant, public control::TickObserver {
         wire_ = std::make_unique<sim::SimWire>(*faulty_, rig.links[0].baud, 0, "simulated wire");
         link_ = protocol.make_link(rig, 0, *wire_, {});
         break;
+      case Carrier::pty:
+        faulty_ = std::make_unique<sim::FaultyDevice>(*device_.device, sim::FaultPlan{});
+        pty_ = std::make_unique<sim::PtyDeviceHost>(*faulty_, sim::PtyDeviceHost::Clock::stepped);
+        serial_ = std::make_unique<firmware_iface::SerialTransport>(pty_->slave_path(), rig.links[0].baud);
+        link_ = protocol.make_link(rig, 0, *serial_, {});
+        break;
       case Carrier::usb:
         faulty_usb_ = std::make_unique<sim::FaultyUsbDevice>(*device_.usb_device, sim::FaultPlan{}, kUsbHostTimeoutS);
         usb_host_ = std::make_unique<sim::UsbDeviceHost>(*faulty_usb_, device_.usb_name);
@@ -127,6 +135,10 @@ class Figure final : public control::Plant, public control::TickObserver {
   void advance(double dt_s) override {
     switch (pc_.carrier) {
       case Carrier::serial: faulty_->advance(dt_s); break;
+      case Carrier::pty:
+        // Stepped time: the device first takes in everything sent, then moves by the tick.
+        (void)pty_->wait_consumed(serial_->bytes_written(), std::chrono::seconds(2));
+        break;
       case Carrier::usb: usb_host_->with_device([&](sim::UsbControlDevice& d) { d.advance(dt_s); }); break;
       case Carrier::network: {
         const std::uint64_t before = device_.network_node->counters().packets;
@@ -135,7 +147,10 @@ class Figure final : public control::Plant, public control::TickObserver {
         break;
       }
     }
-    check_device_within_limits();
+    on_device([&] {
+      if (pc_.carrier == Carrier::pty) faulty_->advance(dt_s);
+      check_device_within_limits();
+    });
   }
 
   void after_tick(std::uint64_t, double now_s, double, double, control::Controller& controller) override {
@@ -153,7 +168,7 @@ class Figure final : public control::Plant, public control::TickObserver {
   void finish(control::Controller& controller) {
     if (injecting_) set_fault(false);
     out_.after = link_->counters();
-    if (faulty_) out_.injected = faulty_->counts();
+    if (faulty_) on_device([&] { out_.injected = faulty_->counts(); });
     if (faulty_usb_) out_.injected = faulty_usb_->counts();
     if (path_) out_.injected = path_->counts();
     if (device_.network_node) out_.node_out_of_order = device_.network_node->counters().out_of_order;
@@ -172,13 +187,20 @@ class Figure final : public control::Plant, public control::TickObserver {
   void set_fault(bool on) {
     injecting_ = on;
     const sim::FaultPlan plan = on ? plan_for(kind_, pc_.carrier, seed_) : sim::FaultPlan{};
-    if (faulty_) faulty_->set_plan(plan);
+    if (faulty_) on_device([&] { faulty_->set_plan(plan); });
     if (faulty_usb_) faulty_usb_->set_plan(plan);
     if (path_) path_->set_plan(plan);
     if (kind_ != FaultKind::disconnect) return;
     if (wire_) wire_->set_connected(!on);
     if (usb_host_) usb_host_->set_plugged(!on);
     if (path_) path_->set_connected(!on);
+  }
+
+  /// Runs f with the device to itself (under its pseudo-terminal host's lock where it has one).
+  template <class F>
+  void on_device(F&& f) {
+    if (pty_) pty_->with_device([&](sim::ByteDevice&) { f(); });
+    else f();
   }
 
   void check_device_within_limits() {
@@ -201,6 +223,8 @@ class Figure final : public control::Plant, public control::TickObserver {
   assembly::SimulatedDevice device_;
   std::unique_ptr<sim::FaultyDevice> faulty_;
   std::unique_ptr<sim::SimWire> wire_;
+  std::unique_ptr<sim::PtyDeviceHost> pty_;
+  std::unique_ptr<firmware_iface::SerialTransport> serial_;
   std::unique_ptr<sim::FaultyUsbDevice> faulty_usb_;
   std::unique_ptr<sim::UsbDeviceHost> usb_host_;
   std::unique_ptr<FaultyDatagramPath> path_;

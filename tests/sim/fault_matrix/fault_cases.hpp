@@ -24,18 +24,20 @@ inline const char* fault_name(FaultKind f) {
 /// How the link reaches its device, which decides where faults are injected.
 enum class Carrier {
   serial,   ///< bytes on a serial line: FaultyDevice behind a SimWire (the real driver's transport seam)
+  pty,      ///< the same, served on a pseudo-terminal to the real SerialTransport
   usb,      ///< control transfers: FaultyUsbDevice behind a UsbDeviceHost
   network,  ///< UDP datagrams: FaultyDatagramPath between the link's socket and the node
 };
 
 /// Why a cell does not apply (an index into kNotApplicableReasons), or kApplies.
 inline constexpr int kApplies = -1;
-inline constexpr std::array<const char*, 5> kNotApplicableReasons{
+inline constexpr std::array<const char*, 6> kNotApplicableReasons{
     "the driver reads nothing while the show plays (write only): a reply fault cannot reach it",
     "USB control transfers are CRC-checked, retried and delivered whole by the host controller",
     "one-way UDP: the link reads nothing back",
     "UDP's checksum drops a corrupted datagram on the way: that is the drop column",
     "UDP delivers a datagram whole or not at all",
+    "a pseudo-terminal cannot be unplugged: the in-memory wire rows cover the reopen",
 };
 
 struct ProtocolCase {
@@ -51,6 +53,8 @@ struct ProtocolCase {
 inline constexpr std::array<int, kFaultCount> kWriteOnly{kApplies, 0, 0, 0, 0, 0, kApplies, 0, kApplies};
 inline constexpr std::array<int, kFaultCount> kReadsReplies{kApplies, kApplies, kApplies, kApplies, kApplies,
                                                             kApplies, kApplies, kApplies, kApplies};
+inline constexpr std::array<int, kFaultCount> kPty{kApplies, kApplies, kApplies, kApplies, kApplies,
+                                                  kApplies, 5,        kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, 1};
 inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies, kApplies, kApplies, kApplies, 2, 2};
 
@@ -60,8 +64,8 @@ inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies,
   "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"         \
   "  b: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"
 
-inline const std::array<ProtocolCase, 11>& protocol_cases() {
-  static const std::array<ProtocolCase, 11> cases{{
+inline const std::array<ProtocolCase, 12>& protocol_cases() {
+  static const std::array<ProtocolCase, 12> cases{{
       {"maestro_serial", Carrier::serial,
        "name: fm-maestro\n" AVAR_FM_CHANNELS
        "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, maestro: {model: mini12}}\n"
@@ -97,6 +101,13 @@ inline const std::array<ProtocolCase, 11>& protocol_cases() {
        "  - {channel: a, link: bus, id: 1, calibration: {min_position: 1024, max_position: 3072}}\n"
        "  - {channel: b, link: bus, id: 2, calibration: {min_position: 1024, max_position: 3072, reverse: true}}\n",
        kReadsReplies},
+      {"dynamixel_pty", Carrier::pty,
+       "name: fm-dynamixel-pty\n" AVAR_FM_CHANNELS
+       "links:\n  bus: {port: sim, baud: 1000000, watchdog_ms: 200, dynamixel: {readback: full, reply_timeout_ms: 10}}\n"
+       "actuators:\n"
+       "  - {channel: a, link: bus, id: 1, calibration: {min_position: 1024, max_position: 3072}}\n"
+       "  - {channel: b, link: bus, id: 2, calibration: {min_position: 1024, max_position: 3072, reverse: true}}\n",
+       kPty},
       {"feetech", Carrier::serial,
        "name: fm-feetech\n" AVAR_FM_CHANNELS
        "links:\n  bus: {port: sim, baud: 1000000, watchdog_ms: 200, feetech: {series: sts, readback: full, reply_timeout_ms: 5}}\n"

@@ -59,7 +59,8 @@ class FaultyDevice final : public ByteDevice {
   void receive(std::span<const std::uint8_t> bytes) override;
   std::size_t take_replies(std::span<std::uint8_t> out) override;
   void advance(double dt_s) override;
-  std::uint64_t bytes_received() const override { return inner_.bytes_received(); }
+  /// Bytes that reached this side of the wire, dropped ones included (what a host waits on).
+  std::uint64_t bytes_received() const override { return bytes_received_; }
 
  private:
   struct Held {
@@ -78,6 +79,7 @@ class FaultyDevice final : public ByteDevice {
   std::mt19937_64 random_;
   FaultCounts counts_;
   double now_s_ = 0;
+  std::uint64_t bytes_received_ = 0;
   std::deque<Held> held_;           ///< replies on their way, oldest first
   std::deque<std::uint8_t> ready_;  ///< released reply bytes
   std::vector<std::uint8_t> parked_;  ///< a reordered chunk, waiting for the next one to pass it
