@@ -239,8 +239,13 @@ inline CellRun run_cell(const ProtocolCase& pc, FaultKind kind, std::uint64_t se
   const rig::Rig rig = config::load_rig_text(pc.rig_text, std::string(pc.name) + ".yaml");
   const playback::Show show = cell_detail::fault_matrix_show();
   cell_detail::Figure figure(rig, pc, kind, seed, out);
-  if (const Status s = figure.link().start(); s != Status::ok) {
-    out.problem = "start: " + std::string(to_string(s)) + " " + figure.link().start_problem();
+  // Nothing is injected yet. A device on a pseudo-terminal answers from the host's thread, which
+  // a loaded machine may keep from answering a ping within a 10 ms reply timeout: start (which
+  // only pings, clears and configures) may be tried again, as an operator would.
+  Status started = Status::timeout;
+  for (int attempt = 0; attempt < 50 && started != Status::ok; ++attempt) started = figure.link().start();
+  if (started != Status::ok) {
+    out.problem = "start: " + std::string(to_string(started)) + " " + figure.link().start_problem();
     return out;
   }
   out.started = true;
