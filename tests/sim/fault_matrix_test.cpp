@@ -188,8 +188,8 @@ class MatrixPrinter final : public ::testing::Environment {
   void TearDown() override {
     if (matrix_results().empty()) return;
     std::ostringstream out;
-    out << "\nFault matrix (pass: (a) ran through or failed safe within the watchdog, (b) limits held, (c) counted;"
-           " n/a: see the reasons; .: not run)\n\n| protocol |";
+    out << "\nFault matrix (pass: ran through or failed safe within the watchdog, the limits held, the fault was"
+           " counted; n/a: see the reasons; .: not run here)\n\n| protocol |";
     for (FaultKind f : kFaults) out << ' ' << fault_name(f) << " |";
     out << "\n|---|";
     for (std::size_t i = 0; i < kFaultCount; ++i) out << "---|";
@@ -199,7 +199,7 @@ class MatrixPrinter final : public ::testing::Environment {
       for (std::size_t f = 0; f < kFaultCount; ++f) {
         const int reason = protocol_cases()[p].not_applicable[f];
         const auto found = matrix_results().find({p, f});
-        if (reason != kApplies) out << " n/a (" << static_cast<char>('a' + reason) << ") |";
+        if (reason != kApplies) out << " n/a (" << reason + 1 << ") |";
         else if (found == matrix_results().end()) out << " . |";
         else out << (found->second.pass ? " pass |" : " FAIL |");
       }
@@ -207,7 +207,7 @@ class MatrixPrinter final : public ::testing::Environment {
     }
     out << '\n';
     for (std::size_t r = 0; r < kNotApplicableReasons.size(); ++r)
-      out << "(" << static_cast<char>('a' + r) << ") " << kNotApplicableReasons[r] << '\n';
+      out << "(" << r + 1 << ") " << kNotApplicableReasons[r] << '\n';
     out << "\nWhat each cell latched and counted (from the fault's onset):\n\n";
     for (const auto& [key, rec] : matrix_results())
       out << "- " << protocol_cases()[key.first].name << " / " << fault_name(kFaults[key.second]) << ": " << rec.evidence << '\n';
