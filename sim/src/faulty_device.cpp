@@ -25,7 +25,9 @@ void FaultyDevice::receive(std::span<const std::uint8_t> bytes) {
   inner_.receive(bytes);
 }
 
-std::uint8_t FaultyDevice::random_byte() { return static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(random_)); }
+std::uint8_t FaultyDevice::random_byte() {
+  return static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(random_));
+}
 
 void FaultyDevice::collect() {
   std::array<std::uint8_t, 1024> buffer{};

@@ -47,12 +47,15 @@ std::vector<Cell> applicable_cells() {
   return cells;
 }
 
-bool reads_while_playing(const ProtocolCase& pc) { return pc.not_applicable[static_cast<std::size_t>(FaultKind::silent)] == kApplies; }
+bool reads_while_playing(const ProtocolCase& pc) {
+  return pc.not_applicable[static_cast<std::size_t>(FaultKind::silent)] == kApplies;
+}
 
 std::string evidence_of(const CellRun& r) {
   std::ostringstream s;
   if (r.fault.cause == control::FaultCause::none) s << "ran through";
-  else s << control::to_string(r.fault.cause) << " +" << static_cast<int>(std::lround((r.fault.time_s - r.onset_s) * 1000)) << " ms";
+  else
+    s << control::to_string(r.fault.cause) << " +" << static_cast<int>(std::lround((r.fault.time_s - r.onset_s) * 1000)) << " ms";
   const auto delta = [&](const char* name, std::uint64_t a, std::uint64_t b) {
     if (b > a) s << "; " << name << " +" << (b - a);
   };

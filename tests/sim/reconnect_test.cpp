@@ -98,7 +98,7 @@ TEST(Reconnect, AMaestroThatCameBackGetsItsSpeedAndAccelerationLimitsAgain) {
   EXPECT_EQ(count(fw::maestro::kSetSpeed), 2);
   EXPECT_EQ(count(fw::maestro::kSetAcceleration), 2);
   EXPECT_EQ(device.log().back().command, fw::maestro::kSetTarget);  // the limits first, then the frame
-  EXPECT_EQ(device.speed(3), 20);  // 500 µs/s in units of 25 µs/s
+  EXPECT_EQ(device.speed(3), 20);                                   // 500 µs/s in units of 25 µs/s
 }
 
 }  // namespace

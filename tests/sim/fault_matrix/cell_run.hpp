@@ -34,23 +34,23 @@ inline constexpr double kUsbHostTimeoutS = 0.1;  ///< the Maestro USB link's tra
 /// What one cell's run showed.
 struct CellRun {
   bool started = false;
-  std::string problem;                ///< why the run could not be made, for the message
-  control::Fault fault;               ///< the latched fault (cause none: the show ran through)
-  bool link_dead = false;             ///< the controller stopped sending to the link
+  std::string problem;     ///< why the run could not be made, for the message
+  control::Fault fault;    ///< the latched fault (cause none: the show ran through)
+  bool link_dead = false;  ///< the controller stopped sending to the link
   control::Phase end_phase = control::Phase::disabled;
   double show_time_reached = 0;
   double show_end = 0;
   double onset_s = -1, lifted_s = -1;  ///< loop time the fault began and was lifted
-  double watchdog_s = 0;              ///< the link's watchdog (CAN: the heartbeat timeout too)
+  double watchdog_s = 0;               ///< the link's watchdog (CAN: the heartbeat timeout too)
   double tick_s = 0;
   std::vector<double> final_command;  ///< per channel, the last frame the controller sent
   std::vector<double> rest;
-  double worst_excursion = 0;         ///< channel units beyond [min, max] the device ever stood at
+  double worst_excursion = 0;  ///< channel units beyond [min, max] the device ever stood at
   std::string worst_where;
-  firmware_iface::LinkCounters before, after;  ///< the link's counters at onset and at the end
-  sim::FaultCounts injected;                   ///< what the injector did
+  firmware_iface::LinkCounters before, after;                       ///< the link's counters at onset and at the end
+  sim::FaultCounts injected;                                        ///< what the injector did
   std::uint64_t node_out_of_order = 0, node_packets_in_window = 0;  ///< network nodes only
-  std::uint64_t reconnects_after_replug = 0;   ///< disconnect: reopens once the wire came back
+  std::uint64_t reconnects_after_replug = 0;                        ///< disconnect: reopens once the wire came back
   bool resent_after_replug = false;
 };
 

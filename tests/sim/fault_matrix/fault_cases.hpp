@@ -11,13 +11,13 @@ namespace avar::fault_matrix {
 
 enum class FaultKind { drop, corrupt, truncate, delay, duplicate, reorder, disconnect, silent, garbage };
 inline constexpr std::size_t kFaultCount = 9;
-inline constexpr std::array<FaultKind, kFaultCount> kFaults{FaultKind::drop,      FaultKind::corrupt,   FaultKind::truncate,
-                                                            FaultKind::delay,     FaultKind::duplicate, FaultKind::reorder,
-                                                            FaultKind::disconnect, FaultKind::silent,   FaultKind::garbage};
+inline constexpr std::array<FaultKind, kFaultCount> kFaults{FaultKind::drop,       FaultKind::corrupt,   FaultKind::truncate,
+                                                            FaultKind::delay,      FaultKind::duplicate, FaultKind::reorder,
+                                                            FaultKind::disconnect, FaultKind::silent,    FaultKind::garbage};
 
 inline const char* fault_name(FaultKind f) {
-  static constexpr std::array<const char*, kFaultCount> names{"drop",      "corrupt", "truncate", "delay",  "duplicate",
-                                                              "reorder",   "disconnect", "silent", "garbage"};
+  static constexpr std::array<const char*, kFaultCount> names{"drop",    "corrupt",    "truncate", "delay",  "duplicate",
+                                                              "reorder", "disconnect", "silent",   "garbage"};
   return names[static_cast<std::size_t>(f)];
 }
 
@@ -54,14 +54,14 @@ inline constexpr std::array<int, kFaultCount> kWriteOnly{kApplies, 0, 0, 0, 0, 0
 inline constexpr std::array<int, kFaultCount> kReadsReplies{kApplies, kApplies, kApplies, kApplies, kApplies,
                                                             kApplies, kApplies, kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kPty{kApplies, kApplies, kApplies, kApplies, kApplies,
-                                                  kApplies, 5,        kApplies, kApplies};
+                                                   kApplies, 5,        kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, 1};
 inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies, kApplies, kApplies, kApplies, 2, 2};
 
-#define AVAR_FM_CHANNELS                                                                              \
-  "rate_hz: 100\n"                                                                                    \
-  "channels:\n"                                                                                       \
-  "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"         \
+#define AVAR_FM_CHANNELS                                                                      \
+  "rate_hz: 100\n"                                                                            \
+  "channels:\n"                                                                               \
+  "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n" \
   "  b: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"
 
 inline const std::array<ProtocolCase, 12>& protocol_cases() {
@@ -81,15 +81,13 @@ inline const std::array<ProtocolCase, 12>& protocol_cases() {
        "  - {channel: b, link: bus, device_channel: 1, calibration: {min_us: 1100, max_us: 1900, reverse: true}}\n",
        kUsb},
       {"ssc32", Carrier::serial,
-       "name: fm-ssc32\n" AVAR_FM_CHANNELS
-       "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, ssc32: {}}\n"
+       "name: fm-ssc32\n" AVAR_FM_CHANNELS "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, ssc32: {}}\n"
        "actuators:\n"
        "  - {channel: a, link: bus, device_channel: 0, calibration: {min_us: 1000, max_us: 2000}}\n"
        "  - {channel: b, link: bus, device_channel: 5, calibration: {min_us: 1100, max_us: 1900}}\n",
        kWriteOnly},
       {"dmx_enttec", Carrier::serial,
-       "name: fm-dmx\n" AVAR_FM_CHANNELS
-       "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, dmx: {}}\n"
+       "name: fm-dmx\n" AVAR_FM_CHANNELS "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, dmx: {}}\n"
        "actuators:\n"
        "  - {channel: a, link: bus, address: 1}\n"
        "  - {channel: b, link: bus, address: 3, fine: true}\n",
@@ -109,8 +107,8 @@ inline const std::array<ProtocolCase, 12>& protocol_cases() {
        "  - {channel: b, link: bus, id: 2, calibration: {min_position: 1024, max_position: 3072, reverse: true}}\n",
        kPty},
       {"feetech", Carrier::serial,
-       "name: fm-feetech\n" AVAR_FM_CHANNELS
-       "links:\n  bus: {port: sim, baud: 1000000, watchdog_ms: 200, feetech: {series: sts, readback: full, reply_timeout_ms: 5}}\n"
+       "name: fm-feetech\n" AVAR_FM_CHANNELS "links:\n  bus: {port: sim, baud: 1000000, watchdog_ms: 200, feetech: {series: sts, "
+                                             "readback: full, reply_timeout_ms: 5}}\n"
        "actuators:\n"
        "  - {channel: a, link: bus, id: 1, calibration: {min_position: 1024, max_position: 3072}}\n"
        "  - {channel: b, link: bus, id: 2, calibration: {min_position: 1024, max_position: 3072, reverse: true}}\n",
@@ -137,8 +135,7 @@ inline const std::array<ProtocolCase, 12>& protocol_cases() {
        "  - {channel: b, link: bus, protocol: mit, node: 17, gear_ratio: 6, model: mini-cheetah, kp: 40, kd: 1}\n",
        kReadsReplies},
       {"artnet", Carrier::network,
-       "name: fm-artnet\n" AVAR_FM_CHANNELS
-       "links:\n  bus: {watchdog_ms: 200, artnet: {to: 127.0.0.1, universe: 1}}\n"
+       "name: fm-artnet\n" AVAR_FM_CHANNELS "links:\n  bus: {watchdog_ms: 200, artnet: {to: 127.0.0.1, universe: 1}}\n"
        "actuators:\n"
        "  - {channel: a, link: bus, address: 1}\n"
        "  - {channel: b, link: bus, address: 3, fine: true}\n",
