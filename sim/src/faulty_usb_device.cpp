@@ -32,6 +32,12 @@ Status FaultyUsbDevice::control(const firmware_iface::UsbSetup& setup, std::span
     *transferred = 0;
     return Status::timeout;
   }
+  if (s == Status::ok && setup.device_to_host() && plan_.garbage) {
+    for (std::size_t k = 0; k < *transferred; ++k)
+      data[k] = static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(random_));
+    ++counts_.replies_garbled;
+    counts_.garbage_bytes += *transferred;
+  }
   if (s == Status::ok && setup.device_to_host() && *transferred > 1 && chance(plan_.truncate_reply)) {
     *transferred = std::uniform_int_distribution<std::size_t>(1, *transferred - 1)(random_);
     ++counts_.replies_truncated;

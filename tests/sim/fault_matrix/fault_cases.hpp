@@ -55,7 +55,7 @@ inline constexpr std::array<int, kFaultCount> kReadsReplies{kApplies, kApplies, 
                                                             kApplies, kApplies, kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kPty{kApplies, kApplies, kApplies, kApplies, kApplies,
                                                    kApplies, 5,        kApplies, kApplies};
-inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, 1};
+inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies, kApplies, kApplies, kApplies, 2, 2};
 
 #define AVAR_FM_CHANNELS                                                                      \

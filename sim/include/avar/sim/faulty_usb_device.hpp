@@ -1,10 +1,11 @@
 #pragma once
 // Fault injection between a USB host and a simulated device driven by control transfers: wraps
 // any UsbControlDevice and, by a seeded FaultPlan, loses transfers, answers them late or short,
-// or makes the device stop answering. A lost or late transfer fails as the host controller
-// reports it, with Status::timeout (beyond UsbControlDevice's ok / bad_data). USB's own CRC and
-// retries keep corrupted, duplicated or reordered packets from a control transfer, so the plan's
-// corrupt_reply, duplicate_reply, reorder_reply and garbage do not apply here and are ignored.
+// makes the device stop answering, or makes it answer noise (FaultPlan::garbage: every answer's
+// bytes random, in a transfer that otherwise succeeds). A lost or late transfer fails as the host
+// controller reports it, with Status::timeout (beyond UsbControlDevice's ok / bad_data). USB's
+// own CRC and retries keep corrupted, duplicated or reordered packets from a control transfer,
+// so the plan's corrupt_reply, duplicate_reply and reorder_reply do not apply and are ignored.
 // Not thread-safe, like every UsbControlDevice (its UsbDeviceHost serialises calls).
 
 #include <random>
@@ -22,7 +23,8 @@ class FaultyUsbDevice final : public UsbControlDevice {
 
   void set_plan(const FaultPlan& plan);
   /// commands_dropped: transfers lost before the device saw them; replies_dropped: answers lost
-  /// (or too late, or silenced); replies_truncated: answers cut short.
+  /// (or too late, or silenced); replies_truncated: answers cut short; replies_garbled and
+  /// garbage_bytes: answers replaced by noise.
   const FaultCounts& counts() const { return counts_; }
 
   Status control(const firmware_iface::UsbSetup& setup, std::span<std::uint8_t> data, std::size_t* transferred) override;
