@@ -77,6 +77,10 @@ void expect_counted(const ProtocolCase& pc, FaultKind f, const CellRun& r) {
   const sim::FaultCounts& i = r.injected;
   if (f == FaultKind::disconnect) {
     EXPECT_TRUE(r.resent_after_replug) << "the link did not come back once the wire did";
+    if (pc.carrier == Carrier::network) {
+      EXPECT_GT(r.injected.commands_dropped, 0u);
+      EXPECT_EQ(r.node_packets_in_window, 0u) << "the node heard the link through a pulled cable";
+    }
     if (pc.carrier != Carrier::network) {
       EXPECT_EQ(r.reconnects_after_replug, 1u);
     }

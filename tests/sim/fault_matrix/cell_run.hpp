@@ -16,8 +16,8 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
-#include "avar/sim/faulty_device.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/sim/faulty_device.hpp"
 #include "avar/sim/faulty_usb_device.hpp"
 #include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/sim_wire.hpp"
@@ -49,7 +49,8 @@ struct CellRun {
   std::string worst_where;
   firmware_iface::LinkCounters before, after;                       ///< the link's counters at onset and at the end
   sim::FaultCounts injected;                                        ///< what the injector did
-  std::uint64_t node_out_of_order = 0, node_packets_in_window = 0;  ///< network nodes only
+  std::uint64_t node_out_of_order = 0;       ///< network nodes only: packets refused by sequence
+  std::uint64_t node_packets_in_window = 0;  ///< network nodes only: packets taken while the fault lasted
   std::uint64_t reconnects_after_replug = 0;                        ///< disconnect: reopens once the wire came back
   bool resent_after_replug = false;
 };
