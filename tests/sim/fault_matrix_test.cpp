@@ -12,11 +12,13 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "avar/assembly/can_drive.hpp"
 #include "fault_matrix/cell_run.hpp"
 
 namespace avar::fault_matrix {
@@ -188,6 +190,19 @@ std::string cell_name(const ::testing::TestParamInfo<Cell>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cells, FaultMatrix, ::testing::ValuesIn(applicable_cells()), cell_name);
+
+TEST(FaultMatrixRows, EveryProtocolAndCanDriveOfTheRegistryHasARow) {
+  std::set<std::string> rows;
+  for (const ProtocolCase& pc : protocol_cases()) {
+    const rig::Rig rig = config::load_rig_text(pc.rig_text, std::string(pc.name) + ".yaml");
+    rows.insert(rig.links[0].protocol);
+    for (const rig::ActuatorSpec& a : rig.actuators)
+      if (rig.links[0].protocol == "can") rows.insert(std::string("can/") + assembly::can_drive_of(a).name);
+  }
+  for (const assembly::Protocol* p : assembly::protocols()) EXPECT_TRUE(rows.count(p->name)) << p->name << " has no row";
+  for (const assembly::CanDriveProtocol* d : assembly::can_drive_protocols())
+    EXPECT_TRUE(rows.count(std::string("can/") + d->name)) << d->name << " has no row";
+}
 
 /// Prints the matrix of the cells this process ran, and what each cell's counters said.
 class MatrixPrinter final : public ::testing::Environment {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,7 @@ class Figure final : public control::Plant, public control::TickObserver {
  public:
   Figure(const rig::Rig& rig, const ProtocolCase& pc, FaultKind kind, std::uint64_t seed, CellRun& out)
       : rig_(rig), pc_(pc), kind_(kind), seed_(seed), out_(out) {
+    if (pc.carrier == Carrier::none) throw std::invalid_argument(std::string(pc.name) + ": no wire to put faults on");
     const assembly::Protocol& protocol = assembly::protocol_of(rig.links[0]);
     device_ = protocol.make_simulated(rig, 0);
     switch (pc.carrier) {
@@ -127,6 +129,7 @@ class Figure final : public control::Plant, public control::TickObserver {
         path_ = std::make_unique<FaultyDatagramPath>();
         link_ = protocol.open_link(rig, 0, path_->endpoint());
         break;
+      case Carrier::none: break;
     }
   }
 
@@ -147,6 +150,7 @@ class Figure final : public control::Plant, public control::TickObserver {
         if (injecting_) out_.node_packets_in_window += device_.network_node->counters().packets - before;
         break;
       }
+      case Carrier::none: break;
     }
     on_device([&] {
       if (pc_.carrier == Carrier::pty) faulty_->advance(dt_s);

@@ -27,17 +27,19 @@ enum class Carrier {
   pty,      ///< the same, served on a pseudo-terminal to the real SerialTransport
   usb,      ///< control transfers: FaultyUsbDevice behind a UsbDeviceHost
   network,  ///< UDP datagrams: FaultyDatagramPath between the link's socket and the node
+  none,     ///< no wire between driver and device: every cell is n/a
 };
 
 /// Why a cell does not apply (an index into kNotApplicableReasons), or kApplies.
 inline constexpr int kApplies = -1;
-inline constexpr std::array<const char*, 6> kNotApplicableReasons{
+inline constexpr std::array<const char*, 7> kNotApplicableReasons{
     "the driver reads nothing while the show plays (write only): a reply fault cannot reach it",
     "USB control transfers are CRC-checked, retried and delivered whole by the host controller",
     "one-way UDP: the link reads nothing back",
     "UDP's checksum drops a corrupted datagram on the way: that is the drop column",
     "UDP delivers a datagram whole or not at all",
     "a pseudo-terminal cannot be unplugged: the in-memory wire rows cover the reopen",
+    "a GPIO line is set by a call into this machine's kernel: no wire, no replies",
 };
 
 struct ProtocolCase {
@@ -56,6 +58,7 @@ inline constexpr std::array<int, kFaultCount> kReadsReplies{kApplies, kApplies, 
 inline constexpr std::array<int, kFaultCount> kPty{kApplies, kApplies, kApplies, kApplies, kApplies,
                                                    kApplies, 5,        kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, kApplies};
+inline constexpr std::array<int, kFaultCount> kNoWire{6, 6, 6, 6, 6, 6, 6, 6, 6};
 inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies, kApplies, kApplies, kApplies, 2, 2};
 
 #define AVAR_FM_CHANNELS                                                                      \
@@ -64,8 +67,8 @@ inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies,
   "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n" \
   "  b: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"
 
-inline const std::array<ProtocolCase, 12>& protocol_cases() {
-  static const std::array<ProtocolCase, 12> cases{{
+inline const std::array<ProtocolCase, 13>& protocol_cases() {
+  static const std::array<ProtocolCase, 13> cases{{
       {"maestro_serial", Carrier::serial,
        "name: fm-maestro\n" AVAR_FM_CHANNELS
        "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, maestro: {model: mini12}}\n"
@@ -147,6 +150,15 @@ inline const std::array<ProtocolCase, 12>& protocol_cases() {
        "  - {channel: a, link: bus, address: 1}\n"
        "  - {channel: b, link: bus, address: 3, fine: true}\n",
        kNetwork},
+      {"gpio", Carrier::none,
+       "name: fm-gpio\n"
+       "rate_hz: 100\n"
+       "channels:\n  a: {kind: digital}\n  b: {kind: digital}\n"
+       "links:\n  bus: {port: sim, gpio: {}}\n"
+       "actuators:\n"
+       "  - {channel: a, link: bus, line: 17}\n"
+       "  - {channel: b, link: bus, line: 27, active_low: true}\n",
+       kNoWire},
   }};
   return cases;
 }
