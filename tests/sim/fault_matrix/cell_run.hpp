@@ -48,11 +48,11 @@ struct CellRun {
   std::vector<double> rest;
   double worst_excursion = 0;  ///< channel units beyond [min, max] the device ever stood at
   std::string worst_where;
-  firmware_iface::LinkCounters before, after;                       ///< the link's counters at onset and at the end
-  sim::FaultCounts injected;                                        ///< what the injector did
-  std::uint64_t node_out_of_order = 0;       ///< network nodes only: packets refused by sequence
-  std::uint64_t node_packets_in_window = 0;  ///< network nodes only: packets taken while the fault lasted
-  std::uint64_t reconnects_after_replug = 0;                        ///< disconnect: reopens once the wire came back
+  firmware_iface::LinkCounters before, after;  ///< the link's counters at onset and at the end
+  sim::FaultCounts injected;                   ///< what the injector did
+  std::uint64_t node_out_of_order = 0;         ///< network nodes only: packets refused by sequence
+  std::uint64_t node_packets_in_window = 0;    ///< network nodes only: packets taken while the fault lasted
+  std::uint64_t reconnects_after_replug = 0;   ///< disconnect: reopens once the wire came back
   bool resent_after_replug = false;
 };
 

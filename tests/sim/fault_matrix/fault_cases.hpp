@@ -111,7 +111,7 @@ inline const std::array<ProtocolCase, 13>& protocol_cases() {
        kPty},
       {"feetech", Carrier::serial,
        "name: fm-feetech\n" AVAR_FM_CHANNELS "links:\n  bus: {port: sim, baud: 1000000, watchdog_ms: 200, feetech: {series: sts, "
-                                             "readback: full, reply_timeout_ms: 5}}\n"
+       "readback: full, reply_timeout_ms: 5}}\n"
        "actuators:\n"
        "  - {channel: a, link: bus, id: 1, calibration: {min_position: 1024, max_position: 3072}}\n"
        "  - {channel: b, link: bus, id: 2, calibration: {min_position: 1024, max_position: 3072, reverse: true}}\n",

@@ -1,9 +1,10 @@
 #pragma once
 // Fault injection between a host and a simulated device: wraps any ByteDevice and, by a seeded
 // plan, loses commands, loses, corrupts, truncates, duplicates, reorders or delays replies, makes
-// the device stop answering altogether, or makes it answer garbage. Works under every host (the in-memory SimWire, a
-// pseudo-terminal), so a driver's handling of each fault is tested on the same bytes it meets on a real bus. A "reply chunk" is
-// what the device has queued when the host collects replies: one or more packets. Not thread-safe, like every ByteDevice.
+// the device stop answering altogether, or makes it answer garbage. Works under every host (the
+// in-memory SimWire, a pseudo-terminal), so a driver's handling of each fault is tested on the
+// same bytes it meets on a real bus. A "reply chunk" is what the device has queued when the host
+// collects replies: one or more packets. Not thread-safe, like every ByteDevice.
 
 #include <cstdint>
 #include <deque>
