@@ -75,7 +75,8 @@ Status MaestroUsbLink::read_records() noexcept {
   const Status s = transfer(maestro_usb::get_positions(config_.channel_count), reply_, &got);
   if (s != Status::ok) return s;
   if (got != reply_.size()) {
-    AtomicLinkCounters::add(counters_.framing_errors);  // a short reply: counted, as a bus counts a broken packet
+    // A short reply: counted, as a bus counts a broken packet.
+    AtomicLinkCounters::add(counters_.framing_errors);
     return Status::bad_data;
   }
   AtomicLinkCounters::add(counters_.replies);
