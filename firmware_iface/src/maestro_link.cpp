@@ -45,13 +45,13 @@ Status MaestroLink::read_errors(std::uint16_t& errors) {
   return Status::ok;
 }
 
-Status MaestroLink::start() {
-  if (config_.baud_detect) {
-    const std::array<std::uint8_t, 1> detect{0xAA};
-    if (const Status s = transport_.write(detect); s != Status::ok) return s;
-  }
-  std::uint16_t errors = 0;
-  if (const Status s = read_errors(errors); s != Status::ok) return s;
+Status MaestroLink::send_baud_detect() noexcept {
+  if (!config_.baud_detect) return Status::ok;
+  const std::array<std::uint8_t, 1> detect{0xAA};
+  return transport_.write(detect);
+}
+
+Status MaestroLink::send_limits() noexcept {
   std::array<std::uint8_t, maestro::kMaxPacketSize> packet{};
   for (const MaestroActuator& a : config_.actuators) {
     const auto ch = static_cast<std::uint8_t>(a.device_channel);
@@ -61,6 +61,13 @@ Status MaestroLink::start() {
     if (const Status s = transport_.write(std::span(packet.data(), len)); s != Status::ok) return s;
   }
   return Status::ok;
+}
+
+Status MaestroLink::start() {
+  if (const Status s = send_baud_detect(); s != Status::ok) return s;
+  std::uint16_t errors = 0;
+  if (const Status s = read_errors(errors); s != Status::ok) return s;
+  return send_limits();
 }
 
 Status MaestroLink::read_positions(std::span<double> frame, std::span<bool> known) {
@@ -97,7 +104,16 @@ Status MaestroLink::write_targets() noexcept {
     size += len;
   }
   last_send_size_ = size;
-  return reconnector_.write(transport_, out.first(size));
+  bool reopened = false;
+  if (reconnector_.ask(transport_, &reopened) != Status::ok) return Status::io_error;
+  Status s = Status::ok;
+  if (reopened) {
+    s = send_baud_detect();
+    if (s == Status::ok) s = send_limits();
+  }
+  if (s == Status::ok) s = transport_.write(out.first(size));
+  if (s == Status::io_error) reconnector_.lost();
+  return s;
 }
 
 void MaestroLink::release_channel(std::size_t channel) noexcept { table_.release_channel(channel); }

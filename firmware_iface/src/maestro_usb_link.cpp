@@ -74,7 +74,11 @@ Status MaestroUsbLink::read_records() noexcept {
   std::size_t got = 0;
   const Status s = transfer(maestro_usb::get_positions(config_.channel_count), reply_, &got);
   if (s != Status::ok) return s;
-  if (got != reply_.size()) return Status::bad_data;
+  if (got != reply_.size()) {
+    // A short reply: counted, as a bus counts a broken packet.
+    AtomicLinkCounters::add(counters_.framing_errors);
+    return Status::bad_data;
+  }
   AtomicLinkCounters::add(counters_.replies);
   return Status::ok;
 }
@@ -106,6 +110,12 @@ Status MaestroUsbLink::write_targets() noexcept {
   return Status::ok;
 }
 
+namespace {
+// The pulse widths a Maestro can put out, in its quarter-µs: 64..4080 µs.
+constexpr std::uint16_t kLowestPulseQuarterUs = 64 * 4;
+constexpr std::uint16_t kHighestPulseQuarterUs = 4080 * 4;
+}  // namespace
+
 Status MaestroUsbLink::send(std::span<const double> frame) noexcept {
   for (std::size_t i = 0; i < targets_.size(); ++i) targets_[i] = maestro_target(table_, i, frame);
   Status s = write_targets();
@@ -116,6 +126,12 @@ Status MaestroUsbLink::send(std::span<const double> frame) noexcept {
     if (s != Status::ok || !maestro_usb::decode_servo_status(reply_, config_.channel_count, a.device_channel, &status) ||
         status.position == 0) {
       table_.forget_feedback(i);  // stale feedback is absent, not old
+      continue;
+    }
+    if (status.position < kLowestPulseQuarterUs || status.position > kHighestPulseQuarterUs) {
+      // No Maestro puts out such a pulse: the status is noise (the reply has no checksum).
+      AtomicLinkCounters::add(counters_.framing_errors);
+      table_.forget_feedback(i);
       continue;
     }
     ChannelTelemetry& t = table_.telemetry(i);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/dmx_link.hpp"
+#include "avar/firmware_iface/maestro_codec.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
 #include "avar/firmware_iface/ssc32_link.hpp"
 #include "avar/sim/sim_dmx.hpp"
@@ -68,6 +69,36 @@ TEST(Reconnect, MaestroSsc32AndDmxLinksReopenTheirPortWhenItComesBack) {
     fw::DmxLink link(wire, c);
     unplug_and_replug(link, wire, "dmx");
   }
+}
+
+TEST(Reconnect, AMaestroThatCameBackGetsItsSpeedAndAccelerationLimitsAgain) {
+  // Unplugged, a Maestro restarts with its saved settings: the link's limits must be sent again.
+  SimMaestroConfig dc;
+  dc.channel_count = 12;
+  dc.log_limit = 10000;
+  SimMaestro device(dc);
+  SimWire wire(device, 115200);
+  fw::MaestroLinkConfig c;
+  c.channel_count = 12;
+  c.actuators.push_back({0, 3, {0, 1, 1000, 2000, false, 0}, 500.0, 2500.0});
+  fw::MaestroLink link(wire, c);
+  const auto count = [&](std::uint8_t command) {
+    return std::count_if(device.log().begin(), device.log().end(), [&](const MaestroCommand& m) { return m.command == command; });
+  };
+  const std::vector<double> frame{0.5};
+  ASSERT_EQ(link.start(), Status::ok);
+  EXPECT_EQ(count(fw::maestro::kSetSpeed), 1);
+  EXPECT_EQ(count(fw::maestro::kSetAcceleration), 1);
+  wire.set_connected(false);
+  EXPECT_EQ(link.send(frame), Status::io_error);
+  wire.set_connected(true);
+  Status s = Status::io_error;
+  for (int i = 0; i < 20 && s != Status::ok; ++i) s = link.send(frame);
+  ASSERT_EQ(s, Status::ok);
+  EXPECT_EQ(count(fw::maestro::kSetSpeed), 2);
+  EXPECT_EQ(count(fw::maestro::kSetAcceleration), 2);
+  EXPECT_EQ(device.log().back().command, fw::maestro::kSetTarget);  // the limits first, then the frame
+  EXPECT_EQ(device.speed(3), 20);                                   // 500 µs/s in units of 25 µs/s
 }
 
 }  // namespace

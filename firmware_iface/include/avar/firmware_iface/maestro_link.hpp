@@ -58,8 +58,13 @@ class MaestroLink final : public ActuatorLink {
     std::size_t count;
   };
   Status query(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply);
-  /// Encodes targets_ into one buffer and writes it.
+  /// Encodes targets_ into one buffer and writes it; after the port came back (a Maestro that
+  /// was unplugged restarts with its saved settings), first redoes what start() told it.
   Status write_targets() noexcept;
+  /// The baud-detect byte, where configured.
+  Status send_baud_detect() noexcept;
+  /// Each actuator's speed and acceleration limits.
+  Status send_limits() noexcept;
 
   ByteTransport& transport_;
   MaestroLinkConfig config_;
