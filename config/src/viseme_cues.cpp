@@ -83,27 +83,13 @@ std::vector<playback::VisemeCue> read_line_cues(const std::string& path, std::is
   return cues;
 }
 
-/// Line and column (1-based) of a byte offset into text.
-SourceLocation json_cue_place(const std::string& path, const std::string& text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  int line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < offset; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      line_start = i + 1;
-    }
-  }
-  return {path, line, static_cast<int>(offset - line_start) + 1};
-}
-
 std::vector<playback::VisemeCue> read_json_cues(const std::string& path, const std::string& text) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte counts from 1 and points just past the offending character.
-    throw InputError(json_cue_place(path, text, e.byte > 0 ? e.byte - 1 : 0), "not valid JSON; expected Rhubarb's JSON output");
+    throw InputError(location_at(path, text, e.byte > 0 ? e.byte - 1 : 0), "not valid JSON; expected Rhubarb's JSON output");
   } catch (const nlohmann::json::out_of_range& e) {
     // A number beyond a double's range (the message quotes it): located at its first occurrence.
     const std::string what = e.what();
@@ -111,7 +97,7 @@ std::vector<playback::VisemeCue> read_json_cues(const std::string& path, const s
     const auto close = open == std::string::npos ? open : what.find('\'', open + 1);
     const std::string token = close == std::string::npos ? std::string() : what.substr(open + 1, close - open - 1);
     const auto at = token.empty() ? std::string::npos : text.find(token);
-    throw InputError(json_cue_place(path, text, at == std::string::npos ? 0 : at),
+    throw InputError(location_at(path, text, at == std::string::npos ? 0 : at),
                      "number " + (token.empty() ? std::string("out of range") : "'" + token + "' out of range") +
                          "; expected a time in seconds");
   }

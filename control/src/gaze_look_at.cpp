@@ -115,15 +115,9 @@ void GazeLookAt::aim(const playback::GazePoint& point, std::span<double> frame) 
   for (kinematics::IkGoal& goal : goals_) goal.position = target;
   const kinematics::IkOptions options = cold_ ? kinematics::cold_start_ik_options() : kinematics::default_ik_options();
   const kinematics::IkResult result = kinematics::solve_ik(eyes_, ik_, goals_, q_, q_next_, options);
-  switch (result.status) {
-    case kinematics::IkStatus::converged: ++stats_.converged; break;
-    case kinematics::IkStatus::degraded: ++stats_.degraded; break;
-    case kinematics::IkStatus::failed: ++stats_.failed; break;
-  }
-  if (result.status != kinematics::IkStatus::failed) {
+  if (record_ik_outcome(stats_, result)) {
     std::copy(q_next_.begin(), q_next_.end(), q_.begin());
     cold_ = false;
-    stats_.worst_orientation_error = std::max(stats_.worst_orientation_error, result.orientation_error);
   }
   for (const rig::JointBinding& b : eye_bindings_) frame[b.channel] = b.to_channel(q_[b.q_index]);
 }

@@ -8,6 +8,17 @@
 
 namespace avar::control {
 
+bool record_ik_outcome(IkStats& stats, const kinematics::IkResult& result) noexcept {
+  switch (result.status) {
+    case kinematics::IkStatus::converged: ++stats.converged; break;
+    case kinematics::IkStatus::degraded: ++stats.degraded; break;
+    case kinematics::IkStatus::failed: ++stats.failed; return false;
+  }
+  stats.worst_position_error = std::max(stats.worst_position_error, result.position_error);
+  stats.worst_orientation_error = std::max(stats.worst_orientation_error, result.orientation_error);
+  return true;
+}
+
 IkStage::IkStage(const rig::RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame)
     : kinematics_(kinematics),
       show_(show),
@@ -74,16 +85,9 @@ kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept 
   }
   const kinematics::IkOptions options = cold_ ? kinematics::cold_start_ik_options() : kinematics::default_ik_options();
   const kinematics::IkResult result = kinematics::solve_ik(kinematics_.model, workspace_, goals_, q_, q_next_, options);
-  switch (result.status) {
-    case kinematics::IkStatus::converged: ++stats_.converged; break;
-    case kinematics::IkStatus::degraded: ++stats_.degraded; break;
-    case kinematics::IkStatus::failed: ++stats_.failed; break;
-  }
-  if (result.status != kinematics::IkStatus::failed) {
+  if (record_ik_outcome(stats_, result)) {
     std::copy(q_next_.begin(), q_next_.end(), q_.begin());
     cold_ = false;
-    stats_.worst_position_error = std::max(stats_.worst_position_error, result.position_error);
-    stats_.worst_orientation_error = std::max(stats_.worst_orientation_error, result.orientation_error);
   }
   for (std::size_t b : driven_bindings_) {
     const rig::JointBinding& binding = kinematics_.bindings[b];

@@ -174,15 +174,7 @@ void check_urdf_characters(const std::string& text, const std::string& file) {
   const std::optional<std::size_t> bad = first_invalid_utf8(text);
   if (nul == std::string::npos && !bad) return;
   const std::size_t at = bad ? std::min(*bad, nul) : nul;
-  int line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < at; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      line_start = i + 1;
-    }
-  }
-  throw InputError({file, line, static_cast<int>(at - line_start) + 1},
+  throw InputError(location_at(file, text, at),
                    at == nul ? "found a NUL byte; expected XML text" : "found a byte that is not UTF-8; expected UTF-8 XML text");
 }
 

@@ -30,6 +30,10 @@ struct IkStats {
   double worst_orientation_error = 0;  ///< rad (aim angle)
 };
 
+/// Counts a solve's outcome, and its residuals when it is usable (not failed); returns whether it
+/// is. Real-time safe.
+bool record_ik_outcome(IkStats& stats, const kinematics::IkResult& result) noexcept;
+
 class IkStage {
  public:
   /// kinematics and show are borrowed and must outlive the stage. rest_frame: the rig's rest

@@ -3,7 +3,9 @@
 // and configuration time, never inside the tick.
 
 #include <stdexcept>
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace avar {
 
@@ -16,6 +18,9 @@ struct SourceLocation {
 
 /// "file:line:column" (parts that are unknown are left out).
 std::string to_string(const SourceLocation& where);
+
+/// Where byte `offset` of `text` (the whole file) is: 1-based line and column (in bytes).
+SourceLocation location_at(std::string file, std::string_view text, std::size_t offset);
 
 /// A problem in user input. what() is one line: "<where>: <problem>", where the problem says
 /// what was found and what was expected.
