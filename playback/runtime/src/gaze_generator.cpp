@@ -73,8 +73,11 @@ void GazeGenerator::follow_head(double t) noexcept {
       // Critically damped: x'' = ω²(goal − x) − 2ω x', within the head's caps.
       const double accel = std::clamp(omega * omega * (head_goal_[a] - head_[a]) - 2 * omega * head_velocity_[a],
                                       -head_accel_cap_[a], head_accel_cap_[a]);
-      head_velocity_[a] = std::clamp(head_velocity_[a] + accel * h, -head_speed_cap_[a], head_speed_cap_[a]);
-      head_[a] += head_velocity_[a] * h;
+      // The mean of the step's velocities: exact for its constant acceleration, so that a step
+      // shorter than kGazeHeadStep (a sample between steps) asks no more than the cap.
+      const double v0 = head_velocity_[a];
+      head_velocity_[a] = std::clamp(v0 + accel * h, -head_speed_cap_[a], head_speed_cap_[a]);
+      head_[a] += 0.5 * (v0 + head_velocity_[a]) * h;
     }
   }
 }

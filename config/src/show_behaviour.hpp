@@ -1,0 +1,22 @@
+#pragma once
+// Reading a layer's `behaviour:` map (show_behaviour.hpp in include/), for the show reader, and
+// checking it against a rig, for check_show_against_rig.
+
+#include <string>
+#include <vector>
+
+#include "avar/config/show_check.hpp"
+#include "avar/playback/runtime/show.hpp"
+#include "yaml_support.hpp"
+
+namespace avar::config::detail {
+
+/// The behaviour of layer `layer` of `show` (whose duration is known): its seed, span and fades,
+/// and its generators' text (checked without a rig as far as that goes). Throws InputError.
+playback::LayerBehaviour read_behaviour(const YamlRef& node, const playback::Show& show, const std::string& layer);
+
+/// Adds the problems of a behaviour layer's generators on this rig to `errors`, and marks the
+/// channels they drive (where the layer's mask lets them) in `driven`.
+void check_behaviour(const playback::Layer& layer, const rig::Rig& rig, std::vector<bool>& driven, std::vector<Finding>& errors);
+
+}  // namespace avar::config::detail
