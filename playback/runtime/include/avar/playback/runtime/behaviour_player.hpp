@@ -9,7 +9,8 @@
 // seed and τ alone. Sequential playback costs one generator step per grid point passed, plus the
 // copy. A time before the last grid point reached (a backward seek, a loop wrap) restores the
 // generators' initial state and steps them forward again from 0: τ / kBehaviourStep steps (a
-// 60 s span: 12 000 steps, on the order of a millisecond), the cost of that one sample only.
+// 60 s span: 12 000 steps, about 0.7 ms on the development machine), the cost of that one
+// sample only.
 //
 // Thread and real-time safety: construction allocates and may throw; sample() is real-time safe
 // (restoring and copying assign into storage of the same sizes: no allocation).
