@@ -264,6 +264,42 @@ std::string Infeasible::to_string() const {
   return avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: " + what;
 }
 
+double SegmentDemand::usage() const {
+  const double outside = std::max({0.0, min - low, high - max});
+  const double reach = outside > 0 ? 1 + outside / std::max(max - min, 1e-12) : 0.0;
+  return std::max({max_velocity > 0 ? speed / max_velocity : 0.0, max_acceleration > 0 ? acceleration / max_acceleration : 0.0, reach});
+}
+
+std::string SegmentDemand::to_string() const {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  const auto percent = [](double share) { return format_number(std::round(share * 1000) / 10) + " %"; };
+  std::string text = avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: speed " +
+                     percent(speed / max_velocity) + " of " + format_number(max_velocity) + u + "/s, acceleration " +
+                     percent(acceleration / max_acceleration) + " of " + format_number(max_acceleration) + u + "/s²";
+  if (low < min || high > max) text += ", reaches " + format_number(high > max ? high : low) + u + " outside [" + format_number(min) + ", " + format_number(max) + "]";
+  return text;
+}
+
+std::vector<SegmentDemand> segment_demands(const playback::Show& show, const rig::Rig& rig) {
+  std::vector<SegmentDemand> found;
+  if (show.layered()) return found;
+  for (const playback::Track& track : show.tracks) {
+    const auto ci = rig.find_channel(track.channel);
+    if (!ci || rig.channels[*ci].digital()) continue;
+    const rig::ChannelSpec& c = rig.channels[*ci];
+    const auto& keys = track.raw.keys;
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+      if (keys[k].interpolation == playback::Interpolation::step) continue;
+      const auto span = detail::played_part(keys[k].time, keys[k + 1].time, show.duration);
+      if (!span) continue;
+      const Demand d = measure(track.curve, span->t0, span->t1);
+      found.push_back({c.name, c.unit, span->t0, span->t1, d.speed, d.acceleration, d.low, d.high, c.max_velocity,
+                       c.max_acceleration, c.min, c.max, keys[k].where});
+    }
+  }
+  return found;
+}
+
 std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig::Rig& rig) {
   if (show.layered()) return check_composed_feasibility(show, rig);
   std::vector<Infeasible> found;
