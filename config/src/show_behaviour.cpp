@@ -7,6 +7,9 @@
 #include "idle_section.hpp"
 
 namespace avar::config {
+namespace detail {
+const char* const kBehaviourGenerators[] = {"noise", "blinks", "gaze", "breathing"};
+}  // namespace detail
 namespace {
 
 /// What the show reader keeps of a behaviour for binding it to a rig later: its node and file.
@@ -14,8 +17,6 @@ struct BehaviourSource {
   YAML::Node node;
   std::string file;
 };
-
-const char* const kBehaviourGenerators[] = {"noise", "blinks", "gaze", "breathing"};
 
 std::string behaviour_what(const std::string& layer) { return "the behaviour of layer '" + layer + "'"; }
 
@@ -38,7 +39,7 @@ void behaviour_scalars(const YAML::Node& node, std::set<std::string>& out) {
 /// on the rig's channels can fail against it.
 rig::Rig behaviour_open_rig(const YamlRef& node) {
   std::set<std::string> names;
-  for (const char* g : kBehaviourGenerators)
+  for (const char* g : detail::kBehaviourGenerators)
     if (auto n = node.find(g)) behaviour_scalars(n->node, names);
   constexpr double kWide = 1e9;
   rig::Rig rig;
@@ -110,6 +111,11 @@ playback::LayerBehaviour read_behaviour(const YamlRef& node, const playback::Sho
   // Without the rig: everything the generators' reader checks that does not depend on channels.
   read_behaviour_generators(b, layer, behaviour_open_rig(node));
   return b;
+}
+
+const YAML::Node* behaviour_text(const playback::LayerBehaviour& behaviour) {
+  const auto* source = std::any_cast<BehaviourSource>(&behaviour.source);
+  return source ? &source->node : nullptr;
 }
 
 void check_behaviour(const playback::Layer& layer, const rig::Rig& rig, std::vector<bool>& driven, std::vector<Finding>& errors) {

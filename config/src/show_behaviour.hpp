@@ -15,6 +15,13 @@ namespace avar::config::detail {
 /// and its generators' text (checked without a rig as far as that goes). Throws InputError.
 playback::LayerBehaviour read_behaviour(const YamlRef& node, const playback::Show& show, const std::string& layer);
 
+/// The keys of a behaviour that its generators read, in the order the writer writes them.
+extern const char* const kBehaviourGenerators[4];
+
+/// The generators' part of a behaviour read from a show file (noise, blinks, gaze, breathing, as
+/// written), for the show writer; nullptr for one not read from a file.
+const YAML::Node* behaviour_text(const playback::LayerBehaviour& behaviour);
+
 /// Adds the problems of a behaviour layer's generators on this rig to `errors`, and marks the
 /// channels they drive (where the layer's mask lets them) in `driven`.
 void check_behaviour(const playback::Layer& layer, const rig::Rig& rig, std::vector<bool>& driven, std::vector<Finding>& errors);

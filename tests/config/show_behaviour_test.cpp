@@ -14,6 +14,8 @@
 #include "avar/config/show_behaviour.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
+#include "avar/playback/runtime/sampler.hpp"
 
 namespace avar::config {
 namespace {
@@ -137,6 +139,26 @@ TEST(ShowBehaviour, TheRigChecksChannelsAndLimitsWithTheIdleSectionsWords) {
   // Binding says the same, as an InputError.
   playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", replace(kBehaviourShow, "pan: eyes_pan}", "pan: eye_pan}")));
   EXPECT_THROW(bind_show_behaviour(show, load_rig_file(kBehaviourRig)), InputError);
+}
+
+TEST(ShowBehaviour, TheWriterWritesBehaviourThatReadsBackToTheSameMotion) {
+  const rig::Rig rig = load_rig_file(kBehaviourRig);
+  playback::Show original = load_show_file(AVAR_SOURCE_DIR "/examples/shows/lively-head.yaml");
+  const std::string path = avar::testing::temp_path("lively-written.yaml");
+  write_show_file(path, original, "a test");
+  playback::Show written = load_show_file(path);
+  ASSERT_EQ(written.layers.size(), original.layers.size());
+  bind_show_behaviour(original, rig);
+  bind_show_behaviour(written, rig);
+  std::vector<std::string> names;
+  for (const rig::ChannelSpec& c : rig.channels) names.push_back(c.name);
+  playback::Sampler a(original, names, rig.rest_frame()), b(written, names, rig.rest_frame());
+  std::vector<double> fa(names.size()), fb(names.size());
+  for (int k = 0; k <= 600; ++k) {
+    a.sample(k * 0.02, fa);
+    b.sample(k * 0.02, fb);
+    ASSERT_EQ(fa, fb) << "t " << k * 0.02;
+  }
 }
 
 TEST(ShowBehaviour, FeasibilityMeasuresTheGeneratedMotionAndListsACutWithoutAFadeAsAStep) {
