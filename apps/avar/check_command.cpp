@@ -43,7 +43,8 @@ std::size_t list_segments(const std::vector<config::SegmentDemand>& segments, bo
   out << (every ? "" : " (--verbose lists every segment)") << '\n';
   for (const auto& s : segments) {
     const double u = s.usage();
-    if (every || u >= kNearLimit) out << (u > 1 + 1e-9 ? "over: " : u >= kNearLimit ? "near: " : "segment: ") << s.to_string() << '\n';
+    if (every || u >= kNearLimit)
+      out << (u > 1 + 1e-9 ? "over: " : u >= kNearLimit ? "near: " : "segment: ") << s.to_string() << '\n';
   }
   return over;
 }
@@ -66,9 +67,13 @@ int run_check(const std::string& show_path, const std::string& rig_path, const s
     config::bind_show_behaviour(show, rig);
     std::size_t keys = 0;
     for (const auto& t : show.tracks) keys += t.raw.keys.size();
-    out << "ok: show '" << show.name << "' (" << show.duration << " s, " << show.tracks.size() << " tracks, " << keys
-        << " keys" << (show.targets.empty() ? "" : ", " + std::to_string(show.targets.size()) + " IK targets") << (show.layered() ? ", " + std::to_string(show.clips.size()) + " clips on " + std::to_string(show.layers.size()) + " layers" + behaviour_note(show) : "") << (show.loop ? ", looping" : "") << ") fits rig '" << rig.name << "' (" << rig.channels.size()
-        << " channels, " << rig.actuators.size() << " actuators, " << rig.links.size() << " link(s))";
+    out << "ok: show '" << show.name << "' (" << show.duration << " s, " << show.tracks.size() << " tracks, " << keys << " keys"
+        << (show.targets.empty() ? "" : ", " + std::to_string(show.targets.size()) + " IK targets")
+        << (show.layered() ? ", " + std::to_string(show.clips.size()) + " clips on " + std::to_string(show.layers.size()) +
+                                 " layers" + behaviour_note(show)
+                           : "")
+        << (show.loop ? ", looping" : "") << ") fits rig '" << rig.name << "' (" << rig.channels.size() << " channels, "
+        << rig.actuators.size() << " actuators, " << rig.links.size() << " link(s))";
     if (!check.warnings.empty()) out << " with " << check.warnings.size() << " warning(s)";
     out << '\n';
     const std::vector<config::Infeasible> infeasible = config::check_feasibility(show, rig);
@@ -81,7 +86,8 @@ int run_check(const std::string& show_path, const std::string& rig_path, const s
       jumps += jump ? 1 : 0;
       if (jump || !by_segment) out << (jump ? "step: " : "infeasible: ") << f.to_string() << '\n';
     }
-    out << (by_segment ? segments_over : infeasible.size() - jumps) << " segment(s) ask more speed, acceleration or range than the rig allows"
+    out << (by_segment ? segments_over : infeasible.size() - jumps)
+        << " segment(s) ask more speed, acceleration or range than the rig allows"
         << (infeasible.size() > jumps ? "; the limiter will slow or clamp them, --retime writes a show that does not" : "")
         << "; " << jumps << " step jump(s), shaped by the limiter\n";
     if (!retime_path.empty()) {

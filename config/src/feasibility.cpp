@@ -267,7 +267,8 @@ std::string Infeasible::to_string() const {
 double SegmentDemand::usage() const {
   const double outside = std::max({0.0, min - low, high - max});
   const double reach = outside > 0 ? 1 + outside / std::max(max - min, 1e-12) : 0.0;
-  return std::max({max_velocity > 0 ? speed / max_velocity : 0.0, max_acceleration > 0 ? acceleration / max_acceleration : 0.0, reach});
+  return std::max(
+      {max_velocity > 0 ? speed / max_velocity : 0.0, max_acceleration > 0 ? acceleration / max_acceleration : 0.0, reach});
 }
 
 std::string SegmentDemand::to_string() const {
@@ -276,7 +277,9 @@ std::string SegmentDemand::to_string() const {
   std::string text = avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: speed " +
                      percent(speed / max_velocity) + " of " + format_number(max_velocity) + u + "/s, acceleration " +
                      percent(acceleration / max_acceleration) + " of " + format_number(max_acceleration) + u + "/s²";
-  if (low < min || high > max) text += ", reaches " + format_number(high > max ? high : low) + u + " outside [" + format_number(min) + ", " + format_number(max) + "]";
+  if (low < min || high > max)
+    text += ", reaches " + format_number(high > max ? high : low) + u + " outside [" + format_number(min) + ", " +
+            format_number(max) + "]";
   return text;
 }
 

@@ -93,20 +93,24 @@ playback::LayerBehaviour read_behaviour(const YamlRef& node, const playback::Sho
   const auto seconds = [](double s) { return format_number(s) + " s"; };
   b.from = behaviour_number(node, "from", 0, "the start of " + what + " (show seconds)");
   if (b.from < 0 || b.from >= show.duration)
-    node.at("from", what).fail("expected the start of " + what + " within the show, from 0 to before " + seconds(show.duration) +
-                               ", found " + seconds(b.from));
+    node.at("from", what)
+        .fail("expected the start of " + what + " within the show, from 0 to before " + seconds(show.duration) + ", found " +
+              seconds(b.from));
   b.to = behaviour_number(node, "to", show.duration, "the end of " + what + " (show seconds)");
   if (b.to <= b.from || b.to > show.duration)
-    node.at("to", what).fail("expected the end of " + what + " after its start " + seconds(b.from) + " and by the show's end " +
-                             seconds(show.duration) + ", found " + seconds(b.to));
+    node.at("to", what)
+        .fail("expected the end of " + what + " after its start " + seconds(b.from) + " and by the show's end " +
+              seconds(show.duration) + ", found " + seconds(b.to));
   b.fade_in = behaviour_number(node, "fade_in", 0, "fade_in (seconds)");
   b.fade_out = behaviour_number(node, "fade_out", 0, "fade_out (seconds)");
   for (const auto& [field, value] : {std::pair{"fade_in", b.fade_in}, std::pair{"fade_out", b.fade_out}})
-    if (value < 0) node.at(field, what).fail("expected " + std::string(field) + " to be at least 0 seconds, found " + seconds(value));
+    if (value < 0)
+      node.at(field, what).fail("expected " + std::string(field) + " to be at least 0 seconds, found " + seconds(value));
   if (b.fade_in + b.fade_out > b.to - b.from)
     node.at(node.has("fade_out") ? "fade_out" : "fade_in", what)
-        .fail("the fades of " + what + " (in " + seconds(b.fade_in) + " + out " + seconds(b.fade_out) + ") are longer than its span (" +
-              seconds(b.to - b.from) + ", " + format_number(b.from) + " to " + seconds(b.to) + "); expected them to fit within it");
+        .fail("the fades of " + what + " (in " + seconds(b.fade_in) + " + out " + seconds(b.fade_out) +
+              ") are longer than its span (" + seconds(b.to - b.from) + ", " + format_number(b.from) + " to " + seconds(b.to) +
+              "); expected them to fit within it");
   b.source = BehaviourSource{node.node, *node.file};
   // Without the rig: everything the generators' reader checks that does not depend on channels.
   read_behaviour_generators(b, layer, behaviour_open_rig(node));

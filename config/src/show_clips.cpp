@@ -142,13 +142,15 @@ playback::Layer read_layer(const YamlRef& node, std::size_t index, const playbac
   }
   if (auto behaviour = node.find("behaviour")) {
     if (node.has("clips"))
-      behaviour->fail(what + " has both clips and behaviour; expected one or the other (put the behaviour on a layer of its own)");
+      behaviour->fail(what +
+                      " has both clips and behaviour; expected one or the other (put the behaviour on a layer of its own)");
     layer.behaviour = read_behaviour(*behaviour, show, layer.name);
     return layer;
   }
   if (!node.has("clips"))
-    node.fail(what + " has neither clips nor behaviour; expected clips: [{clip, start, ...}] or behaviour: {noise, blinks, gaze, "
-                     "breathing, ...}");
+    node.fail(what +
+              " has neither clips nor behaviour; expected clips: [{clip, start, ...}] or behaviour: {noise, blinks, gaze, "
+              "breathing, ...}");
   const YamlRef placements = node.at("clips", what);
   placements.expect_sequence("the clips of " + what + " (a list of {clip, start, ...})");
   if (placements.size() == 0) placements.fail(what + " places no clips; expected at least one");

@@ -146,7 +146,8 @@ void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
 /// A behaviour layer's span and seed, then its generators as they were read.
 void write_behaviour(YAML::Emitter& y, const playback::LayerBehaviour& b) {
   const YAML::Node* text = detail::behaviour_text(b);
-  if (!text) throw InputError(b.where, "a behaviour not read from a show file cannot be written; expected one from load_show_file");
+  if (!text)
+    throw InputError(b.where, "a behaviour not read from a show file cannot be written; expected one from load_show_file");
   y << YAML::Key << "behaviour" << YAML::Value << YAML::BeginMap;
   y << YAML::Key << "seed" << YAML::Value << b.seed << YAML::Key << "from" << YAML::Value << b.from << YAML::Key << "to"
     << YAML::Value << b.to << YAML::Key << "fade_in" << YAML::Value << b.fade_in << YAML::Key << "fade_out" << YAML::Value

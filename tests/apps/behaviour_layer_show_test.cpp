@@ -44,9 +44,10 @@ TEST(LivelyShow, SamplingTwiceGivesTheSameNumbersAndTheBehaviourMoves) {
   // Without a rig the generators have no channels or limits to work with.
   const testing::CliResult bare = testing::run_avar({"sample", kLivelyShow});
   EXPECT_EQ(bare.code, kExitBadInput);
-  EXPECT_NE(bare.err.find("lively-head.yaml:40:7: layer 'life' has behaviour, whose generators need the rig's channels and limits; "
-                          "expected --rig RIG"),
-            std::string::npos)
+  EXPECT_NE(
+      bare.err.find("lively-head.yaml:40:7: layer 'life' has behaviour, whose generators need the rig's channels and limits; "
+                    "expected --rig RIG"),
+      std::string::npos)
       << bare.err;
 }
 
@@ -55,7 +56,8 @@ TEST(LivelyShow, PlayOnTheSimulatorComposesWhatSampleDoesAtTheTickRate) {
   const testing::CliResult played =
       testing::run_avar({"play", kLivelyShow, "--rig", kLivelyRig, "--fast", "--sim", "--no-progress", "--trace", trace});
   ASSERT_EQ(played.code, kExitOk) << played.err << played.out;
-  const testing::CliResult sampled = testing::run_avar({"sample", kLivelyShow, "--rig", kLivelyRig, "--rate", "50"});  // the rig's rate
+  const testing::CliResult sampled =
+      testing::run_avar({"sample", kLivelyShow, "--rig", kLivelyRig, "--rate", "50"});  // the rig's rate
   ASSERT_EQ(sampled.code, kExitOk) << sampled.err;
   const auto expected = testing::csv_rows(sampled.out);
   std::ifstream csv(trace);

@@ -85,14 +85,16 @@ TEST(ShowBehaviour, LoadsTheSpanFadesAndSeedUnboundUntilARigIsGiven) {
   EXPECT_DOUBLE_EQ(whole.layers[0].behaviour->from, 0);
   EXPECT_DOUBLE_EQ(whole.layers[0].behaviour->to, 10);
   EXPECT_NE(whole.layers[0].behaviour->seed, 7u);
-  const playback::Show again = load_show_file(avar::testing::write_temp_file("show.yaml", replace(kBehaviourShow, "      seed: 7\n", "")));
+  const playback::Show again =
+      load_show_file(avar::testing::write_temp_file("show.yaml", replace(kBehaviourShow, "      seed: 7\n", "")));
   EXPECT_EQ(again.layers[0].behaviour->seed, whole.layers[0].behaviour->seed);
 }
 
 TEST(ShowBehaviour, WithoutARigEverythingButTheChannelsIsCheckedWhereItStands) {
-  const std::string generators = "      blinks: {lids: {lid_left: {open: 80, closed: 0}}, interval_s: [2, 6]}\n"
-                                 "      gaze: {eyes: {pan: eyes_pan}}\n"
-                                 "      breathing: {period_s: 4, channels: {neck_tilt: 1.5}}\n";
+  const std::string generators =
+      "      blinks: {lids: {lid_left: {open: 80, closed: 0}}, interval_s: [2, 6]}\n"
+      "      gaze: {eyes: {pan: eyes_pan}}\n"
+      "      breathing: {period_s: 4, channels: {neck_tilt: 1.5}}\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {replace(kBehaviourShow, "seed: 7", "sed: 7"),
        ":10:7: unknown field 'sed' in the behaviour of layer 'life'; expected one of: seed, from, to, fade_in, fade_out, noise, "
@@ -114,9 +116,11 @@ TEST(ShowBehaviour, WithoutARigEverythingButTheChannelsIsCheckedWhereItStands) {
       {replace(kBehaviourShow, generators, ""),
        ":10:7: expected at least one of noise, blinks, gaze, breathing in the behaviour of layer 'life'"},
       // The idle section's own checks, with its own words.
-      {replace(kBehaviourShow, "interval_s: [2, 6]", "interval_s: [6, 2]"), ":15:69: expected the low end of interval_s at most its high end"},
+      {replace(kBehaviourShow, "interval_s: [2, 6]", "interval_s: [6, 2]"),
+       ":15:69: expected the low end of interval_s at most its high end"},
       {replace(kBehaviourShow, "interval_s: [2, 6]", "intervals: [2, 6]"),
-       ":15:57: unknown field 'intervals' in the blinks; expected one of: lids, interval_s, double_probability, double_gap_s, close_s, "
+       ":15:57: unknown field 'intervals' in the blinks; expected one of: lids, interval_s, double_probability, double_gap_s, "
+       "close_s, "
        "hold_s, open_s"},
       {replace(kBehaviourShow, "period_s: 4", "period_s: 0.1"), ":17:29: expected period_s from 0.5 to 60, found '0.1'"},
       {replace(kBehaviourShow, "pan: eyes_pan}", "pan: lid_left}"),
@@ -128,7 +132,8 @@ TEST(ShowBehaviour, WithoutARigEverythingButTheChannelsIsCheckedWhereItStands) {
 TEST(ShowBehaviour, TheRigChecksChannelsAndLimitsWithTheIdleSectionsWords) {
   EXPECT_EQ(behaviour_rig_error(kBehaviourShow), "");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {replace(kBehaviourShow, "pan: eyes_pan}", "pan: eye_pan}"), ":16:26: expected pan channel to be a channel of the rig, found 'eye_pan'"},
+      {replace(kBehaviourShow, "pan: eyes_pan}", "pan: eye_pan}"),
+       ":16:26: expected pan channel to be a channel of the rig, found 'eye_pan'"},
       {replace(kBehaviourShow, "closed: 0}", "closed: 120}"),
        ":15:52: expected the closed value of lid 'lid_left' (inside its soft margins) from 0 to 100, found '120'"},
       {replace(kBehaviourShow, "channels: [eyes_pan, lid_left, neck_tilt]", "channels: [eyes_pan, lid, neck_tilt]"),
@@ -137,7 +142,8 @@ TEST(ShowBehaviour, TheRigChecksChannelsAndLimitsWithTheIdleSectionsWords) {
   };
   for (const auto& [text, expected] : cases) EXPECT_EQ(behaviour_rig_error(text), expected) << text;
   // Binding says the same, as an InputError.
-  playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", replace(kBehaviourShow, "pan: eyes_pan}", "pan: eye_pan}")));
+  playback::Show show =
+      load_show_file(avar::testing::write_temp_file("show.yaml", replace(kBehaviourShow, "pan: eyes_pan}", "pan: eye_pan}")));
   EXPECT_THROW(bind_show_behaviour(show, load_rig_file(kBehaviourRig)), InputError);
 }
 
@@ -167,8 +173,9 @@ TEST(ShowBehaviour, FeasibilityMeasuresTheGeneratedMotionAndListsACutWithoutAFad
   const playback::Show lively = load_show_file(AVAR_SOURCE_DIR "/examples/shows/lively-head.yaml");
   EXPECT_TRUE(check_feasibility(lively, rig).empty());
   // An override layer cut in without a fade: the lids jump from rest (20) to open (80) at 2 s.
-  const std::string cut = replace(replace(replace(kBehaviourShow, "blend: additive", "blend: override"), "      fade_in: 0.5\n", ""),
-                                  "interval_s: [2, 6]", "interval_s: [5, 6]");
+  const std::string cut =
+      replace(replace(replace(kBehaviourShow, "blend: additive", "blend: override"), "      fade_in: 0.5\n", ""),
+              "interval_s: [2, 6]", "interval_s: [5, 6]");
   const playback::Show show = load_show_file(avar::testing::write_temp_file("show.yaml", cut));
   bool lid_step = false;
   for (const Infeasible& f : check_feasibility(show, rig)) {

@@ -226,7 +226,7 @@ TEST(BehaviourLayer, ComposingAllocatesNothingEvenWhenSeekingBack) {
   sampler.sample(0, frame);
   const long before = avar::testing::allocations.load();
   for (int k = 0; k < 3000; ++k) sampler.sample(k * 0.007, frame);  // wraps twice
-  sampler.sample(3.0, frame);                                         // and seeks back
+  sampler.sample(3.0, frame);                                       // and seeks back
   EXPECT_EQ(avar::testing::allocations.load() - before, 0);
 }
 

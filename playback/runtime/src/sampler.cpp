@@ -98,8 +98,9 @@ void Sampler::bind_layers(std::span<const std::string> frame_channels) {
 void Sampler::bind_behaviour(const Layer& layer, std::span<const std::string> frame_channels, LayerRun& run) {
   const LayerBehaviour& b = *layer.behaviour;
   if (!b.bound())
-    throw std::invalid_argument("layer '" + layer.name +
-                                "' has behaviour not bound to a rig; expected config::bind_show_behaviour to give it the rig's channels");
+    throw std::invalid_argument(
+        "layer '" + layer.name +
+        "' has behaviour not bound to a rig; expected config::bind_show_behaviour to give it the rig's channels");
   if (b.channels.size() != b.idle.limits.size())
     throw std::invalid_argument("the behaviour of layer '" + layer.name + "' names " + std::to_string(b.channels.size()) +
                                 " channels for " + std::to_string(b.idle.limits.size()) + " limits; expected one name per limit");

@@ -87,7 +87,7 @@ class Sampler {
   };
   struct BehaviourRun {
     BehaviourPlayer player;
-    std::vector<double> values;                 ///< the generators' frame (the bound rig's channels)
+    std::vector<double> values;                      ///< the generators' frame (the bound rig's channels)
     std::size_t first_channel = 0, end_channel = 0;  ///< range of behaviour_channels_
   };
 
