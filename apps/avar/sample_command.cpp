@@ -205,6 +205,7 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
       "(held or extrapolated); a looping show is not wrapped. Numbers read back exactly.\n"
       "A show with layers of clips prints every channel its tracks and layers drive, composed as it plays\n"
       "(a looping one wraps); under the layers lie its tracks, else the --rig rest pose, else 0.\n"
+      "Behaviour layers (idle generators in the show) need --rig: their channels and limits are the rig's.\n"
       "Examples:\n"
       "  avar sample examples/shows/hello-head.yaml --rate 50 > hello-head.csv\n"
       "      every channel at 50 Hz over the whole show\n"
