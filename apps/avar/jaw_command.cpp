@@ -61,12 +61,14 @@ CLI::App* add_jaw_subcommand(CLI::App& app, JawCommandOptions& o) {
                   "Channel value of the open mouth (default: the limit farther from rest, inside its soft margin)");
   cmd->add_option("--tolerance", o.tolerance, "Fitting tolerance in channel units (default 1% of the travel)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--verbose", o.verbose, "List every segment's share of the channel's limits, not only the worst ones");
   cmd->footer(
       "The speech band of the voice (zero-phase band-pass) gives an RMS envelope at 100 frames/s; a gate\n"
       "with hysteresis keeps the mouth exactly closed in silence and under noise; attack and release\n"
       "smooth it; the curve maps it onto [closed, open]; the lead makes the motion come earlier than the\n"
       "sound by the servo's lag. The frames are fitted with few Bezier keys (like avar fit), written as\n"
-      "a show as long as the audio, and checked against the rig (like avar check).\n"
+      "a show as long as the audio, and checked against the rig (like avar check): a count of segments\n"
+      "and the worst, then the segments over a limit or within 10 % of one (--verbose: every segment).\n"
       "Example:\n"
       "  espeak-ng -w hello.wav \"Good evening, and welcome\"\n"
       "  avar jaw hello.wav --rig examples/rigs/talking-skull.yaml --out hello-jaw.yaml\n"
@@ -127,7 +129,8 @@ int run_jaw(const JawCommandOptions& options, std::ostream& out, std::ostream& e
     config::write_show_file(options.out_path, show, "written by avar jaw from " + options.audio_path);
     out << "fitted " << result.track.raw.keys.size() << " keys within " << format_number(tolerance) << " " << channel.unit
         << "; wrote " << options.out_path << " (" << format_number(show.duration) << " s)\n";
-    return run_check(options.out_path, options.rig_path, "", out, err);
+    return run_check(options.out_path, options.rig_path, "", out, err,
+                     options.verbose ? SegmentListing::every : SegmentListing::summary);
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;

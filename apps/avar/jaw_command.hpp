@@ -26,6 +26,7 @@ struct JawCommandOptions {
   std::optional<double> curve;
   std::optional<double> closed, open;  ///< default: the channel's rest, and the limit farther from it
   std::optional<double> tolerance;     ///< default: 1% of the travel
+  bool verbose = false;                ///< list every segment's share of the limits, not a summary
 };
 
 /// Declares the `jaw` subcommand and its options on `app`, writing into `options`.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <ostream>
 
+#include "avar/config/show_behaviour.hpp"
 #include "avar/config/retarget_map.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
@@ -118,7 +119,9 @@ playback::Show load_playable_show(const std::string& path, const std::optional<s
   if (!map_path) {
     if (is_mocap_file(path))
       throw InputError({path, 0, 0}, "found a motion-capture file; expected --map MAP.yaml to retarget it onto the rig");
-    return config::load_show_file(path);
+    playback::Show show = config::load_show_file(path);
+    config::bind_show_behaviour(show, rig);
+    return show;
   }
   if (!is_mocap_file(path))
     throw InputError({path, 0, 0},

@@ -290,7 +290,7 @@ int write_take(const PlayOptions& options, const Loaded& loaded, const control::
     placed.clip = take.clips.size() - 1;
     placed.end = std::min(duration, take.duration);
     placed.where = where;
-    take.layers.push_back({"take", playback::Blend::override, 1.0, {}, {placed}, where});
+    take.layers.push_back({"take", playback::Blend::override, 1.0, {}, {placed}, where, std::nullopt});
   } else {
     take.name = std::filesystem::path(*options.record_path).stem().string();
     take.duration = duration;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "avar/config/rig_file.hpp"
+#include "avar/config/show_behaviour.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/playback/runtime/sampler.hpp"
@@ -82,6 +83,8 @@ std::vector<std::string> driven_channels(const playback::Show& show) {
     for (const auto& placement : layer.placements)
       for (const auto& track : show.clips[placement.clip].tracks)
         if (layer.touches(track.channel)) add(track.channel);
+  for (const auto& layer : show.layers)
+    for (const std::string& name : playback::behaviour_channels(layer)) add(name);
   return names;
 }
 
@@ -162,12 +165,22 @@ void write_show_csv(const playback::Show& show, const std::optional<rig::Rig>& r
   });
 }
 
-/// The rig of --rig, checked against the show (a channel it lacks is refused with its place).
-std::optional<rig::Rig> rig_for(const SampleOptions& o, const playback::Show& show) {
-  if (!o.rig_path) return std::nullopt;
+/// The rig of --rig, checked against the show (a channel it lacks is refused with its place),
+/// with the show's behaviour layers bound to it. Without --rig a behaviour layer is refused: its
+/// generators need the rig's channels and limits.
+std::optional<rig::Rig> rig_for(const SampleOptions& o, playback::Show& show) {
+  if (!o.rig_path) {
+    for (const playback::Layer& layer : show.layers)
+      if (layer.behaviour)
+        throw InputError(layer.behaviour->where, "layer '" + layer.name +
+                                                     "' has behaviour, whose generators need the rig's channels and limits; "
+                                                     "expected --rig RIG");
+    return std::nullopt;
+  }
   rig::Rig rig = config::load_rig_file(*o.rig_path);
   const config::ShowCheck check = config::check_show_against_rig(show, rig);
   if (!check.ok()) throw InputError(check.errors.front().where, check.errors.front().message);
+  config::bind_show_behaviour(show, rig);
   return rig;
 }
 
@@ -192,6 +205,7 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
       "(held or extrapolated); a looping show is not wrapped. Numbers read back exactly.\n"
       "A show with layers of clips prints every channel its tracks and layers drive, composed as it plays\n"
       "(a looping one wraps); under the layers lie its tracks, else the --rig rest pose, else 0.\n"
+      "Behaviour layers (idle generators in the show) need --rig: their channels and limits are the rig's.\n"
       "Examples:\n"
       "  avar sample examples/shows/hello-head.yaml --rate 50 > hello-head.csv\n"
       "      every channel at 50 Hz over the whole show\n"
@@ -204,7 +218,7 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
 
 int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& err) {
   try {
-    const playback::Show show = config::load_show_file(options.show_path);
+    playback::Show show = config::load_show_file(options.show_path);
     const Grid grid = grid_for(options, show.duration);
     const std::optional<rig::Rig> rig = rig_for(options, show);
     if (!options.out_path) {

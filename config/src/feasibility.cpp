@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
+#include "avar/config/show_behaviour.hpp"
 #include "avar/playback/runtime/sampler.hpp"
 #include "played_span.hpp"
 
@@ -14,6 +15,7 @@ namespace avar::config {
 namespace {
 
 constexpr int kSamples = 400;  // per segment, for the speed and acceleration measurements
+constexpr double kBehaviourPiece = 0.25;  // s: behaviour layers are measured in pieces this long
 
 struct Demand {
   double speed = 0;
@@ -81,6 +83,13 @@ std::vector<double> composed_breakpoints(const playback::Show& show) {
   for (const playback::Track& track : show.tracks)
     for (const playback::RawKey& key : track.raw.keys) b.push_back(key.time);
   for (const playback::Layer& layer : show.layers) {
+    if (const auto& behaviour = layer.behaviour) {
+      // Generated motion has no keys: its span and fade edges, and a cut every
+      // kBehaviourPiece so that each piece is measured finely (saccades last tens of ms).
+      const playback::LayerBehaviour& g = *behaviour;
+      b.insert(b.end(), {g.from, g.to, g.from + g.fade_in, g.to - g.fade_out});
+      for (double t = g.from + kBehaviourPiece; t < g.to; t += kBehaviourPiece) b.push_back(t);
+    }
     for (const playback::Placement& p : layer.placements) {
       const playback::Clip& clip = show.clips[p.clip];
       b.insert(b.end(), {p.start, p.end, p.start + p.fade_in, p.end - p.fade_out});
@@ -118,6 +127,10 @@ std::vector<double> composed_breakpoints(const playback::Show& show) {
 SourceLocation composed_source(const playback::Show& show, const std::string& channel, double t) {
   for (auto layer = show.layers.rbegin(); layer != show.layers.rend(); ++layer) {
     if (!layer->touches(channel)) continue;
+    if (layer->behaviour && layer->behaviour->weight(t) > 0) {
+      const std::vector<std::string> moved = playback::behaviour_channels(*layer);
+      if (std::find(moved.begin(), moved.end(), channel) != moved.end()) return layer->behaviour->where;
+    }
     for (const playback::Placement& p : layer->placements)
       if (p.weight(t) > 0)
         for (const playback::Track& track : show.clips[p.clip].tracks)
@@ -145,7 +158,17 @@ void add_merged(const Infeasible& f, std::vector<Infeasible>& found) {
 /// A layered show is checked on its composed motion, as the sampler plays it on this rig: between
 /// consecutive breakpoints (composed_breakpoints) the motion is smooth and is measured as a
 /// segment is; at a breakpoint a jump (a cut without a fade, a step key) is listed as a jump.
-std::vector<Infeasible> check_composed_feasibility(const playback::Show& show, const rig::Rig& rig) {
+std::vector<Infeasible> check_composed_feasibility(const playback::Show& given, const rig::Rig& rig) {
+  // Behaviour layers play on this rig's channels and limits.
+  std::optional<playback::Show> bound;
+  if (has_unbound_behaviour(given)) {
+    try {
+      bind_show_behaviour(bound.emplace(given), rig);
+    } catch (const InputError&) {
+      return {};  // check_show_against_rig reports it
+    }
+  }
+  const playback::Show& show = bound ? *bound : given;
   std::vector<std::string> names;
   for (const rig::ChannelSpec& c : rig.channels) names.push_back(c.name);
   const std::vector<double> rest = rig.rest_frame();
@@ -239,6 +262,45 @@ std::string Infeasible::to_string() const {
     case Kind::jump: what = "jumps by " + format_number(required) + u + " at once (step); the limiter shapes it"; break;
   }
   return avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: " + what;
+}
+
+double SegmentDemand::usage() const {
+  const double outside = std::max({0.0, min - low, high - max});
+  const double reach = outside > 0 ? 1 + outside / std::max(max - min, 1e-12) : 0.0;
+  return std::max(
+      {max_velocity > 0 ? speed / max_velocity : 0.0, max_acceleration > 0 ? acceleration / max_acceleration : 0.0, reach});
+}
+
+std::string SegmentDemand::to_string() const {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  const auto percent = [](double share) { return format_number(std::round(share * 1000) / 10) + " %"; };
+  std::string text = avar::to_string(where) + ": " + channel + " " + format_number(t0) + "-" + format_number(t1) + " s: speed " +
+                     percent(speed / max_velocity) + " of " + format_number(max_velocity) + u + "/s, acceleration " +
+                     percent(acceleration / max_acceleration) + " of " + format_number(max_acceleration) + u + "/s²";
+  if (low < min || high > max)
+    text += ", reaches " + format_number(high > max ? high : low) + u + " outside [" + format_number(min) + ", " +
+            format_number(max) + "]";
+  return text;
+}
+
+std::vector<SegmentDemand> segment_demands(const playback::Show& show, const rig::Rig& rig) {
+  std::vector<SegmentDemand> found;
+  if (show.layered()) return found;
+  for (const playback::Track& track : show.tracks) {
+    const auto ci = rig.find_channel(track.channel);
+    if (!ci || rig.channels[*ci].digital()) continue;
+    const rig::ChannelSpec& c = rig.channels[*ci];
+    const auto& keys = track.raw.keys;
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+      if (keys[k].interpolation == playback::Interpolation::step) continue;
+      const auto span = detail::played_part(keys[k].time, keys[k + 1].time, show.duration);
+      if (!span) continue;
+      const Demand d = measure(track.curve, span->t0, span->t1);
+      found.push_back({c.name, c.unit, span->t0, span->t1, d.speed, d.acceleration, d.low, d.high, c.max_velocity,
+                       c.max_acceleration, c.min, c.max, keys[k].where});
+    }
+  }
+  return found;
 }
 
 std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig::Rig& rig) {

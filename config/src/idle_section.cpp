@@ -228,9 +228,14 @@ playback::IdleSpec read_idle_section(const rig::Rig& rig, const YamlRef& node) {
   node.expect_map("idle (noise, blinks, gaze, breathing)");
   node.expect_only_keys({"crossfade_s", "noise", "blinks", "gaze", "breathing"}, "idle");
   playback::IdleSpec spec;
+  if (auto c = node.find("crossfade_s")) spec.crossfade_s = idle_within(*c, "crossfade_s", 0, 10);
+  read_idle_generators(rig, node, "idle", spec);
+  return spec;
+}
+
+void read_idle_generators(const rig::Rig& rig, const YamlRef& node, const std::string& what, playback::IdleSpec& spec) {
   spec.limits = idle_limits(rig);
   std::vector<const char*> owner(rig.channels.size(), nullptr);
-  if (auto c = node.find("crossfade_s")) spec.crossfade_s = idle_within(*c, "crossfade_s", 0, 10);
   if (auto noise = node.find("noise"))
     idle_each(*noise, "noise (a map of channel to amplitude, frequency, octaves)",
               [&](const YamlRef& name, const YamlRef& n) { spec.noise.push_back(read_noise(rig, name, n)); });
@@ -238,8 +243,7 @@ playback::IdleSpec read_idle_section(const rig::Rig& rig, const YamlRef& node) {
   if (auto g = node.find("gaze")) spec.gaze = read_gaze(rig, *g, owner);
   if (auto b = node.find("breathing")) spec.breathing = read_breathing(rig, *b);
   if (spec.noise.empty() && !spec.blinks && !spec.gaze && !spec.breathing)
-    node.fail("expected at least one of noise, blinks, gaze, breathing in idle");
-  return spec;
+    node.fail("expected at least one of noise, blinks, gaze, breathing in " + what);
 }
 
 std::optional<playback::IdleSpec> load_idle_section(const rig::Rig& rig, const std::string& path) {

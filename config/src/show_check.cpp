@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "played_span.hpp"
+#include "show_behaviour.hpp"
 
 namespace avar::config {
 namespace {
@@ -46,6 +47,7 @@ void check_layers(const playback::Show& show, const rig::Rig& rig, std::vector<b
   for (const playback::Layer& layer : show.layers) {
     for (const playback::MaskChannel& m : layer.mask)
       if (!rig.find_channel(m.channel)) unknown(m.where, "the mask of layer '" + layer.name + "'", m.channel);
+    detail::check_behaviour(layer, rig, driven, result.errors);
     for (const playback::Placement& p : layer.placements)
       for (const playback::Track& track : show.clips[p.clip].tracks)
         if (const auto ci = rig.find_channel(track.channel); ci && layer.touches(track.channel)) driven[*ci] = true;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "avar/core/format.hpp"
+#include "show_behaviour.hpp"
 #include "show_tracks.hpp"
 
 namespace avar::config::detail {
@@ -116,8 +117,8 @@ playback::Placement read_placement(const YamlRef& node, const playback::Show& sh
 }
 
 playback::Layer read_layer(const YamlRef& node, std::size_t index, const playback::Show& show) {
-  node.expect_map("a layer ({name, blend, weight, channels, clips})");
-  node.expect_only_keys({"name", "blend", "weight", "channels", "clips"}, "a layer");
+  node.expect_map("a layer ({name, blend, weight, channels, clips | behaviour})");
+  node.expect_only_keys({"name", "blend", "weight", "channels", "clips", "behaviour"}, "a layer");
   playback::Layer layer;
   layer.where = node.where();
   layer.name = node.find("name") ? node.at("name", "").as_string("the layer's name") : "layer " + std::to_string(index + 1);
@@ -139,6 +140,17 @@ playback::Layer read_layer(const YamlRef& node, std::size_t index, const playbac
       layer.mask.push_back(std::move(m));
     }
   }
+  if (auto behaviour = node.find("behaviour")) {
+    if (node.has("clips"))
+      behaviour->fail(what +
+                      " has both clips and behaviour; expected one or the other (put the behaviour on a layer of its own)");
+    layer.behaviour = read_behaviour(*behaviour, show, layer.name);
+    return layer;
+  }
+  if (!node.has("clips"))
+    node.fail(what +
+              " has neither clips nor behaviour; expected clips: [{clip, start, ...}] or behaviour: {noise, blinks, gaze, "
+              "breathing, ...}");
   const YamlRef placements = node.at("clips", what);
   placements.expect_sequence("the clips of " + what + " (a list of {clip, start, ...})");
   if (placements.size() == 0) placements.fail(what + " places no clips; expected at least one");
@@ -164,7 +176,7 @@ void read_clips_and_layers(const YamlRef& root, playback::Show& show) {
       root.at("clips", "").fail("the show has clips but no layers; expected layers: placing them on the timeline");
     return;
   }
-  layers->expect_sequence("layers (a list of {name, blend, weight, channels, clips}, bottom first)");
+  layers->expect_sequence("layers (a list of {name, blend, weight, channels, clips | behaviour}, bottom first)");
   if (layers->size() == 0) layers->fail("layers lists no layers; expected at least one, or no layers section");
   for (std::size_t i = 0; i < layers->size(); ++i) {
     playback::Layer layer = read_layer((*layers)[i], i, show);

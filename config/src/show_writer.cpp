@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "avar/core/input_error.hpp"
+#include "show_behaviour.hpp"
 
 namespace avar::config {
 namespace {
@@ -142,6 +143,20 @@ void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
   y << YAML::EndMap;
 }
 
+/// A behaviour layer's span and seed, then its generators as they were read.
+void write_behaviour(YAML::Emitter& y, const playback::LayerBehaviour& b) {
+  const YAML::Node* text = detail::behaviour_text(b);
+  if (!text)
+    throw InputError(b.where, "a behaviour not read from a show file cannot be written; expected one from load_show_file");
+  y << YAML::Key << "behaviour" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "seed" << YAML::Value << b.seed << YAML::Key << "from" << YAML::Value << b.from << YAML::Key << "to"
+    << YAML::Value << b.to << YAML::Key << "fade_in" << YAML::Value << b.fade_in << YAML::Key << "fade_out" << YAML::Value
+    << b.fade_out;
+  for (const char* g : detail::kBehaviourGenerators)
+    if ((*text)[g]) y << YAML::Key << g << YAML::Value << (*text)[g];
+  y << YAML::EndMap;
+}
+
 /// The layers, bottom first; every placement field is written, the end resolved.
 void write_layers(YAML::Emitter& y, const playback::Show& show) {
   y << YAML::Key << "layers" << YAML::Value << YAML::BeginSeq;
@@ -154,6 +169,11 @@ void write_layers(YAML::Emitter& y, const playback::Show& show) {
       y << YAML::Key << "channels" << YAML::Value << YAML::Flow << YAML::BeginSeq;
       for (const playback::MaskChannel& m : layer.mask) y << m.channel;
       y << YAML::EndSeq;
+    }
+    if (layer.behaviour) {
+      write_behaviour(y, *layer.behaviour);
+      y << YAML::EndMap;
+      continue;
     }
     y << YAML::Key << "clips" << YAML::Value << YAML::BeginSeq;
     for (const playback::Placement& p : layer.placements)

@@ -36,6 +36,8 @@ std::vector<char> show_drives(const rig::Rig& rig, const playback::Show& show) {
   for (const playback::Track& t : show.tracks) by_name(t.channel);
   for (const playback::Clip& clip : show.clips)
     for (const playback::Track& t : clip.tracks) by_name(t.channel);
+  for (const playback::Layer& layer : show.layers)
+    for (const std::string& name : playback::behaviour_channels(layer)) by_name(name);
   if (rig.kinematics)
     for (const playback::TargetTrack& target : show.targets)
       if (const auto e = rig.kinematics->model.find_effector(target.effector))

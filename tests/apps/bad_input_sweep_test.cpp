@@ -35,6 +35,7 @@ constexpr SweepPair kSweepPairs[] = {
     {"hello-head", "maestro-usb"},    {"arm-wave", "dynamixel-arm"}, {"arm-wave", "feetech-arm"},
     {"figure-eight", "gaze-head"},    {"look-around", "gaze-head"},  {"haunt-prop", "haunt-prop"},
     {"mixed-figure", "mixed-figure"}, {"odrive-arm", "odrive-arm"},  {"turntable-tour", "cia402-turntable"},
+    {"lively-head", "hello-head"},
 };
 
 enum class SweepMutation {
@@ -209,7 +210,7 @@ TEST(BadInputSweep, MutatedExamplesAreAcceptedOrRefusedWithALocationNeverCrash) 
   const char* seed_text = std::getenv("AVAR_SWEEP_SEED");
   const std::uint64_t seed = seed_text ? std::strtoull(seed_text, nullptr, 10) : 20261203;
   // One per mutation kind and pair: under the sanitizers each case is two runs of the avar binary.
-  constexpr int kCases = 132;
+  constexpr int kCases = 143;
   // A mutated file that still reads plays its whole show: only so many of those, the rest checked.
   constexpr int kMaxPlayedWhole = 4;
   int played_whole = 0, refused = 0;

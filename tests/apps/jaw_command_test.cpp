@@ -3,7 +3,9 @@
 // naming the file or option.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -86,6 +88,52 @@ TEST(JawCommand, DefaultLeadComesFromTheChannelLimits) {
   ASSERT_EQ(result.code, kExitOk) << result.err;
   // 25 deg at 250 deg/s and 6000 deg/s^2: 0.1 + 0.04167 s rest to rest, half of it.
   EXPECT_NE(result.out.find("lead 70.8333 ms (time to half open"), std::string::npos) << result.out;
+}
+
+/// Lines of `text` that start with `prefix`.
+std::size_t jaw_cmd_lines(const std::string& text, const std::string& prefix) {
+  std::size_t n = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    n += text.compare(at, prefix.size(), prefix) == 0 ? 1 : 0;
+    at = end + 1;
+  }
+  return n;
+}
+
+TEST(JawCommand, FeasibilityIsSummarisedAndVerboseListsEverySegment) {
+  // Syllables: bursts of tone with short gaps, a jaw that asks a lot of the skull's servo.
+  const std::string wav = testing::temp_path("syllables.wav");
+  std::vector<float> voice(32000, 0.0f);
+  for (std::size_t i = 4000; i < 28000; ++i)
+    if ((i / 1600) % 2 == 0) voice[i] = static_cast<float>(0.4 * std::sin(0.3 * static_cast<double>(i)));
+  testing::write_wav_mono16(wav, voice, 16000);
+  const std::string show_path = testing::temp_path("jaw.yaml");
+  const auto brief = run_avar({"jaw", wav, "--rig", kJawRig, "--out", show_path});
+  ASSERT_EQ(brief.code, kExitOk) << brief.err;
+  const auto summary_at = brief.out.find("feasibility: ");
+  ASSERT_NE(summary_at, std::string::npos) << brief.out;
+  std::size_t segments = 0, over = 0, near = 0;
+  ASSERT_EQ(std::sscanf(brief.out.c_str() + summary_at, "feasibility: %zu segment(s), %zu over a limit, %zu within 10 %% of one",
+                        &segments, &over, &near),
+            3)
+      << brief.out;
+  const playback::Show show = config::load_show_file(show_path);
+  EXPECT_EQ(segments, show.tracks[0].raw.keys.size() - 1);
+  EXPECT_NE(brief.out.find("(--verbose lists every segment)"), std::string::npos) << brief.out;
+  // Only the segments over or near a limit, each once; the closing count agrees.
+  EXPECT_EQ(jaw_cmd_lines(brief.out, "over: "), over);
+  EXPECT_EQ(jaw_cmd_lines(brief.out, "near: "), near);
+  EXPECT_EQ(jaw_cmd_lines(brief.out, "segment: "), 0u);
+  EXPECT_EQ(jaw_cmd_lines(brief.out, "infeasible: "), 0u);
+  EXPECT_NE(brief.out.find("\n" + std::to_string(over) + " segment(s) ask more"), std::string::npos) << brief.out;
+  EXPECT_LT(over + near, segments);
+  // --verbose: every segment, in the same words.
+  const auto full = run_avar({"jaw", wav, "--rig", kJawRig, "--out", show_path, "--verbose"});
+  ASSERT_EQ(full.code, kExitOk) << full.err;
+  EXPECT_EQ(jaw_cmd_lines(full.out, "over: "), over);
+  EXPECT_EQ(jaw_cmd_lines(full.out, "near: "), near);
+  EXPECT_EQ(jaw_cmd_lines(full.out, "segment: ") + over + near, segments);
 }
 
 TEST(JawCommand, BadInputExitsTwoNamingTheFileOrOption) {

@@ -55,6 +55,21 @@ TEST(Feasibility, ReportsSegmentsThatAskTooMuchWithRequiredAndAllowed) {
   EXPECT_EQ(found[1].to_string(), "s.yaml:4:7: pan 3-4 s: jumps by 4 deg at once (step); the limiter shapes it");
 }
 
+TEST(Feasibility, SegmentDemandsGiveEachPlayedSegmentsShareOfTheLimits) {
+  const std::vector<SegmentDemand> segments = segment_demands(show(), rig());
+  ASSERT_EQ(segments.size(), 4u);  // jaw 0-1, 1-5; pan 0-2, 2-3 (the step 3-4 switches, it is not measured)
+  EXPECT_NEAR(segments[0].usage(), 2.0, 1e-6);
+  EXPECT_EQ(segments[0].to_string(), "s.yaml:1:7: jaw 0-1 s: speed 200 % of 10 deg/s, acceleration 0 % of 100 deg/s²");
+  EXPECT_NEAR(segments[1].usage(), 0.5, 1e-6);
+  EXPECT_NEAR(segments[2].usage(), 0.25, 1e-6);
+  EXPECT_EQ(segments[3].channel, "pan");
+  EXPECT_NEAR(segments[3].usage(), 0.0, 1e-9);
+  // Leaving the range counts past 1, with how far.
+  SegmentDemand outside = segments[1];
+  outside.high = 36;  // 6 past the top of a 60-wide range
+  EXPECT_NEAR(outside.usage(), 1.1, 1e-12);
+}
+
 TEST(Feasibility, BezierAccelerationIsMeasuredOnTheCurve) {
   playback::Show s;
   s.duration = 1;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -155,7 +156,7 @@ TEST(IdleLayer, HandOverToAndFromIdleIsEasedWithABoundedStepPerTick) {
 }
 
 struct IdleRun {
-  std::vector<double> show_time, jaw_weight, pan_weight;
+  std::vector<double> show_time, jaw_weight, pan_weight, lid_weight;
   std::vector<std::vector<double>> targets, commands;
 };
 
@@ -178,6 +179,7 @@ IdleRun idle_controller_run(const rig::Rig& rig, const playback::Show& show, Idl
     run.show_time.push_back(controller.show_time());
     run.jaw_weight.push_back(idle.weight(0));
     run.pan_weight.push_back(idle.weight(1));
+    run.lid_weight.push_back(idle.weight(2));
     run.targets.emplace_back(controller.target().begin(), controller.target().end());
     run.commands.emplace_back(controller.commanded().begin(), controller.commanded().end());
   }
@@ -222,6 +224,61 @@ TEST(IdleLayer, TheShowWinsItsChannelsWhileItPlaysAndIdleTheRestAndTheTimeBetwee
       ASSERT_LE(run.commands[k][c], rig.channels[c].max);
     }
   }
+}
+
+/// idle_layer_show with a behaviour layer (bound to the rig) blinking the lid the whole show.
+playback::Show idle_layer_lively_show(const rig::Rig& rig, double duration) {
+  playback::Show show = idle_layer_show(duration);
+  playback::Layer layer;
+  layer.name = "life";
+  playback::LayerBehaviour b;
+  b.seed = 3;
+  b.to = duration;
+  for (const rig::ChannelSpec& c : rig.channels) {
+    b.channels.push_back(c.name);
+    b.idle.limits.push_back({c.min, c.max, c.soft_margin, c.rest, c.max_velocity, c.max_acceleration, c.max_jerk});
+  }
+  playback::BlinkSpec blinks;
+  blinks.lids = {{2, 80, 0}};
+  blinks.interval_min = 0.8;
+  blinks.interval_max = 1.2;
+  b.idle.blinks = blinks;
+  layer.behaviour = b;
+  show.layers.push_back(layer);
+  return show;
+}
+
+TEST(IdleLayer, ABehaviourLayersChannelsAreTheShowsWhileItPlaysAndIdlesAfter) {
+  const rig::Rig rig = idle_layer_rig();
+  const playback::Show show = idle_layer_lively_show(rig, 3);
+  const std::vector<char> drives = show_drives(rig, show);
+  EXPECT_EQ(drives, (std::vector<char>{1, 0, 1}));  // the jaw's track and the behaviour's lid
+  const double crossfade = 0.5;
+  IdleLayer idle(idle_layer_spec(rig, crossfade), 8, drives);
+  const IdleRun run = idle_controller_run(rig, show, idle, 2, 2);
+  playback::Sampler sampler(show, std::vector<std::string>{"jaw", "pan", "lid"}, rig.rest_frame());
+  std::vector<double> frame(3);
+  double lid_min = 100;
+  int played = 0;
+  for (std::size_t k = 0; k < run.show_time.size(); ++k) {
+    const double t = run.show_time[k];
+    if (t >= 0 && t < show.duration) {
+      // The lid blinks as the show's behaviour says; idle has let go of it.
+      sampler.sample(t, frame);
+      ASSERT_EQ(run.lid_weight[k], 0.0) << t;
+      ASSERT_DOUBLE_EQ(run.targets[k][2], frame[2]) << t;
+      lid_min = std::min(lid_min, frame[2]);
+      ++played;
+    }
+    if (t > -2 + crossfade + 0.03) {
+      ASSERT_EQ(run.pan_weight[k], 1.0) << t;  // not the show's: idle's throughout
+    }
+    if (t > show.duration + crossfade + 0.03) {
+      ASSERT_EQ(run.lid_weight[k], 1.0) << t;  // taken back after the show
+    }
+  }
+  EXPECT_GT(played, 140);
+  EXPECT_LT(lid_min, 10);  // the behaviour's blinks shut it
 }
 
 TEST(IdleLayer, TheShowsHandOversGoThroughIntermediateWeightsBothWays) {

@@ -98,18 +98,24 @@ void GazeGenerator::follow_head(double t) noexcept {
   const double omega = 1.0 / std::max(spec_.head_smoothing_s, 1e-3);
   while (head_t_ < t) {
     const double h = std::min(kGazeHeadStep, t - head_t_);
-    head_t_ += h;
+    // A goal steers the steps that start when it is due or later: a step (or the part of one
+    // before a sample) never feels a goal due after it began, so the head's path does not
+    // depend on where the samples fall.
     while (pending_count_ > 0 && pending_[0].due <= head_t_) {
       head_goal_ = {pending_[0].pan, pending_[0].tilt};
       std::copy(pending_.begin() + 1, pending_.end(), pending_.begin());
       --pending_count_;
     }
+    head_t_ += h;
     for (std::size_t a = 0; a < 2; ++a) {
       // Critically damped: x'' = ω²(goal − x) − 2ω x', within the head's caps.
       const double accel = std::clamp(omega * omega * (head_goal_[a] - head_[a]) - 2 * omega * head_velocity_[a],
                                       -head_accel_cap_[a], head_accel_cap_[a]);
-      head_velocity_[a] = std::clamp(head_velocity_[a] + accel * h, -head_speed_cap_[a], head_speed_cap_[a]);
-      head_[a] += head_velocity_[a] * h;
+      // The mean of the step's velocities: exact for its constant acceleration, so that a step
+      // shorter than kGazeHeadStep (a sample between steps) asks no more than the cap.
+      const double v0 = head_velocity_[a];
+      head_velocity_[a] = std::clamp(v0 + accel * h, -head_speed_cap_[a], head_speed_cap_[a]);
+      head_[a] += 0.5 * (v0 + head_velocity_[a]) * h;
     }
   }
 }

@@ -65,7 +65,12 @@ void Sampler::bind_layers(std::span<const std::string> frame_channels) {
   for (const Layer& layer : show_.layers) {
     const std::string who = "layer '" + layer.name + "'";
     for (const MaskChannel& m : layer.mask) frame_index(frame_channels, m.channel, "the mask of " + who);
-    LayerRun run{&layer, placements_.size(), placements_.size(), slots_.size(), slots_.size()};
+    LayerRun run{&layer, placements_.size(), placements_.size(), slots_.size(), slots_.size(), 0};
+    if (layer.behaviour) {
+      bind_behaviour(layer, frame_channels, run);
+      layers_.push_back(run);
+      continue;
+    }
     for (const Placement& placement : layer.placements) {
       if (placement.clip >= show_.clips.size())
         throw std::invalid_argument(who + " places clip " + std::to_string(placement.clip) + "; expected an index below the " +
@@ -90,7 +95,47 @@ void Sampler::bind_layers(std::span<const std::string> frame_channels) {
   }
 }
 
+void Sampler::bind_behaviour(const Layer& layer, std::span<const std::string> frame_channels, LayerRun& run) {
+  const LayerBehaviour& b = *layer.behaviour;
+  if (!b.bound())
+    throw std::invalid_argument(
+        "layer '" + layer.name +
+        "' has behaviour not bound to a rig; expected config::bind_show_behaviour to give it the rig's channels");
+  if (b.channels.size() != b.idle.limits.size())
+    throw std::invalid_argument("the behaviour of layer '" + layer.name + "' names " + std::to_string(b.channels.size()) +
+                                " channels for " + std::to_string(b.idle.limits.size()) + " limits; expected one name per limit");
+  run.behaviour = behaviours_.size();
+  BehaviourRun r{BehaviourPlayer(b.idle, b.seed), std::vector<double>(b.channels.size()), behaviour_channels_.size(), 0};
+  for (std::size_t c = 0; c < b.channels.size(); ++c) {
+    r.values[c] = b.idle.limits[c].rest;
+    if (!r.player.drives()[c] || !layer.touches(b.channels[c])) continue;
+    const std::size_t f = frame_index(frame_channels, b.channels[c], "the behaviour of layer '" + layer.name + "'");
+    behaviour_channels_.push_back({c, f, b.idle.limits[c].rest});
+  }
+  r.end_channel = behaviour_channels_.size();
+  behaviours_.push_back(std::move(r));
+}
+
+void Sampler::compose_behaviour(const LayerRun& run, double t, std::span<double> frame) noexcept {
+  const Layer& layer = *run.layer;
+  const LayerBehaviour& b = *layer.behaviour;
+  const double w = b.weight(t);
+  if (!(w > 0)) return;
+  BehaviourRun& r = behaviours_[run.behaviour];
+  r.player.sample(t - b.from, r.values);
+  const double coverage = w * layer.weight;
+  for (std::size_t i = r.first_channel; i < r.end_channel; ++i) {
+    const BehaviourChannel& c = behaviour_channels_[i];
+    const double value = layer.blend == Blend::additive ? r.values[c.idle] - c.rest : r.values[c.idle];
+    frame[c.frame] = apply_blend(layer.blend, frame[c.frame], value, coverage);
+  }
+}
+
 void Sampler::compose_layer(LayerRun& run, double t, std::span<double> frame) noexcept {
+  if (run.layer->behaviour) {
+    compose_behaviour(run, t, frame);
+    return;
+  }
   for (std::size_t s = run.first_slot; s < run.end_slot; ++s) slots_[s].weighted_sum = slots_[s].weight_sum = 0;
   for (std::size_t p = run.first_placement; p < run.end_placement; ++p) {
     const PlacementRun& placement = placements_[p];

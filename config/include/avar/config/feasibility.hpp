@@ -24,6 +24,30 @@ struct Infeasible {
   std::string to_string() const;  ///< "file:line:col: jaw 6.8-7 s: speed 150 deg/s, allowed 120 deg/s"
 };
 
+/// What one played segment of a plain show's track asks of its channel, against its limits.
+struct SegmentDemand {
+  std::string channel;
+  std::string unit;
+  double t0 = 0, t1 = 0;                          ///< the played part of the segment, seconds
+  double speed = 0, acceleration = 0;             ///< largest, units/s and units/s²
+  double low = 0, high = 0;                       ///< extremes reached, channel units
+  double max_velocity = 0, max_acceleration = 0;  ///< the channel's limits
+  double min = 0, max = 0;
+  SourceLocation where;  ///< the key that starts the segment
+
+  /// The largest share of a limit the segment uses: speed / max_velocity, acceleration /
+  /// max_acceleration, and, for a segment leaving the range, 1 + how far outside over the range.
+  /// Above 1 the segment asks more than the channel allows.
+  double usage() const;
+  /// "file:line:col: jaw 0.7-0.72 s: speed 91 % of 300 deg/s, acceleration 40 % of 8000 deg/s²"
+  std::string to_string() const;
+};
+
+/// Every played segment of every analog track of a plain show, measured as check_feasibility
+/// measures it (step segments, digital channels and channels the rig lacks are left out). A
+/// layered show has no segments of its own: empty.
+std::vector<SegmentDemand> segment_demands(const playback::Show& show, const rig::Rig& rig);
+
 /// Every segment of every track that needs more speed or acceleration (measured on the curve
 /// between its keys), or more range, than its channel allows, plus step keys that jump (the
 /// limiter shapes jumps; they are listed, not retimed). Tracks for unknown channels are skipped

@@ -23,8 +23,9 @@
 
 namespace avar::control {
 
-/// Per channel of the rig: 1 where the show moves it (its tracks, its clips' tracks, and the
-/// joints its inverse-kinematics targets turn). A layer's mask does not add channels.
+/// Per channel of the rig: 1 where the show moves it (its tracks, its clips' tracks, the
+/// channels its behaviour layers move once bound to the rig (config::bind_show_behaviour), and
+/// the joints its inverse-kinematics targets turn). A layer's mask does not add channels.
 std::vector<char> show_drives(const rig::Rig& rig, const playback::Show& show);
 
 class IdleLayer final : public LiveLayer {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "avar/playback/runtime/behaviour_player.hpp"
 #include "avar/playback/runtime/curve.hpp"
 #include "avar/playback/runtime/show.hpp"
 
@@ -33,7 +34,10 @@ class Sampler {
   /// For any show, plain or layered: frame_channels[i] names frame index i, and every channel a
   /// track, a clip or a layer's mask names must be among them. defaults as above, one per frame
   /// channel. Throws std::invalid_argument for a name the frame does not have, a placement of a
-  /// clip the show does not have, sizes that differ, and the problems above.
+  /// clip the show does not have, sizes that differ, a behaviour layer not bound to a rig
+  /// (config::bind_show_behaviour) or driving a channel the frame does not have, and the problems
+  /// above. A behaviour layer's generators are played by a BehaviourPlayer (behaviour_player.hpp):
+  /// their values are a function of the show time alone.
   Sampler(const Show& show, std::span<const std::string> frame_channels, std::span<const double> defaults);
 
   /// Writes every channel of `frame` for show time `show_time_s` (seconds): the defaults, then
@@ -74,11 +78,24 @@ class Sampler {
     const Layer* layer = nullptr;
     std::size_t first_placement = 0, end_placement = 0;  ///< range of placements_
     std::size_t first_slot = 0, end_slot = 0;            ///< range of slots_
+    std::size_t behaviour = 0;                           ///< index into behaviours_, for a behaviour layer
+  };
+  /// A channel a behaviour layer drives: where the generators write it, where the frame has it.
+  struct BehaviourChannel {
+    std::size_t idle = 0, frame = 0;
+    double rest = 0;  ///< the generators move about it; an additive layer adds the motion about it
+  };
+  struct BehaviourRun {
+    BehaviourPlayer player;
+    std::vector<double> values;                      ///< the generators' frame (the bound rig's channels)
+    std::size_t first_channel = 0, end_channel = 0;  ///< range of behaviour_channels_
   };
 
   void bind_tracks(std::span<const std::size_t> channel_of_track);
   void bind_layers(std::span<const std::string> frame_channels);
+  void bind_behaviour(const Layer& layer, std::span<const std::string> frame_channels, LayerRun& run);
   void compose_layer(LayerRun& run, double t, std::span<double> frame) noexcept;
+  void compose_behaviour(const LayerRun& run, double t, std::span<double> frame) noexcept;
 
   const Show& show_;
   std::vector<std::size_t> channel_of_track_;
@@ -88,6 +105,8 @@ class Sampler {
   std::vector<PlacementRun> placements_;
   std::vector<ClipTrack> clip_tracks_;
   std::vector<Slot> slots_;
+  std::vector<BehaviourRun> behaviours_;
+  std::vector<BehaviourChannel> behaviour_channels_;
   std::size_t warm_next_ = 0;  ///< the curve warm() reads next: a track, then a clip track
   double warm_sink_ = 0;       ///< what warm() read (kept, so that the reads happen)
 };

@@ -12,6 +12,10 @@
 // min(1, sum of their weights) × the layer's weight. Layers apply bottom (first) to top:
 // override: out = out + coverage × (value - out); additive: out = out + coverage × value (the
 // clips of an additive layer are offsets). A mask limits a layer to some channels.
+//
+// A behaviour layer (layer_behaviour.hpp) holds idle generators instead of placements: its value
+// is what they write (in an additive layer, their motion about the channel's rest), its coverage
+// the behaviour's span weight × the layer's weight, on every channel the generators drive.
 
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +26,7 @@
 
 #include "avar/core/input_error.hpp"
 #include "avar/playback/runtime/clip.hpp"
+#include "avar/playback/runtime/layer_behaviour.hpp"
 
 namespace avar::playback {
 
@@ -42,6 +47,11 @@ inline double apply_blend(Blend blend, double below, double value, double covera
 
 /// 3x² - 2x³ on [0, 1], 0 below, 1 above: a C1 ramp with zero slope at both ends.
 double smoothstep(double x) noexcept;
+
+/// The weight of something played from `start` to `end` (seconds) at time t: 0 outside
+/// [start, end], ramping up over `fade_in` after the start and down over `fade_out` before the
+/// end along smoothstep. Real-time safe.
+double span_weight(double t, double start, double end, double fade_in, double fade_out) noexcept;
 
 struct Placement {
   std::size_t clip = 0;  ///< index into Show::clips
@@ -73,11 +83,16 @@ struct Layer {
   Blend blend = Blend::override;
   double weight = 1;              ///< in [0, 1], scales the layer's coverage
   std::vector<MaskChannel> mask;  ///< the channels the layer may touch; empty: every one its clips drive
-  std::vector<Placement> placements;
+  std::vector<Placement> placements;  ///< a layer of clips; none on a behaviour layer
   SourceLocation where;
+  std::optional<LayerBehaviour> behaviour;  ///< a behaviour layer: generators instead of clips
 
   /// Whether the mask lets the layer touch `channel`.
   bool touches(std::string_view channel) const noexcept;
 };
+
+/// The channels a behaviour layer bound to a rig moves: those its generators drive that its mask
+/// lets it touch, in the rig's order. Empty for other layers and unbound behaviour. Allocates.
+std::vector<std::string> behaviour_channels(const Layer& layer);
 
 }  // namespace avar::playback
