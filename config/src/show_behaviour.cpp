@@ -78,6 +78,13 @@ playback::LayerBehaviour read_behaviour(const YamlRef& node, const playback::Sho
   const std::string what = behaviour_what(layer);
   node.expect_map(what + " ({seed, from, to, fade_in, fade_out, noise, blinks, gaze, breathing})");
   node.expect_only_keys({"seed", "from", "to", "fade_in", "fade_out", "noise", "blinks", "gaze", "breathing"}, what);
+  // Look-at gaze solves the eyes' IK every tick on the loop, from the figure's pose: it lives in the
+  // rig's idle section, under the show. A show aims eyes with a target instead.
+  if (auto gaze = node.find("gaze"); gaze && gaze->is_map())
+    if (auto look = gaze->find("look_at"))
+      look->fail("look-at gaze runs from the rig's idle section, under the show; expected, in " + what +
+                 ", gaze with eye channels (eyes: {pan, tilt}), or a show target that aims the eyes (targets: {EFFECTOR: {aim: "
+                 "[x, y, z], ...}})");
   playback::LayerBehaviour b;
   b.where = node.where();
   if (auto seed = node.find("seed")) {

@@ -125,6 +125,10 @@ TEST(ShowBehaviour, WithoutARigEverythingButTheChannelsIsCheckedWhereItStands) {
       {replace(kBehaviourShow, "period_s: 4", "period_s: 0.1"), ":17:29: expected period_s from 0.5 to 60, found '0.1'"},
       {replace(kBehaviourShow, "pan: eyes_pan}", "pan: lid_left}"),
        ":16:26: channel 'lid_left' is already driven by idle blinks; gaze needs a channel of its own"},
+      {replace(kBehaviourShow, "gaze: {eyes: {pan: eyes_pan}}", "gaze: {look_at: {effectors: [eyes]}}"),
+       ":16:23: look-at gaze runs from the rig's idle section, under the show; expected, in the behaviour of layer 'life', "
+       "gaze with eye channels (eyes: {pan, tilt}), or a show target that aims the eyes (targets: {EFFECTOR: {aim: [x, y, z], "
+       "...}})"},
   };
   for (const auto& [text, expected] : cases) EXPECT_EQ(behaviour_load_error(text), expected) << text;
 }
