@@ -59,7 +59,7 @@ std::string idle_bench_read(const std::string& path) {
 
 /// gaze-eyes.yaml, or the same rig with its gaze on per-eye channel offsets (no IK).
 std::string idle_bench_rig(bool look_at) {
-  const std::string source = AVAR_SOURCE_DIR "/examples/rigs/gaze-eyes.yaml";
+  std::string source = AVAR_SOURCE_DIR "/examples/rigs/gaze-eyes.yaml";
   if (look_at) return source;
   std::string text = idle_bench_read(source);
   const auto replace_line = [&](const std::string& start, const std::string& with) {
