@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "discard_transport.hpp"
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/config/idle_section.hpp"
 #include "avar/config/rig_file.hpp"
@@ -93,31 +94,12 @@ void BM_IdleOffsetGaze(benchmark::State& state) { idle_bench_gaze(state, false);
 BENCHMARK(BM_IdleLookAtGaze)->Iterations(120000);
 BENCHMARK(BM_IdleOffsetGaze)->Iterations(120000);
 
-class IdleBenchDiscard final : public avar::firmware_iface::ByteTransport {
- public:
-  avar::Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    benchmark::DoNotOptimize(bytes.data());
-    written_ += bytes.size();
-    return avar::Status::ok;
-  }
-  avar::Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return avar::Status::timeout; }
-  std::chrono::nanoseconds now() const noexcept override { return {}; }
-  void discard_input() noexcept override {}
-  avar::Status reopen() noexcept override { return avar::Status::ok; }
-  std::uint64_t bytes_written() const noexcept override { return written_; }
-  const std::string& name() const noexcept override { return name_; }
-
- private:
-  std::uint64_t written_ = 0;
-  std::string name_ = "discard";
-};
-
 void idle_bench_show(benchmark::State& state, const char* show_name) {
   const avar::rig::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   avar::playback::Show show = avar::config::load_show_file(std::string(AVAR_SOURCE_DIR "/examples/shows/") + show_name + ".yaml");
   avar::config::bind_show_behaviour(show, rig);
   show.loop = true;  // as many ticks as the benchmark wants (each wrap restarts the behaviour)
-  IdleBenchDiscard transport;
+  avar::bench::DiscardTransport transport;
   avar::firmware_iface::MaestroLink link{transport, avar::assembly::maestro_config(rig, 0)};
   avar::control::Controller controller(rig, show, {&link}, {.tick_period_s = 0.001});
   controller.begin(0.0, rig.rest_frame());

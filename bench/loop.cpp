@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "discard_transport.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
@@ -20,29 +21,11 @@ namespace {
 
 using namespace avar;
 
-class DiscardTransport final : public firmware_iface::ByteTransport {
- public:
-  Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    written_ += bytes.size();
-    return Status::ok;
-  }
-  Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return Status::timeout; }
-  std::chrono::nanoseconds now() const noexcept override { return {}; }
-  void discard_input() noexcept override {}
-  Status reopen() noexcept override { return Status::ok; }
-  std::uint64_t bytes_written() const noexcept override { return written_; }
-  const std::string& name() const noexcept override { return name_; }
-
- private:
-  std::uint64_t written_ = 0;
-  std::string name_ = "discard";
-};
-
 /// 32 channels on two 16-channel Maestro links, every channel animated by a looping Bezier wave.
 struct Figure32 {
   rig::Rig rig;
   playback::Show show;
-  DiscardTransport t0, t1;
+  bench::DiscardTransport t0, t1;
   std::vector<std::unique_ptr<firmware_iface::MaestroLink>> links;
 
   Figure32() {

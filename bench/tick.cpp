@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "discard_transport.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
@@ -16,29 +17,10 @@
 
 namespace {
 
-class DiscardTransport final : public avar::firmware_iface::ByteTransport {
- public:
-  avar::Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    written_ += bytes.size();
-    benchmark::DoNotOptimize(bytes.data());
-    return avar::Status::ok;
-  }
-  avar::Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return avar::Status::timeout; }
-  std::chrono::nanoseconds now() const noexcept override { return {}; }
-  void discard_input() noexcept override {}
-  avar::Status reopen() noexcept override { return avar::Status::ok; }
-  std::uint64_t bytes_written() const noexcept override { return written_; }
-  const std::string& name() const noexcept override { return name_; }
-
- private:
-  std::uint64_t written_ = 0;
-  std::string name_ = "discard";
-};
-
 struct Head {
   avar::rig::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   avar::playback::Show show = avar::config::load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
-  DiscardTransport transport;
+  avar::bench::DiscardTransport transport;
   avar::firmware_iface::MaestroLink link{transport, avar::assembly::maestro_config(rig, 0)};
 };
 
