@@ -1,18 +1,20 @@
 // The simulated Maestro on USB answers the vendor requests with the SDK's exact layouts and
 // stalls what the device refuses; the real USB driver (MaestroUsbLink) runs against it at the
 // control-transfer seam: limits at start, one Set Target per actuator and one read per tick,
-// telemetry, release, and a reconnect after an unplug.
+// telemetry, release, a reconnect after an unplug, and the silence budget.
 #include "avar/sim/sim_maestro_usb.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "avar/firmware_iface/maestro_codec.hpp"
 #include "avar/firmware_iface/maestro_usb_codec.hpp"
 #include "avar/firmware_iface/maestro_usb_link.hpp"
+#include "avar/sim/faulty_usb_device.hpp"
 #include "avar/sim/usb_device_host.hpp"
 
 namespace avar::sim {
@@ -205,6 +207,60 @@ TEST(MaestroUsbLinkOnSimulator, AnUnpluggedMaestroIsReopenedAndGetsItsLimitsAgai
   EXPECT_EQ(link.counters().reconnects, 1u);
   EXPECT_EQ(r.device.speed(4), 20);
   EXPECT_EQ(r.device.target(4), 6000);
+}
+
+TEST(MaestroUsbLinkOnSimulator, ASilentMaestroCostsTelemetryUntilItsSilenceBudgetRunsOut) {
+  SimMaestroUsb device(usb_sim_config(12), "00012345");
+  FaultyUsbDevice faulty(device, FaultPlan{}, 0.1);
+  UsbDeviceHost host(faulty, "USB (serial 00012345)");
+  firmware_iface::MaestroUsbLinkConfig config = usb_link_config(12);
+  config.silent_ticks = 3;
+  firmware_iface::MaestroUsbLink link(host.connect(), config);
+  ASSERT_EQ(link.start(), Status::ok);
+  const std::vector<double> frame{0.5, 0.5};
+  ASSERT_EQ(link.send(frame), Status::ok);
+  std::vector<firmware_iface::ChannelTelemetry> telemetry(2);
+
+  FaultPlan silent;
+  silent.silent = true;
+  faulty.set_plan(silent);
+  // Two failed ticks are within the budget: ok, but the telemetry is unknown, not old.
+  for (int tick = 0; tick < 2; ++tick) {
+    EXPECT_EQ(link.send(frame), Status::ok) << "tick " << tick;
+    link.read_telemetry(telemetry);
+    EXPECT_TRUE(std::isnan(telemetry[0].position) && std::isnan(telemetry[1].position));
+  }
+  EXPECT_EQ(link.send(frame), Status::timeout);  // the third in a row: the watchdog's fault
+  EXPECT_EQ(link.send(frame), Status::timeout);  // and it stays one while the Maestro is silent
+  EXPECT_EQ(link.counters().timeouts, faulty.counts().replies_silenced + faulty.counts().commands_dropped);
+  EXPECT_GE(link.counters().timeouts, 4u);
+
+  // Answers again: whole ticks empty the count, so a later silence gets the whole budget.
+  faulty.set_plan(FaultPlan{});
+  ASSERT_EQ(link.send(frame), Status::ok);
+  link.read_telemetry(telemetry);
+  EXPECT_NEAR(telemetry[0].position, 0.5, 1e-9);
+  faulty.set_plan(silent);
+  EXPECT_EQ(link.send(frame), Status::ok);
+  EXPECT_EQ(link.send(frame), Status::ok);
+  EXPECT_EQ(link.send(frame), Status::timeout);
+}
+
+TEST(MaestroUsbLinkOnSimulator, AnUnpluggedMaestroFailsTheLinkAtOnceWhateverTheBudget) {
+  UsbRig r(12);
+  firmware_iface::MaestroUsbLinkConfig config = usb_link_config(12);
+  config.silent_ticks = 50;
+  firmware_iface::MaestroUsbLink link(r.host.connect(), config);
+  ASSERT_EQ(link.start(), Status::ok);
+  r.host.set_plugged(false);
+  EXPECT_EQ(link.send(std::vector<double>{0.5, 0.5}), Status::io_error);
+}
+
+TEST(MaestroUsbLinkOnSimulator, RefusesAnEmptySilenceBudget) {
+  UsbRig r(12);
+  firmware_iface::MaestroUsbLinkConfig config = usb_link_config(12);
+  config.silent_ticks = 0;
+  EXPECT_THROW(firmware_iface::MaestroUsbLink(r.host.connect(), config), std::invalid_argument);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "avar/assembly/servo_bus_options.hpp"
 #include "avar/firmware_iface/libusb_control_transport.hpp"
 #include "avar/sim/sim_maestro.hpp"
 #include "avar/sim/sim_maestro_usb.hpp"
@@ -146,6 +147,8 @@ firmware_iface::MaestroUsbLinkConfig maestro_usb_config(const rig::Rig& rig, std
   firmware_iface::MaestroUsbLinkConfig config;
   config.channel_count = serial.channel_count;
   config.timeout = tuning.reply_timeout(config.timeout);
+  // The watchdog decides when silence is a fault: the Maestro may miss that many ticks.
+  config.silent_ticks = silent_exchanges(rig, link);
   config.actuators = std::move(serial.actuators);
   return config;
 }

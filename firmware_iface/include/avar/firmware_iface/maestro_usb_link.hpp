@@ -4,7 +4,10 @@
 // its actuators' checks, limits and targets (maestro_actuators.hpp). Per tick it sends one Set
 // Target request per actuator, then reads every channel's output pulse in one request (Get
 // Variables on the Micro Maestro, Get Servo Settings on a Mini) as telemetry: the position the
-// Maestro drives after its own speed and acceleration limits, not a measured one.
+// Maestro drives after its own speed and acceleration limits, not a measured one. A tick whose
+// transfers time out, stall or come back short costs that tick's telemetry only; `silent_ticks`
+// such ticks in a row make send() report a timeout (the controller's watchdog fault), as the
+// serial buses' silence budget does. A Maestro that is gone (an I/O error) fails the link at once.
 //
 // Threads: send(), release(), read_telemetry() on one thread (the loop's or the link's I/O
 // thread); release_channel(), saturated_pulses() and counters() from any thread. send() and
@@ -29,13 +32,14 @@ namespace avar::firmware_iface {
 struct MaestroUsbLinkConfig {
   int channel_count = 24;                  ///< 6 (Micro Maestro), 12, 18 or 24 (Mini Maestro)
   std::chrono::milliseconds timeout{100};  ///< per control transfer
+  std::uint32_t silent_ticks = 10;         ///< failed ticks in a row before send() is a timeout; >= 1
   std::vector<MaestroActuator> actuators;
 };
 
 class MaestroUsbLink final : public ActuatorLink {
  public:
   /// Sizes every buffer. Throws std::invalid_argument for a channel count other than 6, 12, 18
-  /// or 24, or a device channel out of range or used twice.
+  /// or 24, a device channel out of range or used twice, or a silent_ticks of 0.
   MaestroUsbLink(std::unique_ptr<UsbControlTransport> transport, MaestroUsbLinkConfig config);
 
   /// Reads the error register (kept for start_problem()), clears it, and sends each actuator's
@@ -46,7 +50,8 @@ class MaestroUsbLink final : public ActuatorLink {
   /// no pulse (0, e.g. after power-up) is left unknown.
   Status read_positions(std::span<double> frame, std::span<bool> known) override;
   /// Sets every actuator's target, then reads the output pulses as telemetry (a failed read
-  /// leaves the positions unknown, not old).
+  /// leaves the positions unknown, not old). A timed-out, stalled or short transfer is ok until
+  /// the silence budget runs out (counted in counters()); an I/O error is returned at once.
   Status send(std::span<const double> frame) noexcept override;
   /// Target 0 on every actuator: no more pulses.
   Status release() noexcept override;
@@ -67,6 +72,8 @@ class MaestroUsbLink final : public ActuatorLink {
   /// Output pulses of every channel into reply_; ok only with every record there.
   Status read_records() noexcept;
   Status write_targets() noexcept;
+  /// A failed tick within the silence budget is ok; a whole one empties the budget's count.
+  Status judge_silence(Status tick) noexcept;
 
   std::unique_ptr<UsbControlTransport> transport_;
   MaestroUsbLinkConfig config_;
@@ -77,6 +84,7 @@ class MaestroUsbLink final : public ActuatorLink {
   std::string start_problem_;
   Reconnector reconnector_;
   AtomicLinkCounters counters_;
+  std::uint32_t failed_ticks_ = 0;  ///< ticks in a row without a whole exchange (send's thread)
 };
 
 }  // namespace avar::firmware_iface
