@@ -1,6 +1,9 @@
 #include "avar/sim/canopen_object_dictionary.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "avar/firmware_iface/canopen_codec.hpp"
 
@@ -21,17 +24,31 @@ void CanopenObjectDictionary::add(ObjectEntry entry) {
     entry.max = entry.is_signed ? (std::int64_t{1} << (bits - 1)) - 1 : (std::int64_t{1} << bits) - 1;
   }
   entry.raw = od_cut(entry.raw, entry.size);
-  entries_.push_back(entry);
+  const auto at = first_at(entry.index, entry.sub);
+  if (at != entries_.end() && at->index == entry.index && at->sub == entry.sub)
+    throw std::invalid_argument("object " + std::to_string(entry.index) + ":" + std::to_string(entry.sub) +
+                                " is already in the dictionary");
+  entries_.insert(at, entry);
 }
 
-ObjectEntry* CanopenObjectDictionary::find(std::uint16_t index, std::uint8_t sub) noexcept {
-  for (ObjectEntry& e : entries_)
-    if (e.index == index && e.sub == sub) return &e;
-  return nullptr;
+std::vector<ObjectEntry>::const_iterator CanopenObjectDictionary::first_at(std::uint16_t index, std::uint8_t sub) const noexcept {
+  return std::lower_bound(entries_.begin(), entries_.end(), std::pair{index, sub}, [](const ObjectEntry& e, const auto& key) {
+    return std::pair{e.index, e.sub} < key;
+  });
+}
+
+bool CanopenObjectDictionary::has_index(std::uint16_t index) const noexcept {
+  const auto at = first_at(index, 0);
+  return at != entries_.end() && at->index == index;
 }
 
 const ObjectEntry* CanopenObjectDictionary::find(std::uint16_t index, std::uint8_t sub) const noexcept {
-  return const_cast<CanopenObjectDictionary*>(this)->find(index, sub);
+  const auto at = first_at(index, sub);
+  return at != entries_.end() && at->index == index && at->sub == sub ? &*at : nullptr;
+}
+
+ObjectEntry* CanopenObjectDictionary::find(std::uint16_t index, std::uint8_t sub) noexcept {
+  return const_cast<ObjectEntry*>(std::as_const(*this).find(index, sub));
 }
 
 std::uint32_t CanopenObjectDictionary::get(std::uint16_t index, std::uint8_t sub) const noexcept {
@@ -51,11 +68,7 @@ void CanopenObjectDictionary::set(std::uint16_t index, std::uint8_t sub, std::ui
 std::uint32_t CanopenObjectDictionary::check_read(std::uint16_t index, std::uint8_t sub,
                                                   const ObjectEntry** entry) const noexcept {
   const ObjectEntry* e = find(index, sub);
-  if (!e) {
-    const bool index_exists =
-        std::any_of(entries_.begin(), entries_.end(), [&](const ObjectEntry& x) { return x.index == index; });
-    return index_exists ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
-  }
+  if (!e) return has_index(index) ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
   if (e->access == ObjectAccess::write_only) return canopen::kSdoAbortReadWriteOnly;
   *entry = e;
   return 0;
@@ -64,11 +77,7 @@ std::uint32_t CanopenObjectDictionary::check_read(std::uint16_t index, std::uint
 std::uint32_t CanopenObjectDictionary::check_write(std::uint16_t index, std::uint8_t sub, std::uint32_t data, std::uint8_t size,
                                                    ObjectEntry** entry, std::uint32_t* raw) noexcept {
   ObjectEntry* e = find(index, sub);
-  if (!e) {
-    const bool index_exists =
-        std::any_of(entries_.begin(), entries_.end(), [&](const ObjectEntry& x) { return x.index == index; });
-    return index_exists ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
-  }
+  if (!e) return has_index(index) ? canopen::kSdoAbortNoSubIndex : canopen::kSdoAbortNoObject;
   if (e->access == ObjectAccess::read_only) return canopen::kSdoAbortWriteReadOnly;
   if (size > e->size) return canopen::kSdoAbortLengthTooHigh;
   if (size != 0 && size < e->size) return canopen::kSdoAbortLengthTooLow;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace avar::sim {
@@ -312,6 +313,25 @@ TEST(SimCia402Drive, DictionaryRefusesReadingAWriteOnlyEntry) {
   EXPECT_EQ(raw, 0xFBu);
   EXPECT_TRUE(od.can_map(0x2001, 0, 8, true));
   EXPECT_FALSE(od.can_map(0x2000, 1, 32, false));
+}
+
+TEST(SimCia402Drive, DictionaryFindsEntriesInAnyAddedOrderAndRefusesARepeatedOne) {
+  CanopenObjectDictionary od;
+  od.add({0x6041, 0, 2, false, ObjectAccess::read_only, PdoMappable::tpdo, false, 0, 0, 0x0237});
+  od.add({0x1017, 0, 2, false, ObjectAccess::read_write, PdoMappable::no, false, 0, 0, 0});
+  od.add({0x1600, 2, 4, false, ObjectAccess::read_write, PdoMappable::no, false, 0, 0, 0});
+  od.add({0x1600, 0, 1, false, ObjectAccess::read_write, PdoMappable::no, false, 0, 0, 2});
+  EXPECT_EQ(od.get(0x6041, 0), 0x0237u);
+  EXPECT_EQ(od.get(0x1600, 0), 2u);
+  ASSERT_NE(od.find(0x1600, 2), nullptr);
+  EXPECT_EQ(od.find(0x1600, 2)->size, 4);
+  EXPECT_EQ(od.find(0x1600, 1), nullptr);
+  const ObjectEntry* entry = nullptr;
+  EXPECT_EQ(od.check_read(0x1600, 1, &entry), canopen::kSdoAbortNoSubIndex);
+  EXPECT_EQ(od.check_read(0x1601, 0, &entry), canopen::kSdoAbortNoObject);
+  EXPECT_EQ(od.check_read(0x0FFF, 0, &entry), canopen::kSdoAbortNoObject);
+  EXPECT_EQ(od.check_read(0x6042, 0, &entry), canopen::kSdoAbortNoObject);
+  EXPECT_THROW(od.add({0x1017, 0, 2, false, ObjectAccess::read_only, PdoMappable::no, false, 0, 0, 0}), std::invalid_argument);
 }
 
 TEST(SimCia402Drive, NmtStatesAndResets) {

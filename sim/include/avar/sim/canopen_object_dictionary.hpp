@@ -31,8 +31,12 @@ struct ObjectEntry {
 
 class CanopenObjectDictionary {
  public:
-  /// Adds an entry; an entry that is not `ranged` gets its type's whole range.
+  /// Adds an entry; an entry that is not `ranged` gets its type's whole range. Throws
+  /// std::invalid_argument for an index:sub already there. Adding moves entries: pointers from
+  /// find() are valid until the next add().
   void add(ObjectEntry entry);
+  /// By binary search (the entries are kept in index:sub order): a drive looks up its objects
+  /// on every step of its simulated time.
   ObjectEntry* find(std::uint16_t index, std::uint8_t sub) noexcept;
   const ObjectEntry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
 
@@ -58,7 +62,11 @@ class CanopenObjectDictionary {
   bool can_map(std::uint16_t index, std::uint8_t sub, std::uint8_t bits, bool rpdo) const noexcept;
 
  private:
-  std::vector<ObjectEntry> entries_;
+  /// The first entry at or after index:sub.
+  std::vector<ObjectEntry>::const_iterator first_at(std::uint16_t index, std::uint8_t sub) const noexcept;
+  bool has_index(std::uint16_t index) const noexcept;
+
+  std::vector<ObjectEntry> entries_;  ///< sorted by index, then sub
 };
 
 }  // namespace avar::sim
