@@ -32,6 +32,15 @@ struct Line1D : ParametricCurve {
   Eigen::Vector3d derivative(double) const noexcept override { return {2.5, 0, 0}; }
 };
 
+/// A speed with a kink: p(u) = (u |u| / 2, 0, 0), so |p'(u)| = |u|, over [-1, 1.3].
+struct KinkedSpeed : ParametricCurve {
+  double u_begin() const noexcept override { return -1; }
+  double u_end() const noexcept override { return 1.3; }
+  Eigen::Vector3d position(double u) const noexcept override { return {0.5 * u * std::abs(u), 0, 0}; }
+  Eigen::Vector3d derivative(double u) const noexcept override { return {std::abs(u), 0, 0}; }
+  static double length_to(double u) { return u <= 0 ? 0.5 * (1 - u * u) : 0.5 + 0.5 * u * u; }
+};
+
 constexpr double kTol = 1e-9;
 
 TEST(ArcLength, KnownLengths) {
@@ -103,6 +112,22 @@ TEST(ArcLengthTable, MatchesQuadratureWithinTheBoundAndIsMonotone) {
       ASSERT_NEAR(arc_length(curve, 0, u, 1e-11), s, tol) << "seed " << seed << " s " << s;
       ASSERT_NEAR(table.length_at(u), s, 1e-9 * table.total_length()) << "seed " << seed;
     }
+  }
+}
+
+TEST(ArcLengthTable, HalvesOnlyTheIntervalsAroundAKinkOfTheSpeed) {
+  // The Hermite piece cannot follow the kink at u = 0: the interval holding it is halved down to
+  // the narrowest allowed, and the rest of the table stays coarse.
+  const KinkedSpeed curve;
+  const double tol = 1e-9;
+  const ArcLengthTable table(curve, tol);
+  EXPECT_LE(table.intervals(), 200u);
+  EXPECT_NEAR(table.total_length(), KinkedSpeed::length_to(1.3), tol);
+  for (int i = 0; i <= 1000; ++i) {
+    const double u = -1 + 2.3 * i / 1000.0;
+    ASSERT_NEAR(table.length_at(u), KinkedSpeed::length_to(u), tol) << "u " << u;
+    const double s = table.total_length() * i / 1000.0;
+    ASSERT_NEAR(KinkedSpeed::length_to(table.parameter_at(s)), s, tol) << "s " << s;
   }
 }
 

@@ -97,6 +97,31 @@ TEST(PathTrack, LinearSpeedCoversEqualDistancesInEqualTimesWithinTheArcLengthBou
   }
 }
 
+TEST(PathTrack, AFarPointLoosensTheLengthToleranceToItsScaleAndKeepsTheTableSmall) {
+  // Found by the show-file fuzzer: a typo (-0825 for -0.25) put one point 825 m out, and the
+  // absolute 0.1 µm bound drove the table to its cap (seconds of load in the sanitizer build).
+  std::vector<Eigen::Vector3d> points = figure_eight();
+  const PathTrack small(spec_of(points));
+  EXPECT_EQ(small.length_tolerance(), PathTrack::kArcLengthTolerance);
+  points[5].y() = -825;
+  const PathTrack far(spec_of(points));
+  EXPECT_GT(far.length(), 1650.0);
+  EXPECT_GT(far.length_tolerance(), PathTrack::kArcLengthTolerance);
+  EXPECT_LE(far.length_tolerance(), 1e-9 * far.length());
+  EXPECT_LE(far.length_table_intervals(), 1024u);
+  // The table still meets its bound: equal distances at equal times, measured independently.
+  const Measured measured(far);
+  constexpr int kSteps = 200;
+  double u_previous = 0;
+  for (int i = 1; i <= kSteps; ++i) {
+    const double u = far.parameter_at(far.length() * i / kSteps);
+    ASSERT_NEAR(arc_length(measured, u_previous, u, 1e-3 * far.length_tolerance()), far.length() / kSteps,
+                2 * far.length_tolerance())
+        << "step " << i;
+    u_previous = u;
+  }
+}
+
 TEST(PathTrack, HoldsItsEndsBeforeFromAndAfterTo) {
   const PathTrack path(spec_of(figure_eight()));
   for (double t : {-5.0, 0.0, 1.0, std::nan("")}) EXPECT_TRUE(path.sample(t).position.isApprox(path.position_at(0), 1e-15)) << t;

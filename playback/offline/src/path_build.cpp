@@ -174,8 +174,18 @@ std::vector<PathTrack::Cubic> PathTrack::bezier_cubics(const PathSpec& spec) {
   return cubics;
 }
 
+double PathTrack::arc_length_tolerance(const std::vector<Cubic>& cubics) noexcept {
+  // |p'(s)| = |c1 + 2 s c2 + 3 s^2 c3| integrates over [0, 1] to at most |c1| + |c2| + |c3|.
+  double bound = 0;
+  for (const Cubic& c : cubics) bound += c[1].norm() + c[2].norm() + c[3].norm();
+  return std::max(kArcLengthTolerance, kArcLengthRelativeTolerance * bound);
+}
+
 PathTrack::PathTrack(PathSpec spec)
-    : spec_(std::move(spec)), cubics_(build_cubics(spec_)), table_(Parametric(*this), kArcLengthTolerance) {
+    : spec_(std::move(spec)),
+      cubics_(build_cubics(spec_)),
+      tolerance_(arc_length_tolerance(cubics_)),
+      table_(Parametric(*this), tolerance_) {
   build_frames();
 }
 

@@ -64,39 +64,58 @@ ArcLengthTable::ArcLengthTable(const ParametricCurve& curve, double tolerance, s
   if (!(tolerance > 0) || !std::isfinite(tolerance)) throw std::invalid_argument("arc-length table: tolerance must be above 0");
   if (!std::isfinite(u0_) || !std::isfinite(u1_) || !(u1_ > u0_))
     throw std::invalid_argument("arc-length table: the parameter range must be finite and not empty");
-  for (std::size_t n = 8;; n *= 2) {
-    h_ = (u1_ - u0_) / static_cast<double>(n);
-    lengths_.assign(n + 1, 0.0);
-    speeds_.assign(n + 1, 0.0);
-    // Each interval's length gets its share of the tolerance, so the sum stays within it.
-    const double share = 0.25 * tolerance / static_cast<double>(n);
-    for (std::size_t i = 0; i <= n; ++i) {
-      const double u = u0_ + static_cast<double>(i) * h_;
-      speeds_[i] = curve.derivative(u).norm();
-      if (i > 0) lengths_[i] = lengths_[i - 1] + arc_length(curve, u - h_, u, share);
-    }
-    bool fine = true;
-    for (std::size_t i = 0; i < n && fine; ++i) {
-      const double a = u0_ + static_cast<double>(i) * h_;
-      const double mid = lengths_[i] + arc_length(curve, a, a + 0.5 * h_, share);
-      fine = std::abs(hermite(i, 0.5) - mid) <= 0.5 * tolerance;
-    }
-    if (fine || 2 * n > max_intervals) return;
+  constexpr std::size_t kFirstIntervals = 8;
+  const double narrowest = (u1_ - u0_) / static_cast<double>(std::max(max_intervals, kFirstIntervals));
+  knots_.push_back(u0_);
+  lengths_.push_back(0);
+  speeds_.push_back(curve.derivative(u0_).norm());
+  for (std::size_t i = 1; i <= kFirstIntervals; ++i) {
+    const double b = i == kFirstIntervals ? u1_ : u0_ + (u1_ - u0_) * static_cast<double>(i) / kFirstIntervals;
+    refine(curve, b, tolerance, narrowest);
   }
 }
 
+void ArcLengthTable::refine(const ParametricCurve& curve, double b, double tolerance, double narrowest) {
+  const double a = knots_.back(), h = b - a;
+  // Each interval's quadrature gets its width's share of a quarter of the tolerance, so the sum
+  // over the table stays within it.
+  const double share = 0.25 * tolerance * h / (u1_ - u0_);
+  const double length = arc_length(curve, a, b, share);
+  const double speed_b = curve.derivative(b).norm();
+  const double start = lengths_.back();
+  // The Hermite piece at w = 1/2: (L_a + L_b) / 2 + h (s_a - s_b) / 8.
+  const double hermite_middle = 0.5 * (2 * start + length) + 0.125 * h * (speeds_.back() - speed_b);
+  const double middle = start + arc_length(curve, a, a + 0.5 * h, share);
+  const bool fine = std::abs(hermite_middle - middle) <= 0.5 * tolerance;
+  // A non-finite length (an overflowing derivative) would not converge by halving either.
+  if (fine || 0.5 * h < narrowest || !std::isfinite(length) || !std::isfinite(middle)) {
+    knots_.push_back(b);
+    lengths_.push_back(start + length);
+    speeds_.push_back(speed_b);
+    return;
+  }
+  refine(curve, a + 0.5 * h, tolerance, narrowest);
+  refine(curve, b, tolerance, narrowest);
+}
+
+std::size_t ArcLengthTable::interval_of(double u) const noexcept {
+  const auto it = std::upper_bound(knots_.begin(), knots_.end(), u);
+  const std::size_t after = static_cast<std::size_t>(it - knots_.begin());
+  return std::clamp<std::size_t>(after, 1, intervals()) - 1;
+}
+
 double ArcLengthTable::hermite(std::size_t i, double w) const noexcept {
+  const double h = knots_[i + 1] - knots_[i];
   const double w2 = w * w, w3 = w2 * w;
-  return (2 * w3 - 3 * w2 + 1) * lengths_[i] + (w3 - 2 * w2 + w) * h_ * speeds_[i] + (-2 * w3 + 3 * w2) * lengths_[i + 1] +
-         (w3 - w2) * h_ * speeds_[i + 1];
+  return (2 * w3 - 3 * w2 + 1) * lengths_[i] + (w3 - 2 * w2 + w) * h * speeds_[i] + (-2 * w3 + 3 * w2) * lengths_[i + 1] +
+         (w3 - w2) * h * speeds_[i + 1];
 }
 
 double ArcLengthTable::length_at(double u) const noexcept {
   if (!(u > u0_)) return 0;
   if (u >= u1_) return total_length();
-  const double x = (u - u0_) / h_;
-  const std::size_t i = std::min(static_cast<std::size_t>(x), intervals() - 1);
-  return hermite(i, x - static_cast<double>(i));
+  const std::size_t i = interval_of(u);
+  return hermite(i, (u - knots_[i]) / (knots_[i + 1] - knots_[i]));
 }
 
 double ArcLengthTable::parameter_at(double distance) const noexcept {
@@ -105,6 +124,7 @@ double ArcLengthTable::parameter_at(double distance) const noexcept {
   const auto it = std::upper_bound(lengths_.begin(), lengths_.end(), distance);
   const std::size_t i = static_cast<std::size_t>(it - lengths_.begin()) - 1;
   const double span = lengths_[i + 1] - lengths_[i];
+  const double h = knots_[i + 1] - knots_[i];
   double lo = 0, hi = 1;
   double w = span > 0 ? (distance - lengths_[i]) / span : 0;
   for (int iteration = 0; iteration < 60; ++iteration) {
@@ -112,13 +132,13 @@ double ArcLengthTable::parameter_at(double distance) const noexcept {
     if (std::abs(f) <= 1e-15 * total_length()) break;
     (f < 0 ? lo : hi) = w;
     const double w2 = w * w;
-    const double slope = (6 * w2 - 6 * w) * lengths_[i] + (3 * w2 - 4 * w + 1) * h_ * speeds_[i] +
-                         (-6 * w2 + 6 * w) * lengths_[i + 1] + (3 * w2 - 2 * w) * h_ * speeds_[i + 1];
+    const double slope = (6 * w2 - 6 * w) * lengths_[i] + (3 * w2 - 4 * w + 1) * h * speeds_[i] +
+                         (-6 * w2 + 6 * w) * lengths_[i + 1] + (3 * w2 - 2 * w) * h * speeds_[i + 1];
     const double newton = slope > 0 ? w - f / slope : -1;
     w = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
     if (hi - lo < 1e-14) break;
   }
-  return u0_ + (static_cast<double>(i) + w) * h_;
+  return knots_[i] + w * h;
 }
 
 }  // namespace avar::playback

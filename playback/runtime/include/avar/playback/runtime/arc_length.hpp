@@ -44,21 +44,24 @@ double arc_length(const ParametricCurve& curve, double a, double b, double toler
 /// No allocation or exception.
 double parameter_at_length(const ParametricCurve& curve, double distance, double tolerance, double total_length = -1) noexcept;
 
-/// A table of length against parameter for real-time evaluation: the range of u is cut into
-/// equal intervals, doubled in number at build until the cubic Hermite interpolant of the length
-/// (from the lengths and speeds at the interval ends) agrees with the quadrature within
-/// `tolerance` at every interval's middle. Build allocates (load time); the lookups do not
-/// allocate, throw or lock, and the table is immutable, so any thread may use it.
+/// A table of length against parameter for real-time evaluation: the range of u is cut into 8
+/// equal intervals, and each is halved at build until the cubic Hermite interpolant of the length
+/// (from the lengths and speeds at the interval's ends) agrees with the quadrature within
+/// `tolerance` at its middle. Only the intervals that need it are halved: a kink or a cusp of the
+/// speed costs a few intervals around it, not a finer grid over the whole range. Lookups find
+/// their interval by binary search. Build allocates (load time); the lookups do not allocate,
+/// throw or lock, and the table is immutable, so any thread may use it.
 class ArcLengthTable {
  public:
   /// Throws std::invalid_argument when tolerance is not above 0 or the range is empty or not
-  /// finite. max_intervals caps the doubling (the table then holds the finest level reached).
+  /// finite. No interval is made narrower than the range / max_intervals (one that still misses
+  /// the bound there is kept as it is).
   ArcLengthTable(const ParametricCurve& curve, double tolerance, std::size_t max_intervals = 1u << 16);
 
   double total_length() const noexcept { return lengths_.back(); }
   double u_begin() const noexcept { return u0_; }
   double u_end() const noexcept { return u1_; }
-  std::size_t intervals() const noexcept { return lengths_.size() - 1; }
+  std::size_t intervals() const noexcept { return knots_.size() - 1; }
 
   /// Length from u_begin to u (u clamped into the range).
   double length_at(double u) const noexcept;
@@ -68,10 +71,16 @@ class ArcLengthTable {
   double parameter_at(double distance) const noexcept;
 
  private:
+  /// Appends [last knot, b] as one interval when its Hermite piece meets the bound at its
+  /// middle (or it is as narrow as allowed), else its two halves, each refined in turn.
+  void refine(const ParametricCurve& curve, double b, double tolerance, double narrowest);
+  /// The interval holding u (clamped to the first and last).
+  std::size_t interval_of(double u) const noexcept;
   double hermite(std::size_t i, double w) const noexcept;
-  double u0_ = 0, u1_ = 0, h_ = 0;
-  std::vector<double> lengths_;  ///< length at u0 + i h
-  std::vector<double> speeds_;   ///< |c'| at u0 + i h
+  double u0_ = 0, u1_ = 0;
+  std::vector<double> knots_;    ///< the intervals' ends, u0 .. u1, increasing
+  std::vector<double> lengths_;  ///< length from u0 at each knot
+  std::vector<double> speeds_;   ///< |c'| at each knot
 };
 
 }  // namespace avar::playback

@@ -27,7 +27,10 @@
 // by distance, its velocity in time is continuous either way. The first point's left handle and
 // the last point's right handle are kept (for writing back) but do not shape the path.
 //
-// Speed. An ArcLengthTable (tolerance kArcLengthTolerance metres) maps travelled distance to u;
+// Speed. An ArcLengthTable maps travelled distance to u, within kArcLengthTolerance metres, or
+// kArcLengthRelativeTolerance of the path's length bound (sum over segments of |c1|+|c2|+|c3|)
+// when that is larger: an absolute 0.1 µm over a path kilometres long asks for digits a double
+// barely has, and the table would double to its cap at great cost for nothing;
 // the distance at show time t is length * s((t - from) / (to - from)), s the distance-time
 // function; before `from` and after `to` the point holds the path's ends.
 //
@@ -100,7 +103,8 @@ struct PathSample {
 
 class PathTrack {
  public:
-  static constexpr double kArcLengthTolerance = 1e-7;  ///< metres
+  static constexpr double kArcLengthTolerance = 1e-7;           ///< metres
+  static constexpr double kArcLengthRelativeTolerance = 1e-10;  ///< of the length bound, when larger
   static constexpr std::size_t kFrameSamples = 1024;
   /// Below this curvature (1/m) the Frenet normal is carried instead of computed.
   static constexpr double kMinCurvature = 1e-6;
@@ -124,6 +128,10 @@ class PathTrack {
   double parameter_at(double distance) const noexcept { return table_.parameter_at(distance); }
 
   double length() const noexcept { return table_.total_length(); }  ///< metres
+  /// The arc-length table's tolerance, metres: how far the distance travelled may be off.
+  double length_tolerance() const noexcept { return tolerance_; }
+  /// The intervals of the arc-length table (its build cost: the quadratures it made).
+  std::size_t length_table_intervals() const noexcept { return table_.intervals(); }
   std::size_t segments() const noexcept { return cubics_.size(); }
   bool orients() const noexcept { return spec_.orientation != PathOrientation::none; }
   const PathSpec& spec() const noexcept { return spec_; }
@@ -134,11 +142,13 @@ class PathTrack {
   class Parametric;
   static std::vector<Cubic> build_cubics(const PathSpec& spec);
   static std::vector<Cubic> bezier_cubics(const PathSpec& spec);
+  static double arc_length_tolerance(const std::vector<Cubic>& cubics) noexcept;
   void build_frames();
   std::size_t locate(double& u) const noexcept;
 
   PathSpec spec_;
   std::vector<Cubic> cubics_;
+  double tolerance_;
   ArcLengthTable table_;
   std::vector<Eigen::Quaterniond> frames_;  ///< at kFrameSamples + 1 equal steps of distance
 };
