@@ -1,7 +1,8 @@
 #include "avar/assembly/servo_bus_options.hpp"
 
-#include <cmath>
 #include <vector>
+
+#include "avar/firmware_iface/device_watch.hpp"
 
 namespace avar::assembly {
 
@@ -32,7 +33,7 @@ ServoBusOptions servo_bus_options(const rig::LinkSpec& link, std::initializer_li
 }
 
 std::uint32_t silent_exchanges(const rig::Rig& rig, std::size_t link) {
-  return std::max<std::uint32_t>(2, static_cast<std::uint32_t>(std::ceil(rig.links[link].watchdog_s * rig.rate_hz)));
+  return firmware_iface::silence_budget(rig.links[link].watchdog_s, rig.rate_hz);
 }
 
 }  // namespace avar::assembly

@@ -13,7 +13,7 @@ BusExchange::BusExchange(ByteTransport& transport, BusCodec& codec, std::vector<
       reconnector_(config.reconnect_every),
       answered_(std::make_unique<bool[]>(devices_.size())),
       awaited_(std::make_unique<bool[]>(devices_.size())),
-      missed_(devices_.size(), 0),
+      watches_(devices_.size(), DeviceWatch(config.silent_exchanges)),
       rx_(config.max_packet),
       request_(config.max_packet) {}
 
@@ -122,11 +122,11 @@ Status BusExchange::settle(std::span<const std::size_t> asked, ActuatorTable& ta
   bool silent = false;
   for (std::size_t slot = 0; slot < devices_.size(); ++slot) {
     if (awaited_[slot] && answered_[slot]) {
-      missed_[slot] = 0;
+      watches_[slot].answered();
       continue;
     }
     table.forget_feedback(slot);
-    if (awaited_[slot]) silent = ++missed_[slot] >= config_.silent_exchanges || silent;
+    if (awaited_[slot]) silent = watches_[slot].missed() || silent;
     awaited_[slot] = false;
   }
   std::fill_n(awaited_.get(), devices_.size(), false);

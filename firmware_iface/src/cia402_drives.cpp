@@ -42,10 +42,15 @@ Cia402Drives::Cia402Drives(Cia402DrivesConfig config) : CanDrives(config.actuato
     if (!canopen::valid_node(a.node))
       throw std::invalid_argument("CiA 402 drive node " + std::to_string(a.node) + " is outside 1..127");
     if (find(a.node)) throw std::invalid_argument("CiA 402 drive node " + std::to_string(a.node) + " is used twice");
-    Drive d;
-    d.node = a.node;
-    drives_.push_back(d);
+    drives_.push_back(new_drive(a.node));
   }
+}
+
+Cia402Drives::Drive Cia402Drives::new_drive(std::uint8_t node) const noexcept {
+  Drive d;
+  d.node = node;
+  d.heartbeat = DeviceWatch(config_.heartbeat_budget_ticks);
+  return d;
 }
 
 Cia402Drives::Drive* Cia402Drives::find(std::uint8_t node) noexcept {
@@ -136,8 +141,7 @@ Status Cia402Drives::map_pdo(FrameTransport& bus, const Drive& d, std::uint16_t 
 
 Status Cia402Drives::start_drive(FrameTransport& bus, Drive& d) {
   const std::uint8_t node = d.node;
-  d = Drive{};
-  d.node = node;
+  d = new_drive(node);
 
   // Reset communication: known PDO and heartbeat settings, and a boot-up that says the drive is there.
   const Status booted = ask_frame(bus, canopen::encode_nmt(canopen::NmtCommand::reset_communication, node), config_.boot_timeout,
@@ -314,23 +318,24 @@ bool Cia402Drives::take(const CanFrame& frame) noexcept {
 }
 
 bool Cia402Drives::replies_complete() const noexcept {
-  return std::all_of(drives_.begin(), drives_.end(),
-                     [](const Drive& d) { return d.tpdo_seen || d.tpdo_misses >= kStopWaitingAfter; });
+  return std::all_of(drives_.begin(), drives_.end(), [](const Drive& d) { return d.tpdo_seen || d.tpdos.lost(); });
 }
 
 Status Cia402Drives::settle() noexcept {
   bool complete = true;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     Drive& d = drives_[i];
-    d.tpdo_misses = d.tpdo_seen ? 0 : d.tpdo_misses + 1;
-    if (!d.tpdo_seen) {
+    if (d.tpdo_seen) {
+      d.tpdos.answered();
+    } else {
+      d.tpdos.missed();
       table().forget_feedback(i);
       complete = false;
     }
-    if (d.heartbeat_seen) d.silent_ticks = 0;
-    else if (d.silent_ticks < UINT32_MAX) ++d.silent_ticks;
+    if (d.heartbeat_seen) d.heartbeat.answered();
+    else d.heartbeat.missed();
     d.heartbeat_seen = false;
-    d.lost = config_.heartbeat_ms > 0 && config_.heartbeat_budget_ticks > 0 && d.silent_ticks > config_.heartbeat_budget_ticks;
+    d.lost = watch_heartbeats() && d.heartbeat.lost();
     table().telemetry(i).faults = faults_of(d);
   }
   return complete ? Status::ok : Status::timeout;
@@ -357,7 +362,7 @@ std::string Cia402Drives::channel_problem(std::size_t channel) const {
     const Drive& d = drives_[i];
     const std::string who = "CiA 402 node " + std::to_string(d.node) + ": ";
     const std::string emcy = d.emcy_code ? " (EMCY " + cia402_hex(d.emcy_code, 4) + ")" : std::string();
-    if (d.lost) return who + "no heartbeat for " + std::to_string(d.silent_ticks) + " ticks";
+    if (d.lost) return who + "no heartbeat for " + std::to_string(d.heartbeat.silent_ticks()) + " ticks";
     if (cia402::is_fault(d.state)) return who + cia402::state_name(d.state) + emcy;
     if (d.state_fault) return who + "left Operation enabled for " + cia402::state_name(d.state) + emcy;
     if (d.nmt_fault) return who + "NMT " + canopen::nmt_state_name(d.nmt) + ", not Operational";

@@ -14,6 +14,7 @@ MaestroUsbLink::MaestroUsbLink(std::unique_ptr<UsbControlTransport> transport, M
     throw std::invalid_argument("a Maestro has 6, 12, 18 or 24 channels, not " + std::to_string(config_.channel_count));
   check_maestro_channels(config_.actuators, config_.channel_count);
   if (config_.silent_ticks == 0) throw std::invalid_argument("a Maestro on USB needs a silence budget of at least one tick");
+  silence_ = DeviceWatch(config_.silent_ticks);
   targets_.resize(config_.actuators.size());
   reply_.resize(maestro_usb::get_positions(config_.channel_count).length);
   description_ = "Maestro (" + std::to_string(config_.channel_count) + " channels) on " + transport_->name();
@@ -144,13 +145,12 @@ Status MaestroUsbLink::send(std::span<const double> frame) noexcept {
 
 Status MaestroUsbLink::judge_silence(Status tick) noexcept {
   if (tick == Status::ok) {
-    failed_ticks_ = 0;
+    silence_.answered();
     return Status::ok;
   }
   if (tick != Status::timeout && tick != Status::bad_data) return tick;
   // The transfer's own failure is already counted (a timeout, a stall, a short reply).
-  if (failed_ticks_ < config_.silent_ticks) ++failed_ticks_;
-  return failed_ticks_ >= config_.silent_ticks ? Status::timeout : Status::ok;
+  return silence_.missed() ? Status::timeout : Status::ok;
 }
 
 Status MaestroUsbLink::release() noexcept {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <stdexcept>
 
 #include "avar/firmware_iface/can_conversation.hpp"
@@ -66,7 +65,14 @@ const MitDrivesConfig& mit_checked(const MitDrivesConfig& config) {
 MitDrives::MitDrives(MitDrivesConfig config) : CanDrives(mit_checked(config).actuators), config_(std::move(config)) {
   motors_.resize(config_.actuators.size());
   for (std::size_t i = 0; i < motors_.size(); ++i)
-    motors_[i].reply_id = mit_reply_id(config_.actuators[i].node, config_.reply_format);
+    motors_[i] = new_motor(mit_reply_id(config_.actuators[i].node, config_.reply_format));
+}
+
+MitDrives::Motor MitDrives::new_motor(std::uint8_t reply_id) const noexcept {
+  Motor m;
+  m.reply_id = reply_id;
+  m.replies = DeviceWatch(config_.reply_budget_ticks);
+  return m;
 }
 
 std::string MitDrives::motor_name(std::size_t i) const { return mit_motor(config_.actuators[i].node); }
@@ -91,7 +97,7 @@ void MitDrives::record_reply(std::size_t i, const mit::MitReply& reply) noexcept
   t.load = std::clamp(reply.torque / std::max(std::abs(r.t_min), std::abs(r.t_max)), -1.0, 1.0);
   t.faults &= ~static_cast<std::uint32_t>(kDeviceLost);
   ++t.updates;
-  motors_[i].silent_ticks = 0;
+  motors_[i].replies.answered();
 }
 
 void MitDrives::exit_started(FrameTransport& bus) {
@@ -106,7 +112,7 @@ void MitDrives::exit_started(FrameTransport& bus) {
 Status MitDrives::start(FrameTransport& bus) {
   start_problem_.clear();
   for (std::size_t i = 0; i < motors_.size(); ++i) {
-    motors_[i] = Motor{motors_[i].reply_id};
+    motors_[i] = new_motor(motors_[i].reply_id);
     table().telemetry(i) = {};
   }
   const std::string within = " within " + std::to_string(config_.start_timeout.count()) + " ms";
@@ -194,7 +200,7 @@ bool MitDrives::take(const CanFrame& frame) noexcept {
 
 bool MitDrives::replies_complete() const noexcept {
   return std::all_of(motors_.begin(), motors_.end(),
-                     [](const Motor& m) { return !m.expected || m.replied || m.silent_ticks >= kStopWaitingAfter; });
+                     [](const Motor& m) { return !m.expected || m.replied || m.replies.silent_ticks() >= kStopWaitingAfter; });
 }
 
 Status MitDrives::settle() noexcept {
@@ -205,8 +211,7 @@ Status MitDrives::settle() noexcept {
     table().forget_feedback(i);  // stale feedback is absent
     if (!m.expected) continue;   // released and told: not asked, not silent
     complete = false;
-    if (m.silent_ticks < std::numeric_limits<std::uint32_t>::max()) ++m.silent_ticks;
-    if (m.silent_ticks >= config_.reply_budget_ticks) table().telemetry(i).faults |= kDeviceLost;
+    if (m.replies.missed()) table().telemetry(i).faults |= kDeviceLost;
   }
   return complete ? Status::ok : Status::timeout;
 }
@@ -224,9 +229,9 @@ void MitDrives::encode_release(CanOutbox& out) noexcept {
 std::string MitDrives::channel_problem(std::size_t channel) const {
   std::string problem;
   for (std::size_t i = 0; i < motors_.size(); ++i) {
-    if (table().channel(i) != channel || motors_[i].silent_ticks < config_.reply_budget_ticks) continue;
+    if (table().channel(i) != channel || !motors_[i].replies.lost()) continue;
     if (!problem.empty()) problem += "; ";
-    problem += motor_name(i) + ": no reply for " + std::to_string(motors_[i].silent_ticks) + " ticks";
+    problem += motor_name(i) + ": no reply for " + std::to_string(motors_[i].replies.silent_ticks()) + " ticks";
   }
   return problem;
 }

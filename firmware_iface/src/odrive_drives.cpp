@@ -40,6 +40,7 @@ OdriveDrives::OdriveDrives(OdriveDrivesConfig config) : CanDrives(config.actuato
     axis_of_node_[a.node] = static_cast<int>(i);
     Axis axis;
     axis.node = a.node;
+    axis.heartbeat = DeviceWatch(config_.heartbeat_budget_ticks);
     axes_.push_back(axis);
   }
 }
@@ -116,7 +117,7 @@ Status OdriveDrives::start_axis(FrameTransport& bus, std::size_t i) {
   if (s == Status::ok && !refused) {
     axis.last_heartbeat = last;
     axis.heartbeat_seen = true;
-    axis.silent_ticks = 0;
+    axis.heartbeat.answered();
     ChannelTelemetry& t = table().telemetry(i);
     t.position = table().to_channel(i, present);
     t.faults = 0;
@@ -231,9 +232,8 @@ void OdriveDrives::take_heartbeat(std::size_t i, const od::Heartbeat& h) noexcep
 bool OdriveDrives::replies_complete() const noexcept {
   // An axis that missed its last two estimates is still asked but not waited for (a drive off
   // the bus must not stall every tick until its heartbeat budget runs out).
-  return std::all_of(axes_.begin(), axes_.end(), [](const Axis& a) {
-    return !a.estimate_asked || a.estimate_taken || a.estimate_misses >= kStopWaitingAfter;
-  });
+  return std::all_of(axes_.begin(), axes_.end(),
+                     [](const Axis& a) { return !a.estimate_asked || a.estimate_taken || a.estimates.lost(); });
 }
 
 Status OdriveDrives::settle() noexcept {
@@ -242,17 +242,16 @@ Status OdriveDrives::settle() noexcept {
     Axis& axis = axes_[i];
     if (axis.estimate_asked && !axis.estimate_taken) {
       complete = false;
-      ++axis.estimate_misses;
+      axis.estimates.missed();
     } else if (axis.estimate_taken) {
-      axis.estimate_misses = 0;
+      axis.estimates.answered();
     }
     if (!axis.estimate_taken) table().forget_feedback(i);
     // Heartbeats count from one settle to the next: those taken before this tick's frames
     // went out (they arrived between ticks) count too.
-    if (axis.heartbeat_this_tick) axis.silent_ticks = 0;
-    else if (axis.silent_ticks < UINT32_MAX) ++axis.silent_ticks;
+    if (axis.heartbeat_this_tick) axis.heartbeat.answered();
+    else if (axis.heartbeat.missed()) table().telemetry(i).faults |= kDeviceLost;
     axis.heartbeat_this_tick = false;
-    if (axis.silent_ticks > config_.heartbeat_budget_ticks) table().telemetry(i).faults |= kDeviceLost;
   }
   return complete ? Status::ok : Status::timeout;
 }
@@ -265,8 +264,7 @@ void OdriveDrives::encode_release(CanOutbox& out) noexcept {
 std::string OdriveDrives::axis_problem(std::size_t i) const {
   const Axis& axis = axes_[i];
   const std::string who = node_prefix(axis.node);
-  if (axis.silent_ticks > config_.heartbeat_budget_ticks)
-    return who + "no heartbeat for " + std::to_string(axis.silent_ticks) + " ticks";
+  if (axis.heartbeat.lost()) return who + "no heartbeat for " + std::to_string(axis.heartbeat.silent_ticks()) + " ticks";
   if (!axis.heartbeat_seen) return {};
   const od::Heartbeat& h = axis.last_heartbeat;
   const bool closed_loop = h.in_state(od::AxisState::closed_loop_control);

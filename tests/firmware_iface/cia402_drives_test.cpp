@@ -198,11 +198,11 @@ TEST(Cia402Drives, HeartbeatLossIsSeenWithinTheBudget) {
     EXPECT_EQ(rig.tick(), Status::ok);  // the TPDOs still come
     ++ticks;
   }
-  // Silent past 10 ticks: lost on the 11th silent tick, counted from the last heartbeat (at most
-  // one heartbeat period, 2 ticks, before the silence began).
+  // Lost on the 10th tick in a row without a heartbeat (the budget), counted from the last
+  // heartbeat (at most one heartbeat period, 2 ticks, before the silence began).
   EXPECT_GE(ticks, 9);
   EXPECT_LE(ticks, 11);
-  EXPECT_EQ(rig.set->channel_problem(0), "CiA 402 node 5: no heartbeat for 11 ticks");
+  EXPECT_EQ(rig.set->channel_problem(0), "CiA 402 node 5: no heartbeat for 10 ticks");
   rig.drives[0]->set_heartbeat_silent(false);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(rig.tick(), Status::ok);
   EXPECT_EQ(rig.telemetry[0].faults & kDeviceLost, 0u);

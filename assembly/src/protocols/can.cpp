@@ -8,6 +8,7 @@
 #include "avar/assembly/can_drive.hpp"
 #include "avar/firmware_iface/can_frame.hpp"
 #include "avar/firmware_iface/can_link.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/slcan_transport.hpp"
 #include "avar/firmware_iface/socketcan_transport.hpp"
 #include "../setting_reading.hpp"
@@ -192,7 +193,7 @@ CanBusOptions can_bus_options(const rig::Rig& rig, std::size_t link) {
       1000.0;
   if (const ScalarValue* m = s.find("mit_master_id"))
     bus.mit_master_id = static_cast<std::uint32_t>(m->as_integer("mit_master_id"));
-  bus.silent_ticks = std::max<std::uint32_t>(2, static_cast<std::uint32_t>(std::ceil(timeout_s * rig.rate_hz)));
+  bus.silent_ticks = firmware_iface::silence_budget(timeout_s, rig.rate_hz);
   return bus;
 }
 

@@ -32,7 +32,7 @@ struct CanBusOptions {
   int bitrate = 1'000'000;          ///< bit/s
   int reply_timeout_ms = 5;         ///< longest a tick waits for the drives' replies
   int heartbeat_ms = 100;           ///< heartbeat period the drives produce (where configurable)
-  std::uint32_t silent_ticks = 30;  ///< ticks without a heartbeat or reply before a drive is lost
+  std::uint32_t silent_ticks = 30;  ///< ticks in a row without a heartbeat or reply that make a drive lost
   std::uint32_t mit_master_id = 0;  ///< the id MIT-style motors reply to (their CAN_MASTER)
 };
 

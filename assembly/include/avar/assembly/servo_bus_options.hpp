@@ -26,8 +26,8 @@ struct ServoBusOptions {
 /// protocol itself). Throws InputError at the offending setting.
 ServoBusOptions servo_bus_options(const rig::LinkSpec& link, std::initializer_list<std::string_view> extra_keys = {});
 
-/// How many exchanges a servo may miss before its silence is a fault: the link's watchdog time
-/// at the rig's tick rate, at least 2.
+/// The silence budget of a link's devices, in exchanges: the link's watchdog time at the rig's
+/// tick rate (firmware_iface::silence_budget, device_watch.hpp).
 std::uint32_t silent_exchanges(const rig::Rig& rig, std::size_t link);
 
 }  // namespace avar::assembly

@@ -3,8 +3,9 @@
 // plug in with their own BusCodec and transport). Per exchange (one driver send()): begin()
 // (which reopens a lost port now and then), the driver's writes, collect() of the replies with
 // one deadline on the transport's clock, retry() of the devices whose reply was lost or corrupt
-// (bounded per exchange), then settle(): stale feedback becomes absent and a device silent for
-// `silent_exchanges` exchanges in a row makes the exchange a timeout (the watchdog fault).
+// (bounded per exchange), then settle(): stale feedback becomes absent and each device's silence
+// is judged by its DeviceWatch (device_watch.hpp): a device lost makes the exchange a timeout (the
+// watchdog fault).
 // One set of LinkCounters for all of it.
 //
 // Devices are addressed by slot: the driver's actuator index (an ActuatorTable index).
@@ -25,6 +26,7 @@
 #include "avar/firmware_iface/atomic_link_counters.hpp"
 #include "avar/firmware_iface/bus_codec.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/reconnector.hpp"
 
 namespace avar::firmware_iface {
@@ -36,7 +38,8 @@ struct BusExchangeConfig {
   std::chrono::milliseconds reply_timeout{10};
   /// Retries per exchange, each a request to one device whose reply was lost or corrupt.
   std::uint32_t retries = 1;
-  /// Exchanges in a row without a reply from a device before settle() reports a timeout.
+  /// A device's silence budget (DeviceWatch): silent exchanges in a row that make settle()
+  /// report a timeout (0 is taken as 1).
   std::uint32_t silent_exchanges = 10;
   /// While the port is gone, begin() reopens it every this many exchanges.
   std::uint32_t reconnect_every = 10;
@@ -82,8 +85,8 @@ class BusExchange {
   Status retry(std::span<const std::size_t> asked, std::size_t reply_size, ReplySink take) noexcept;
   /// Ends the exchange's feedback: every slot that is not in `asked` or did not answer its last
   /// collect() has its feedback forgotten in `table` (absent, not old); the silence of each
-  /// slot in `asked` is counted. Returns timeout when one of them has been silent for
-  /// silent_exchanges exchanges in a row.
+  /// slot in `asked` is counted by its DeviceWatch (an answer resets it). Returns timeout while
+  /// one of them is lost (silent for silent_exchanges exchanges in a row).
   Status settle(std::span<const std::size_t> asked, ActuatorTable& table) noexcept;
 
   /// The slot answered its last collect() of this exchange.
@@ -100,9 +103,9 @@ class BusExchange {
   std::vector<std::uint32_t> devices_;
   BusExchangeConfig config_;
   Reconnector reconnector_;
-  std::unique_ptr<bool[]> answered_;   ///< per slot, this exchange
-  std::unique_ptr<bool[]> awaited_;    ///< per slot, this collect()
-  std::vector<std::uint32_t> missed_;  ///< per slot: exchanges in a row without a reply
+  std::unique_ptr<bool[]> answered_;  ///< per slot, this exchange
+  std::unique_ptr<bool[]> awaited_;   ///< per slot, this collect()
+  std::vector<DeviceWatch> watches_;  ///< per slot: its silence
   std::vector<std::uint8_t> rx_;
   std::vector<std::uint8_t> request_;
   std::size_t exchange_bytes_ = 0;

@@ -16,8 +16,8 @@
 // enabled left while driven -> kDeviceFaultState), heartbeats (an NMT state other than
 // Operational while driven -> kDeviceFaultState) and EMCY (its error code kept for the message,
 // its class mapped to DeviceFault bits while the drive is in Fault). settle(): a missing TPDO1
-// makes the drive's feedback unknown and the tick a timeout; heartbeat silence longer than the
-// budget (in ticks) -> kDeviceLost.
+// makes the drive's feedback unknown and the tick a timeout; heartbeat_budget_ticks ticks in a row
+// without a heartbeat -> kDeviceLost (DeviceWatch: device_watch.hpp).
 //
 // Units: each actuator's calibration maps channel units to position counts (the drive's user
 // units). Threads and real-time rules: those of CanDrives.
@@ -32,6 +32,7 @@
 #include "avar/firmware_iface/can_drives.hpp"
 #include "avar/firmware_iface/canopen_codec.hpp"
 #include "avar/firmware_iface/cia402_codec.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 
 namespace avar::firmware_iface {
@@ -46,8 +47,9 @@ struct Cia402DrivesConfig {
   std::vector<Cia402Actuator> actuators;
   /// Heartbeat producer time written to every drive's 0x1017, ms (0: no heartbeat, no loss check).
   std::uint16_t heartbeat_ms = 100;
-  /// Ticks without a heartbeat before a drive counts as lost (kDeviceLost); choose it above the
-  /// heartbeat period in ticks (100 ms at 100 Hz: 10 ticks; 30 leaves room). 0: no check.
+  /// Ticks in a row without a heartbeat that make a drive lost (kDeviceLost; its DeviceWatch
+  /// budget); choose it above the heartbeat period in ticks (100 ms at 100 Hz: 10 ticks; 30
+  /// leaves room). 0: no check.
   std::uint32_t heartbeat_budget_ticks = 30;
   /// Longest wait for each SDO answer during start() and read_positions().
   std::chrono::milliseconds sdo_timeout{50};
@@ -87,21 +89,25 @@ class Cia402Drives final : public CanDrives {
  private:
   struct Drive {
     std::uint8_t node = 1;
-    std::int32_t target = 0;        ///< last target sent, counts
-    bool driven = false;            ///< as of this tick's encode_tick
-    bool tpdo_seen = false;         ///< this tick
-    std::uint32_t tpdo_misses = 0;  ///< ticks in a row without a TPDO
-    bool heartbeat_seen = false;
-    std::uint32_t silent_ticks = 0;
-    bool lost = false;
-    bool state_fault = false;  ///< Fault, or out of Operation enabled while driven (last TPDO1)
-    bool nmt_fault = false;    ///< not Operational while driven (last heartbeat)
+    std::int32_t target = 0;               ///< last target sent, counts
+    bool driven = false;                   ///< as of this tick's encode_tick
+    bool tpdo_seen = false;                ///< this tick
+    DeviceWatch tpdos{kStopWaitingAfter};  ///< lost: no longer waited for
+    bool heartbeat_seen = false;           ///< this tick
+    DeviceWatch heartbeat;                 ///< heartbeat silence, against the budget
+    bool lost = false;                     ///< heartbeats watched and the budget ran out
+    bool state_fault = false;              ///< Fault, or out of Operation enabled while driven (last TPDO1)
+    bool nmt_fault = false;                ///< not Operational while driven (last heartbeat)
     std::uint16_t statusword = 0;
     cia402::State state = cia402::State::unknown;
     canopen::NmtState nmt = canopen::NmtState::pre_operational;
     std::uint16_t emcy_code = 0;  ///< last non-zero EMCY error code
   };
 
+  /// A drive as before start(), its heartbeat watched against the budget.
+  Drive new_drive(std::uint8_t node) const noexcept;
+  /// Heartbeats are configured and a budget given.
+  bool watch_heartbeats() const noexcept { return config_.heartbeat_ms > 0 && config_.heartbeat_budget_ticks > 0; }
   Status start_drive(FrameTransport& bus, Drive& d);
   /// One SDO write / read; on failure sets start_problem_ and returns the status.
   Status write(FrameTransport& bus, const Drive& d, std::uint16_t index, std::uint8_t sub, std::uint32_t value,

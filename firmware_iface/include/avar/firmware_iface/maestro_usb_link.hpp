@@ -7,7 +7,8 @@
 // Maestro drives after its own speed and acceleration limits, not a measured one. A tick whose
 // transfers time out, stall or come back short costs that tick's telemetry only; `silent_ticks`
 // such ticks in a row make send() report a timeout (the controller's watchdog fault), as the
-// serial buses' silence budget does. A Maestro that is gone (an I/O error) fails the link at once.
+// serial buses' silence budget does (DeviceWatch: device_watch.hpp). A Maestro that is gone (an I/O error) fails the link at
+// once.
 //
 // Threads: send(), release(), read_telemetry() on one thread (the loop's or the link's I/O
 // thread); release_channel(), saturated_pulses() and counters() from any thread. send() and
@@ -22,6 +23,7 @@
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/actuator_table.hpp"
 #include "avar/firmware_iface/atomic_link_counters.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/maestro_actuators.hpp"
 #include "avar/firmware_iface/maestro_usb_codec.hpp"
 #include "avar/firmware_iface/reconnector.hpp"
@@ -32,7 +34,7 @@ namespace avar::firmware_iface {
 struct MaestroUsbLinkConfig {
   int channel_count = 24;                  ///< 6 (Micro Maestro), 12, 18 or 24 (Mini Maestro)
   std::chrono::milliseconds timeout{100};  ///< per control transfer
-  std::uint32_t silent_ticks = 10;         ///< failed ticks in a row before send() is a timeout; >= 1
+  std::uint32_t silent_ticks = 10;         ///< failed ticks in a row that make send() a timeout; >= 1
   std::vector<MaestroActuator> actuators;
 };
 
@@ -72,7 +74,7 @@ class MaestroUsbLink final : public ActuatorLink {
   /// Output pulses of every channel into reply_; ok only with every record there.
   Status read_records() noexcept;
   Status write_targets() noexcept;
-  /// A failed tick within the silence budget is ok; a whole one empties the budget's count.
+  /// A failed tick within the silence budget is ok; a whole one answers the watch.
   Status judge_silence(Status tick) noexcept;
 
   std::unique_ptr<UsbControlTransport> transport_;
@@ -84,7 +86,7 @@ class MaestroUsbLink final : public ActuatorLink {
   std::string start_problem_;
   Reconnector reconnector_;
   AtomicLinkCounters counters_;
-  std::uint32_t failed_ticks_ = 0;  ///< ticks in a row without a whole exchange (send's thread)
+  DeviceWatch silence_;  ///< ticks in a row without a whole exchange (send's thread)
 };
 
 }  // namespace avar::firmware_iface

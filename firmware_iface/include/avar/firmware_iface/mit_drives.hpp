@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/can_drives.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/firmware_iface/mit_can_codec.hpp"
 
@@ -37,7 +38,8 @@ struct MitActuator {
 
 struct MitDrivesConfig {
   std::vector<MitActuator> actuators;
-  /// Ticks in a row without a reply from a commanded motor before it is lost (kDeviceLost).
+  /// Ticks in a row without a reply from a commanded motor that make it lost (kDeviceLost; its
+  /// DeviceWatch budget, device_watch.hpp).
   std::uint32_t reply_budget_ticks = 10;
   /// Longest wait for each answer during start() and read_positions().
   std::chrono::milliseconds start_timeout{50};
@@ -90,9 +92,11 @@ class MitDrives final : public CanDrives {
     bool started = false;       // in motor mode by our start()
     bool expected = false;      // sent a frame this tick
     bool replied = false;       // answered this tick
-    std::uint32_t silent_ticks = 0;
+    DeviceWatch replies;        // reply silence, against the budget
   };
 
+  /// A motor as before start(), its replies watched against the budget.
+  Motor new_motor(std::uint8_t reply_id) const noexcept;
   CanFrame hold_frame(std::size_t i) const noexcept;
   bool is_reply_of(const CanFrame& frame, std::size_t i, mit::MitReply* reply) const noexcept;
   void record_reply(std::size_t i, const mit::MitReply& reply) noexcept;

@@ -12,7 +12,8 @@
 //   gets Set Axis Requested State IDLE once. Replies: heartbeats (axis error, state) and encoder
 //   estimates (telemetry position). A driven axis whose heartbeat shows an axis error or a state
 //   other than CLOSED_LOOP_CONTROL gets kDeviceFaultState (plus the DeviceFault bits of its
-//   error); one whose heartbeat is missing for more than heartbeat_budget_ticks gets kDeviceLost.
+//   error); one whose heartbeat is missing for heartbeat_budget_ticks ticks in a row gets
+//   kDeviceLost (DeviceWatch: device_watch.hpp).
 // - release: Set Axis Requested State IDLE to every axis (the motors coast).
 //
 // Threads and real-time rules: as CanDrives (can_drives.hpp).
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/can_drives.hpp"
+#include "avar/firmware_iface/device_watch.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/firmware_iface/odrive_can_codec.hpp"
 
@@ -50,8 +52,8 @@ struct OdriveDrivesConfig {
   std::vector<OdriveActuator> actuators;
   OdriveReadback readback = OdriveReadback::rtr;
   odrive::HeartbeatLayout heartbeat_layout = odrive::HeartbeatLayout::v0_5;
-  /// Ticks without a heartbeat before an axis is lost. At least a few heartbeat periods: 30 ticks
-  /// are 3 heartbeats (100 ms each) at 100 Hz.
+  /// Ticks in a row without a heartbeat that make an axis lost (its DeviceWatch budget). At least
+  /// a few heartbeat periods: 30 ticks are 3 heartbeats (100 ms each) at 100 Hz.
   std::uint32_t heartbeat_budget_ticks = 30;
   /// start() and read_positions(): longest wait for an encoder estimate (transport clock).
   std::chrono::milliseconds reply_timeout{100};
@@ -92,10 +94,10 @@ class OdriveDrives final : public CanDrives {
     odrive::Heartbeat last_heartbeat;  ///< as of the latest heartbeat
     bool heartbeat_seen = false;       ///< ever, since start
     bool heartbeat_this_tick = false;
-    std::uint32_t silent_ticks = 0;
+    DeviceWatch heartbeat;                                         ///< heartbeat silence, against the budget
     bool estimate_asked = false;                                   ///< this tick
     bool estimate_taken = false;                                   ///< this tick
-    std::uint32_t estimate_misses = 0;                             ///< ticks in a row whose estimate did not come
+    DeviceWatch estimates{kStopWaitingAfter};                      ///< lost: no longer waited for
     double last_turns = std::numeric_limits<double>::quiet_NaN();  ///< last commanded position
   };
   static constexpr int kNoAxis = -1;
