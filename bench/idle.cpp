@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "discard_transport.hpp"
+#include "support/discard_transport.hpp"
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/config/idle_section.hpp"
 #include "avar/config/rig_file.hpp"
@@ -99,7 +99,7 @@ void idle_bench_show(benchmark::State& state, const char* show_name) {
   avar::playback::Show show = avar::config::load_show_file(std::string(AVAR_SOURCE_DIR "/examples/shows/") + show_name + ".yaml");
   avar::config::bind_show_behaviour(show, rig);
   show.loop = true;  // as many ticks as the benchmark wants (each wrap restarts the behaviour)
-  avar::bench::DiscardTransport transport;
+  avar::testing::DiscardTransport transport;
   avar::firmware_iface::MaestroLink link{transport, avar::assembly::maestro_config(rig, 0)};
   avar::control::Controller controller(rig, show, {&link}, {.tick_period_s = 0.001});
   controller.begin(0.0, rig.rest_frame());

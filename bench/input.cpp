@@ -7,9 +7,7 @@
 //   sender  -> send: from the sender's sendto(), UDP and liblo included
 // and, beside them, the peer floor: the same sender to a bare blocking recvfrom() thread.
 // Usage: avar-bench-input [SECONDS, default 10]
-#include <arpa/inet.h>
 #include <lo/lo.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -26,6 +24,7 @@
 #include "avar/control/live_inputs.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/firmware_iface/input_source_factory.hpp"
+#include "support/osc_sender.hpp"
 
 namespace {
 
@@ -37,21 +36,6 @@ constexpr std::size_t kMaxMessages = 1 << 20;
 struct SendLog {
   std::unique_ptr<std::atomic<std::int64_t>[]> sent_ns { new std::atomic<std::int64_t>[ kMaxMessages ] };
 };
-
-int bound_udp_socket(int& port) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
-    std::perror("avar-bench-input: UDP socket");
-    std::exit(1);
-  }
-  port = ntohs(a.sin_port);
-  return fd;
-}
 
 /// Sends /avar/control/x with values 1, 2, 3... every `period_us`, logging each send time.
 void send_messages(int port, double seconds, int period_us, SendLog& log, std::atomic<std::size_t>& count) {
@@ -139,7 +123,7 @@ int main(int argc, char** argv) {
   // Peer floor: the same sender to a bare recvfrom().
   {
     int port = 0;
-    const int fd = bound_udp_socket(port);
+    const int fd = avar::testing::bound_udp_socket(port);
     SendLog log;
     std::vector<std::int64_t> floor;
     floor.reserve(expected);
@@ -192,8 +176,7 @@ int main(int argc, char** argv) {
   control::LiveInputs live({{"x", 0, 1e7}}, {m});
   SendLog log;
   StampingLink link(live, log, expected);
-  int port = 0;
-  ::close(bound_udp_socket(port));
+  const int port = avar::testing::free_udp_port();
   auto osc = firmware_iface::make_input_source("osc://127.0.0.1:" + std::to_string(port));
   osc->start(live.sink());
   control::ControllerOptions options;

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "discard_transport.hpp"
+#include "support/discard_transport.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/firmware_iface/maestro_link.hpp"
@@ -25,7 +25,7 @@ using namespace avar;
 struct Figure32 {
   rig::Rig rig;
   playback::Show show;
-  bench::DiscardTransport t0, t1;
+  avar::testing::DiscardTransport t0, t1;
   std::vector<std::unique_ptr<firmware_iface::MaestroLink>> links;
 
   Figure32() {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "discard_transport.hpp"
+#include "support/discard_transport.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
@@ -20,7 +20,7 @@ namespace {
 struct Head {
   avar::rig::Rig rig = avar::config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
   avar::playback::Show show = avar::config::load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
-  avar::bench::DiscardTransport transport;
+  avar::testing::DiscardTransport transport;
   avar::firmware_iface::MaestroLink link{transport, avar::assembly::maestro_config(rig, 0)};
 };
 

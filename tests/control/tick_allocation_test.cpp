@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/allocation_counter.hpp"
+#include "../support/discard_transport.hpp"
 
 #include "avar/control/controller.hpp"
 #include "avar/control/live_inputs.hpp"
@@ -17,24 +18,6 @@
 
 namespace avar::control {
 namespace {
-
-class CountingTransport final : public firmware_iface::ByteTransport {
- public:
-  Status write(std::span<const std::uint8_t> bytes) noexcept override {
-    written_.fetch_add(bytes.size(), std::memory_order_relaxed);
-    return Status::ok;
-  }
-  Status read_exact(std::span<std::uint8_t>, std::chrono::milliseconds) noexcept override { return Status::timeout; }
-  std::chrono::nanoseconds now() const noexcept override { return {}; }
-  void discard_input() noexcept override {}
-  Status reopen() noexcept override { return Status::ok; }
-  std::uint64_t bytes_written() const noexcept override { return written_.load(std::memory_order_relaxed); }
-  const std::string& name() const noexcept override { return name_; }
-
- private:
-  std::atomic<std::uint64_t> written_{0};
-  std::string name_ = "counting";
-};
 
 struct Scene {
   Rig rig;
@@ -123,7 +106,7 @@ Scene scene_with_path_target() {
 }
 
 void expect_no_allocation_in_ticks_with_ik(const Scene& sc) {
-  CountingTransport transport;
+  testing::DiscardTransport transport;
   firmware_iface::MaestroLink link(transport, sc.link_config);
   Controller controller(sc.rig, sc.show, {&link}, {.tick_period_s = 0.001});
   controller.begin(0.0, sc.rig.rest_frame());
@@ -153,7 +136,7 @@ TEST(TickAllocation, NoAllocationWithAPathTarget) { expect_no_allocation_in_tick
 
 TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
   const Scene sc = scene();
-  CountingTransport transport;
+  testing::DiscardTransport transport;
   firmware_iface::MaestroLink link(transport, sc.link_config);
   Controller controller(sc.rig, sc.show, {&link}, {.tick_period_s = 0.001});
   controller.begin(0.0, sc.rig.rest_frame());
@@ -179,7 +162,7 @@ TEST(TickAllocation, NoAllocationInAnyPhaseOfTheTick) {
 // relative and held mappings, a direct channel, crossfades and timeouts; nothing allocates.
 TEST(TickAllocation, NoAllocationWithLiveInputsMixedOverTheShow) {
   const Scene sc = scene();
-  CountingTransport transport;
+  testing::DiscardTransport transport;
   firmware_iface::MaestroLink link(transport, sc.link_config);
   std::vector<LiveChannel> channels;
   for (const rig::ChannelSpec& c : sc.rig.channels) channels.push_back({c.name, c.min, c.max});
@@ -217,7 +200,7 @@ TEST(TickAllocation, NoAllocationWithLiveInputsMixedOverTheShow) {
 // fail-safe action: nothing allocates on either thread.
 TEST(TickAllocation, NoAllocationThroughTheIoThreadAndTheFaultPath) {
   const Scene sc = scene();
-  CountingTransport transport;
+  testing::DiscardTransport transport;
   firmware_iface::MaestroLink link(transport, sc.link_config);
   ThreadedLink threaded(link, sc.rig.channels.size(), 100000);
   Controller controller(sc.rig, sc.show, {&threaded}, {.tick_period_s = 0.001});

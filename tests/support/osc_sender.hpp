@@ -12,18 +12,28 @@
 
 namespace avar::testing {
 
-/// A UDP port on 127.0.0.1 that nothing listens on right now.
-inline int free_udp_port() {
+/// A UDP socket bound to a free port of 127.0.0.1 (written to `port`); the caller closes it.
+/// Throws std::runtime_error when there is none.
+inline int bound_udp_socket(int& port) {
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   socklen_t len = sizeof a;
   if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+    if (fd >= 0) ::close(fd);
     throw std::runtime_error("no free UDP port on loopback");
-  ::close(fd);
-  return ntohs(a.sin_port);
+  }
+  port = ntohs(a.sin_port);
+  return fd;
+}
+
+/// A UDP port on 127.0.0.1 that nothing listens on right now.
+inline int free_udp_port() {
+  int port = 0;
+  ::close(bound_udp_socket(port));
+  return port;
 }
 
 class OscSender {
