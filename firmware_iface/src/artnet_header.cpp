@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::artnet {
 namespace {
 
@@ -15,12 +17,8 @@ std::size_t write_header(OpCode op, bool versioned, std::span<std::uint8_t> out)
   if (out.size() < size) return 0;
   std::copy(kId.begin(), kId.end(), out.begin());
   const auto code = static_cast<std::uint16_t>(op);
-  out[8] = static_cast<std::uint8_t>(code & 0xFFU);
-  out[9] = static_cast<std::uint8_t>(code >> 8U);
-  if (versioned) {
-    out[10] = static_cast<std::uint8_t>(kProtocolVersion >> 8U);
-    out[11] = static_cast<std::uint8_t>(kProtocolVersion & 0xFFU);
-  }
+  put_u16_le(&out[8], code);  // the OpCode is little-endian, the version big-endian
+  if (versioned) put_u16_be(&out[10], kProtocolVersion);
   return size;
 }
 
@@ -28,12 +26,12 @@ std::optional<std::uint16_t> read_opcode(std::span<const std::uint8_t> datagram)
   if (datagram.size() < kOpCodeHeaderSize || !std::equal(kId.begin(), kId.end(), datagram.begin())) {
     return std::nullopt;
   }
-  return static_cast<std::uint16_t>(datagram[8] | (datagram[9] << 8U));
+  return get_u16_le(&datagram[8]);
 }
 
 bool supported_version(std::span<const std::uint8_t> datagram) noexcept {
   if (datagram.size() < kVersionedHeaderSize) return false;
-  return ((datagram[10] << 8U) | datagram[11]) >= kProtocolVersion;
+  return get_u16_be(&datagram[10]) >= kProtocolVersion;
 }
 
 }  // namespace avar::firmware_iface::artnet

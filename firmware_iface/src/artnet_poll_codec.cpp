@@ -2,17 +2,10 @@
 
 #include <algorithm>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::artnet {
 namespace {
-
-void put_be16(std::span<std::uint8_t> out, std::size_t at, std::uint16_t v) noexcept {
-  out[at] = static_cast<std::uint8_t>(v >> 8U);
-  out[at + 1] = static_cast<std::uint8_t>(v & 0xFFU);
-}
-
-std::uint16_t get_be16(std::span<const std::uint8_t> in, std::size_t at) noexcept {
-  return static_cast<std::uint16_t>(in[at] << 8U | in[at + 1]);
-}
 
 template <std::size_t N>
 void put_bytes(std::span<std::uint8_t> out, std::size_t at, const std::array<std::uint8_t, N>& bytes) noexcept {
@@ -46,10 +39,10 @@ std::size_t encode_poll(std::span<std::uint8_t> out, const Poll& poll) noexcept 
   write_header(OpCode::poll, true, out);
   out[12] = poll.flags;
   out[13] = poll.diag_priority;
-  put_be16(out, 14, poll.target_top);
-  put_be16(out, 16, poll.target_bottom);
-  put_be16(out, 18, poll.esta_manufacturer);
-  put_be16(out, 20, poll.oem);
+  put_u16_be(&out[14], poll.target_top);
+  put_u16_be(&out[16], poll.target_bottom);
+  put_u16_be(&out[18], poll.esta_manufacturer);
+  put_u16_be(&out[20], poll.oem);
   return kPollSize;
 }
 
@@ -61,12 +54,12 @@ std::optional<Poll> decode_poll(std::span<const std::uint8_t> datagram) noexcept
   p.flags = datagram[12];
   p.diag_priority = datagram[13];
   if (datagram.size() >= 18) {
-    p.target_top = get_be16(datagram, 14);
-    p.target_bottom = get_be16(datagram, 16);
+    p.target_top = get_u16_be(&datagram[14]);
+    p.target_bottom = get_u16_be(&datagram[16]);
   }
   if (datagram.size() >= kPollSize) {
-    p.esta_manufacturer = get_be16(datagram, 18);
-    p.oem = get_be16(datagram, 20);
+    p.esta_manufacturer = get_u16_be(&datagram[18]);
+    p.oem = get_u16_be(&datagram[20]);
   }
   return p;
 }
@@ -76,20 +69,18 @@ std::size_t encode_poll_reply(std::span<std::uint8_t> out, const PollReply& r) n
   std::fill_n(out.begin(), kPollReplySize, std::uint8_t{0});
   write_header(OpCode::poll_reply, false, out);
   put_bytes(out, 10, r.ip);
-  out[14] = static_cast<std::uint8_t>(r.port & 0xFFU);  // the one little-endian field
-  out[15] = static_cast<std::uint8_t>(r.port >> 8U);
-  put_be16(out, 16, r.version_info);
+  put_u16_le(&out[14], r.port);  // the one little-endian field
+  put_u16_be(&out[16], r.version_info);
   out[18] = r.net_switch;
   out[19] = r.sub_switch;
-  put_be16(out, 20, r.oem);
+  put_u16_be(&out[20], r.oem);
   out[22] = r.ubea_version;
   out[23] = r.status1;
-  out[24] = static_cast<std::uint8_t>(r.esta_manufacturer & 0xFFU);  // EstaManLo first
-  out[25] = static_cast<std::uint8_t>(r.esta_manufacturer >> 8U);
+  put_u16_le(&out[24], r.esta_manufacturer);  // EstaManLo first
   put_name(out, 26, r.short_name);
   put_name(out, 44, r.long_name);
   put_name(out, 108, r.node_report);
-  put_be16(out, 172, r.num_ports);
+  put_u16_be(&out[172], r.num_ports);
   put_bytes(out, 174, r.port_types);
   put_bytes(out, 178, r.good_input);
   put_bytes(out, 182, r.good_output_a);
@@ -111,17 +102,17 @@ std::size_t encode_poll_reply(std::span<std::uint8_t> out, const PollReply& r) n
 std::optional<PollReply> decode_poll_reply(std::span<const std::uint8_t> d) noexcept {
   if (read_opcode(d) != static_cast<std::uint16_t>(OpCode::poll_reply) || d.size() < kMinPollReplySize) return std::nullopt;
   PollReply r;
-  r.num_ports = get_be16(d, 172);
+  r.num_ports = get_u16_be(&d[172]);
   if (r.num_ports > 4) return std::nullopt;
   get_bytes(d, 10, r.ip);
-  r.port = static_cast<std::uint16_t>(d[14] | (d[15] << 8U));
-  r.version_info = get_be16(d, 16);
+  r.port = get_u16_le(&d[14]);
+  r.version_info = get_u16_be(&d[16]);
   r.net_switch = d[18];
   r.sub_switch = d[19];
-  r.oem = get_be16(d, 20);
+  r.oem = get_u16_be(&d[20]);
   r.ubea_version = d[22];
   r.status1 = d[23];
-  r.esta_manufacturer = static_cast<std::uint16_t>(d[24] | (d[25] << 8U));
+  r.esta_manufacturer = get_u16_le(&d[24]);
   get_name(d, 26, r.short_name);
   get_name(d, 44, r.long_name);
   get_name(d, 108, r.node_report);

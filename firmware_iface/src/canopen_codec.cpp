@@ -1,5 +1,7 @@
 #include "avar/firmware_iface/canopen_codec.hpp"
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::canopen {
 namespace {
 

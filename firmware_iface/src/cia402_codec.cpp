@@ -1,5 +1,6 @@
 #include "avar/firmware_iface/cia402_codec.hpp"
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/canopen_codec.hpp"
 
@@ -27,14 +28,14 @@ CanFrame cia402_word_and_i32(std::uint32_t cob_id, std::uint16_t word, std::int3
   CanFrame f;
   f.id = cob_id;
   f.dlc = 6;
-  canopen::put_le(&f.data[0], word, 2);
-  canopen::put_le(&f.data[2], static_cast<std::uint32_t>(value), 4);
+  put_u16_le(&f.data[0], word);
+  put_i32_le(&f.data[2], value);
   return f;
 }
 
 void cia402_read_word_and_i32(const CanFrame& f, std::uint16_t* word, std::int32_t* value) noexcept {
-  *word = static_cast<std::uint16_t>(canopen::get_le(&f.data[0], 2));
-  *value = static_cast<std::int32_t>(canopen::get_le(&f.data[2], 4));
+  *word = get_u16_le(&f.data[0]);
+  *value = get_i32_le(&f.data[2]);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::dmx {
 
 std::size_t encode_message(std::span<std::uint8_t> out, std::uint8_t label, std::span<const std::uint8_t> data) noexcept {
@@ -10,8 +12,7 @@ std::size_t encode_message(std::span<std::uint8_t> out, std::uint8_t label, std:
   if (data.size() > kMaxData || out.size() < total) return 0;
   out[0] = kStartOfMessage;
   out[1] = label;
-  out[2] = static_cast<std::uint8_t>(data.size() & 0xFF);
-  out[3] = static_cast<std::uint8_t>(data.size() >> 8);
+  put_u16_le(&out[2], static_cast<std::uint16_t>(data.size()));
   std::copy(data.begin(), data.end(), out.begin() + 4);
   out[total - 1] = kEndOfMessage;
   return total;
@@ -24,8 +25,7 @@ std::size_t encode_send_dmx(std::span<std::uint8_t> out, std::span<const std::ui
   // Written in place (no copy of the universe through a temporary).
   out[0] = kStartOfMessage;
   out[1] = kOutputOnlySendDmx;
-  out[2] = static_cast<std::uint8_t>((n + 1) & 0xFF);
-  out[3] = static_cast<std::uint8_t>((n + 1) >> 8);
+  put_u16_le(&out[2], static_cast<std::uint16_t>(n + 1));
   out[4] = start_code;
   std::copy(slots.begin(), slots.end(), out.begin() + 5);
   std::fill(out.begin() + 5 + static_cast<long>(slots.size()), out.begin() + 5 + static_cast<long>(n), std::uint8_t{0});
@@ -35,7 +35,8 @@ std::size_t encode_send_dmx(std::span<std::uint8_t> out, std::span<const std::ui
 
 std::size_t encode_get_widget_parameters(std::span<std::uint8_t> out, std::uint16_t user_config_size) noexcept {
   if (user_config_size > 508) return 0;
-  const std::uint8_t data[2] = {static_cast<std::uint8_t>(user_config_size & 0xFF), static_cast<std::uint8_t>(user_config_size >> 8)};
+  std::uint8_t data[2];
+  put_u16_le(data, user_config_size);
   return encode_message(out, kGetWidgetParameters, data);
 }
 
@@ -51,8 +52,7 @@ std::size_t encode_widget_parameters_reply(std::span<std::uint8_t> out, const Wi
                                            std::span<const std::uint8_t> user_config) noexcept {
   std::array<std::uint8_t, 5 + 508> data{};
   if (user_config.size() > 508) return 0;
-  data[0] = static_cast<std::uint8_t>(p.firmware & 0xFF);
-  data[1] = static_cast<std::uint8_t>(p.firmware >> 8);
+  put_u16_le(&data[0], p.firmware);
   data[2] = p.break_time, data[3] = p.mab_time, data[4] = p.output_rate;
   std::copy(user_config.begin(), user_config.end(), data.begin() + 5);
   return encode_message(out, kGetWidgetParameters, std::span(data.data(), 5 + user_config.size()));
@@ -67,7 +67,7 @@ DecodeResult decode_message(std::span<const std::uint8_t> in, Message* message, 
     return DecodeResult::bad_framing;
   }
   if (in.size() < 4) return DecodeResult::need_more;
-  const std::size_t length = in[2] | static_cast<std::size_t>(in[3]) << 8;
+  const std::size_t length = get_u16_le(&in[2]);
   if (length > kMaxData) {
     *consumed = 1;
     return DecodeResult::bad_framing;
@@ -86,7 +86,7 @@ DecodeResult decode_message(std::span<const std::uint8_t> in, Message* message, 
 
 bool decode_widget_parameters(std::span<const std::uint8_t> data, WidgetParameters* p) noexcept {
   if (data.size() < 5) return false;
-  p->firmware = static_cast<std::uint16_t>(data[0] | data[1] << 8);
+  p->firmware = get_u16_le(&data[0]);
   p->break_time = data[2], p->mab_time = data[3], p->output_rate = data[4];
   return true;
 }

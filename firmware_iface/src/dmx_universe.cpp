@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface {
 namespace {
 
@@ -42,8 +44,7 @@ void DmxUniverse::fill(std::span<const double> frame) noexcept {
     if (!table_.released(i)) level = std::clamp(std::lround(table_.to_device(i, frame)), 0L, a.fine ? 65535L : 255L);
     const auto at = static_cast<std::size_t>(a.address - 1);
     if (a.fine) {
-      slots_[at] = static_cast<std::uint8_t>(level >> 8);
-      slots_[at + 1] = static_cast<std::uint8_t>(level & 0xFF);
+      put_u16_be(&slots_[at], static_cast<std::uint16_t>(level));
     } else {
       slots_[at] = static_cast<std::uint8_t>(level);
     }

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::dynamixel {
 namespace {
 
@@ -30,11 +32,6 @@ bool put_stuffed(std::span<std::uint8_t> out, std::size_t region, std::size_t& n
   return true;
 }
 
-void u16(std::uint8_t* p, std::uint16_t v) {
-  p[0] = static_cast<std::uint8_t>(v & 0xFF);
-  p[1] = static_cast<std::uint8_t>(v >> 8);
-}
-
 }  // namespace
 
 std::uint16_t crc16(std::span<const std::uint8_t> bytes) noexcept {
@@ -54,8 +51,8 @@ std::size_t encode_instruction(std::span<std::uint8_t> out, std::uint8_t id, std
     if (!put_stuffed(out, kHeaderSize, n, b)) return 0;
   const std::size_t length = n - kHeaderSize + 2;  // instruction + parameters (stuffed) + CRC
   if (length > 0xFFFF || n + 2 > out.size()) return 0;
-  u16(&out[5], static_cast<std::uint16_t>(length));
-  u16(&out[n], crc16(out.first(n)));
+  put_u16_le(&out[5], static_cast<std::uint16_t>(length));
+  put_u16_le(&out[n], crc16(out.first(n)));
   return n + 2;
 }
 
@@ -63,8 +60,8 @@ std::size_t encode_ping(std::span<std::uint8_t> out, std::uint8_t id) noexcept {
 
 std::size_t encode_read(std::span<std::uint8_t> out, std::uint8_t id, std::uint16_t address, std::uint16_t length) noexcept {
   std::uint8_t p[4];
-  u16(p, address);
-  u16(p + 2, length);
+  put_u16_le(p, address);
+  put_u16_le(p + 2, length);
   return encode_instruction(out, id, kRead, p);
 }
 
@@ -72,7 +69,7 @@ std::size_t encode_write(std::span<std::uint8_t> out, std::uint8_t id, std::uint
                          std::span<const std::uint8_t> data) noexcept {
   std::array<std::uint8_t, 2 + 256> p{};
   if (data.size() > 256) return 0;
-  u16(p.data(), address);
+  put_u16_le(p.data(), address);
   std::copy(data.begin(), data.end(), p.begin() + 2);
   return encode_instruction(out, id, kWrite, std::span(p.data(), 2 + data.size()));
 }
@@ -90,8 +87,8 @@ std::size_t encode_sync_read(std::span<std::uint8_t> out, std::uint16_t address,
                              std::span<const std::uint8_t> ids) noexcept {
   std::array<std::uint8_t, 4 + kMaxId + 1> p{};
   if (ids.empty() || ids.size() > kMaxId + 1) return 0;
-  u16(p.data(), address);
-  u16(p.data() + 2, length);
+  put_u16_le(p.data(), address);
+  put_u16_le(p.data() + 2, length);
   for (std::size_t i = 0; i < ids.size(); ++i) {
     if (ids[i] > kMaxId) return 0;
     p[4 + i] = ids[i];
@@ -103,8 +100,8 @@ std::size_t encode_sync_write_u32(std::span<std::uint8_t> out, std::uint16_t add
                                   std::span<const std::int32_t> values) noexcept {
   std::array<std::uint8_t, 4 + 5 * (kMaxId + 1)> p{};
   if (ids.empty() || ids.size() != values.size() || ids.size() > kMaxId + 1) return 0;
-  u16(p.data(), address);
-  u16(p.data() + 2, 4);
+  put_u16_le(p.data(), address);
+  put_u16_le(p.data() + 2, 4);
   std::size_t n = 4;
   for (std::size_t i = 0; i < ids.size(); ++i) {
     if (ids[i] > kMaxId) return 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
 
 namespace avar::firmware_iface {
@@ -120,8 +121,8 @@ Status DynamixelLink::start() {
     const DynamixelActuator& a = config_.actuators[servo.actuator];
     const double pulses_per_unit = a.calibration.device_per_unit();
     auto write_i32 = [&](std::uint16_t address, std::int32_t v) {
-      const std::array<std::uint8_t, 4> data{static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8),
-                                             static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 24)};
+      std::array<std::uint8_t, 4> data{};
+      put_i32_le(data.data(), v);
       return write_to(servo, std::span(request.data(), dxl::encode_write(request, servo.id, address, data)));
     };
     // 0 means "no limit" to the servo, which is also what an absent limit means here.

@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdlib>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::feetech {
 
 std::uint16_t to_sign_magnitude(int value, int sign_bit) noexcept {
@@ -27,14 +29,12 @@ int position_from_word(Series series, std::uint16_t raw) noexcept {
 }
 
 void put_word(Series series, std::span<std::uint8_t, 2> out, std::uint16_t value) noexcept {
-  const auto low = static_cast<std::uint8_t>(value & 0xFF);
-  const auto high = static_cast<std::uint8_t>(value >> 8);
-  out[0] = series == Series::sts ? low : high;
-  out[1] = series == Series::sts ? high : low;
+  if (series == Series::sts) put_u16_le(out.data(), value);
+  else put_u16_be(out.data(), value);
 }
 
 std::uint16_t get_word(Series series, std::span<const std::uint8_t> in) noexcept {
-  return series == Series::sts ? static_cast<std::uint16_t>(in[0] | in[1] << 8) : static_cast<std::uint16_t>(in[0] << 8 | in[1]);
+  return series == Series::sts ? get_u16_le(in.data()) : get_u16_be(in.data());
 }
 
 std::uint8_t checksum(std::span<const std::uint8_t> bytes) noexcept {

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <optional>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::hid {
 
 HidDescriptorError::HidDescriptorError(std::size_t offset, const std::string& problem)
@@ -181,8 +183,7 @@ class Parser {
       if (d_.size() - pos - 1 < size)
         fail(at, std::string("item ") + hex(prefix, 2) + " (" + item_name(type, tag) + ") needs " + std::to_string(size) +
                      " data bytes, only " + std::to_string(d_.size() - pos - 1) + " left; expected a complete item");
-      std::uint32_t value = 0;
-      for (std::size_t i = 0; i < size; ++i) value |= std::uint32_t{d_[pos + 1 + i]} << (8 * i);
+      const std::uint32_t value = get_le(d_.data() + pos + 1, size);
       // Sign extension from the item's own size: (v ^ sign) - sign.
       std::int32_t signed_value = static_cast<std::int32_t>(value);
       if (size == 1) signed_value = static_cast<std::int32_t>(value ^ 0x80u) - 0x80;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::maestro {
 namespace {
 
@@ -91,15 +93,11 @@ std::uint8_t crc7(std::span<const std::uint8_t> bytes) noexcept {
   return static_cast<std::uint8_t>(crc & 0x7F);
 }
 
-std::uint16_t decode_position_reply(std::span<const std::uint8_t, 2> reply) noexcept {
-  return static_cast<std::uint16_t>(reply[0] | (reply[1] << 8));
-}
+std::uint16_t decode_position_reply(std::span<const std::uint8_t, 2> reply) noexcept { return get_u16_le(reply.data()); }
 
 bool decode_moving_state_reply(std::span<const std::uint8_t, 1> reply) noexcept { return reply[0] != 0; }
 
-std::uint16_t decode_errors_reply(std::span<const std::uint8_t, 2> reply) noexcept {
-  return static_cast<std::uint16_t>(reply[0] | (reply[1] << 8));
-}
+std::uint16_t decode_errors_reply(std::span<const std::uint8_t, 2> reply) noexcept { return get_u16_le(reply.data()); }
 
 std::string describe_errors(std::uint16_t errors) {
   static constexpr const char* kNames[] = {"serial signal error",  "serial overrun error", "serial RX buffer full",

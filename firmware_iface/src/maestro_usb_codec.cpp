@@ -2,16 +2,13 @@
 
 #include <algorithm>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/maestro_codec.hpp"
 
 namespace avar::firmware_iface::maestro_usb {
 namespace {
 
 constexpr bool is_micro(int channel_count) { return channel_count == 6; }
-
-std::uint16_t u16_at(std::span<const std::uint8_t> bytes, std::size_t at) {
-  return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
-}
 
 std::size_t records_offset(int channel_count) { return is_micro(channel_count) ? kMicroVariablesSize : 0; }
 
@@ -62,12 +59,9 @@ SetupPacket get_positions(int channel_count) noexcept {
 }
 
 void encode_servo_status(std::span<std::uint8_t> out, const ServoStatus& status) noexcept {
-  out[0] = static_cast<std::uint8_t>(status.position & 0xFF);
-  out[1] = static_cast<std::uint8_t>(status.position >> 8);
-  out[2] = static_cast<std::uint8_t>(status.target & 0xFF);
-  out[3] = static_cast<std::uint8_t>(status.target >> 8);
-  out[4] = static_cast<std::uint8_t>(status.speed & 0xFF);
-  out[5] = static_cast<std::uint8_t>(status.speed >> 8);
+  put_u16_le(&out[0], status.position);
+  put_u16_le(&out[2], status.target);
+  put_u16_le(&out[4], status.speed);
   out[6] = status.acceleration;
 }
 
@@ -75,16 +69,16 @@ bool decode_servo_status(std::span<const std::uint8_t> reply, int channel_count,
   if (channel < 0) return false;
   const std::size_t at = records_offset(channel_count) + static_cast<std::size_t>(channel) * kServoRecordSize;
   if (reply.size() < at + kServoRecordSize) return false;
-  out->position = u16_at(reply, at);
-  out->target = u16_at(reply, at + 2);
-  out->speed = u16_at(reply, at + 4);
+  out->position = get_u16_le(&reply[at]);
+  out->target = get_u16_le(&reply[at + 2]);
+  out->speed = get_u16_le(&reply[at + 4]);
   out->acceleration = reply[at + 6];
   return true;
 }
 
 bool decode_errors(std::span<const std::uint8_t> reply, std::uint16_t* errors) noexcept {
   if (reply.size() < kMiniVariablesSize) return false;
-  *errors = u16_at(reply, kErrorsOffset);
+  *errors = get_u16_le(&reply[kErrorsOffset]);
   return true;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::mit {
 namespace {
 
@@ -60,23 +62,22 @@ MitCommandBits quantise_command(const MitCommand& c, const MitRanges& r) noexcep
 
 std::array<std::uint8_t, 8> pack_command(const MitCommandBits& b) noexcept {
   const unsigned v = b.v & 0xFFFu, kp = b.kp & 0xFFFu, kd = b.kd & 0xFFFu, t = b.t & 0xFFFu;
-  return {static_cast<std::uint8_t>(b.p >> 8),
-          static_cast<std::uint8_t>(b.p & 0xFF),
-          static_cast<std::uint8_t>(v >> 4),
-          static_cast<std::uint8_t>(((v & 0xF) << 4) | (kp >> 8)),
-          static_cast<std::uint8_t>(kp & 0xFF),
-          static_cast<std::uint8_t>(kd >> 4),
-          static_cast<std::uint8_t>(((kd & 0xF) << 4) | (t >> 8)),
-          static_cast<std::uint8_t>(t & 0xFF)};
+  std::array<std::uint8_t, 8> d{};
+  put_u16_be(&d[0], b.p);
+  // Then three pairs of 12-bit fields, each pair in three bytes, most significant first.
+  put_be(&d[2], v << 12 | kp, 3);
+  put_be(&d[5], kd << 12 | t, 3);
+  return d;
 }
 
 MitCommandBits unpack_command(std::span<const std::uint8_t, 8> d) noexcept {
   MitCommandBits b;
-  b.p = static_cast<std::uint16_t>((d[0] << 8) | d[1]);
-  b.v = static_cast<std::uint16_t>((d[2] << 4) | (d[3] >> 4));
-  b.kp = static_cast<std::uint16_t>(((d[3] & 0xF) << 8) | d[4]);
-  b.kd = static_cast<std::uint16_t>((d[5] << 4) | (d[6] >> 4));
-  b.t = static_cast<std::uint16_t>(((d[6] & 0xF) << 8) | d[7]);
+  b.p = get_u16_be(&d[0]);
+  const std::uint32_t v_kp = get_be(&d[2], 3), kd_t = get_be(&d[5], 3);
+  b.v = static_cast<std::uint16_t>(v_kp >> 12);
+  b.kp = static_cast<std::uint16_t>(v_kp & 0xFFF);
+  b.kd = static_cast<std::uint16_t>(kd_t >> 12);
+  b.t = static_cast<std::uint16_t>(kd_t & 0xFFF);
   return b;
 }
 
@@ -116,20 +117,19 @@ std::array<std::uint8_t, 6> pack_reply(std::uint8_t id, double position, double 
   const unsigned p = float_to_uint(position, r.p_min, r.p_max, kPositionBits);
   const unsigned v = float_to_uint(velocity, r.v_min, r.v_max, kVelocityBits);
   const unsigned t = float_to_uint(torque, r.t_min, r.t_max, kTorqueBits);
-  return {id,
-          static_cast<std::uint8_t>(p >> 8),
-          static_cast<std::uint8_t>(p & 0xFF),
-          static_cast<std::uint8_t>(v >> 4),
-          static_cast<std::uint8_t>(((v & 0xF) << 4) | (t >> 8)),
-          static_cast<std::uint8_t>(t & 0xFF)};
+  std::array<std::uint8_t, 6> d{id};
+  put_u16_be(&d[1], static_cast<std::uint16_t>(p));
+  put_be(&d[3], (v & 0xFFFu) << 12 | (t & 0xFFFu), 3);  // two 12-bit fields in three bytes
+  return d;
 }
 
 bool unpack_reply(std::span<const std::uint8_t> d, MitReplyBits* out) noexcept {
   if (d.size() < 6) return false;
   out->id = d[0];
-  out->p = static_cast<std::uint16_t>((d[1] << 8) | d[2]);
-  out->v = static_cast<std::uint16_t>((d[3] << 4) | (d[4] >> 4));
-  out->t = static_cast<std::uint16_t>(((d[4] & 0xF) << 8) | d[5]);
+  out->p = get_u16_be(&d[1]);
+  const std::uint32_t v_t = get_be(&d[3], 3);
+  out->v = static_cast<std::uint16_t>(v_t >> 12);
+  out->t = static_cast<std::uint16_t>(v_t & 0xFFF);
   return true;
 }
 

@@ -1,32 +1,15 @@
 #include "avar/firmware_iface/odrive_can_codec.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 
 namespace avar::firmware_iface::odrive {
 namespace {
-
-void put_u32(std::uint8_t* p, std::uint32_t v) noexcept {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-void put_f32(std::uint8_t* p, float v) noexcept { put_u32(p, std::bit_cast<std::uint32_t>(v)); }
-void put_i16(std::uint8_t* p, std::int16_t v) noexcept {
-  const auto u = static_cast<std::uint16_t>(v);
-  p[0] = static_cast<std::uint8_t>(u & 0xFF);
-  p[1] = static_cast<std::uint8_t>(u >> 8);
-}
-
-std::uint32_t get_u32(const std::uint8_t* p) noexcept {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 | static_cast<std::uint32_t>(p[2]) << 16 |
-         static_cast<std::uint32_t>(p[3]) << 24;
-}
-float get_f32(const std::uint8_t* p) noexcept { return std::bit_cast<float>(get_u32(p)); }
-std::int16_t get_i16(const std::uint8_t* p) noexcept { return static_cast<std::int16_t>(p[0] | p[1] << 8); }
 
 /// round(value / 0.001), saturated to i16; non-finite values are 0.
 std::int16_t milli_i16(double value) noexcept {
@@ -43,8 +26,8 @@ CanFrame data(std::uint8_t node, Command command, std::uint8_t dlc) noexcept {
 
 CanFrame two_f32(std::uint8_t node, Command command, float a, float b) noexcept {
   CanFrame f = data(node, command, 8);
-  put_f32(&f.data[0], a);
-  put_f32(&f.data[4], b);
+  put_f32_le(&f.data[0], a);
+  put_f32_le(&f.data[4], b);
   return f;
 }
 
@@ -99,22 +82,22 @@ CanFrame encode_clear_errors(std::uint8_t node) noexcept { return data(node, kCl
 
 CanFrame encode_set_axis_state(std::uint8_t node, AxisState state) noexcept {
   CanFrame f = data(node, kSetAxisRequestedState, 4);
-  put_u32(&f.data[0], static_cast<std::uint32_t>(state));
+  put_u32_le(&f.data[0], static_cast<std::uint32_t>(state));
   return f;
 }
 
 CanFrame encode_set_controller_modes(std::uint8_t node, ControlMode control, InputMode input) noexcept {
   CanFrame f = data(node, kSetControllerModes, 8);
-  put_u32(&f.data[0], static_cast<std::uint32_t>(control));
-  put_u32(&f.data[4], static_cast<std::uint32_t>(input));
+  put_u32_le(&f.data[0], static_cast<std::uint32_t>(control));
+  put_u32_le(&f.data[4], static_cast<std::uint32_t>(input));
   return f;
 }
 
 CanFrame encode_set_input_pos(std::uint8_t node, float position, double vel_ff, double torque_ff) noexcept {
   CanFrame f = data(node, kSetInputPos, 8);
-  put_f32(&f.data[0], position);
-  put_i16(&f.data[4], milli_i16(vel_ff));
-  put_i16(&f.data[6], milli_i16(torque_ff));
+  put_f32_le(&f.data[0], position);
+  put_i16_le(&f.data[4], milli_i16(vel_ff));
+  put_i16_le(&f.data[6], milli_i16(torque_ff));
   return f;
 }
 
@@ -124,7 +107,7 @@ CanFrame encode_set_input_vel(std::uint8_t node, float velocity, float torque_ff
 
 CanFrame encode_set_input_torque(std::uint8_t node, float torque) noexcept {
   CanFrame f = data(node, kSetInputTorque, 4);
-  put_f32(&f.data[0], torque);
+  put_f32_le(&f.data[0], torque);
   return f;
 }
 
@@ -139,7 +122,7 @@ CanFrame encode_get_motor_error(std::uint8_t node) noexcept { return can_remote_
 
 CanFrame encode_heartbeat(std::uint8_t node, const Heartbeat& h, HeartbeatLayout layout) noexcept {
   CanFrame f = data(node, kHeartbeat, 8);
-  put_u32(&f.data[0], h.axis_error);
+  put_u32_le(&f.data[0], h.axis_error);
   f.data[4] = h.state;
   if (layout == HeartbeatLayout::v0_5) {
     f.data[5] = h.motor_error ? 1 : 0;
@@ -158,15 +141,15 @@ CanFrame encode_encoder_estimates(std::uint8_t node, float position, float veloc
 
 CanFrame encode_motor_error(std::uint8_t node, std::uint64_t motor_error) noexcept {
   CanFrame f = data(node, kGetMotorError, 8);
-  put_u32(&f.data[0], static_cast<std::uint32_t>(motor_error));
-  put_u32(&f.data[4], static_cast<std::uint32_t>(motor_error >> 32));
+  put_u32_le(&f.data[0], static_cast<std::uint32_t>(motor_error));
+  put_u32_le(&f.data[4], static_cast<std::uint32_t>(motor_error >> 32));
   return f;
 }
 
 bool decode_heartbeat(const CanFrame& f, HeartbeatLayout layout, Heartbeat* out) noexcept {
   if (!is_data(f, kHeartbeat, 8)) return false;
   Heartbeat h;
-  h.axis_error = get_u32(&f.data[0]);
+  h.axis_error = get_u32_le(&f.data[0]);
   h.state = f.data[4];
   if (layout == HeartbeatLayout::v0_5) {
     h.motor_error = f.data[5] & 0x01;
@@ -183,55 +166,55 @@ bool decode_heartbeat(const CanFrame& f, HeartbeatLayout layout, Heartbeat* out)
 
 bool decode_encoder_estimates(const CanFrame& f, EncoderEstimates* out) noexcept {
   if (!is_data(f, kGetEncoderEstimates, 8)) return false;
-  out->position = get_f32(&f.data[0]);
-  out->velocity = get_f32(&f.data[4]);
+  out->position = get_f32_le(&f.data[0]);
+  out->velocity = get_f32_le(&f.data[4]);
   return true;
 }
 
 bool decode_motor_error(const CanFrame& f, std::uint64_t* out) noexcept {
   if (!is_data(f, kGetMotorError, 8)) return false;
-  *out = static_cast<std::uint64_t>(get_u32(&f.data[0])) | static_cast<std::uint64_t>(get_u32(&f.data[4])) << 32;
+  *out = static_cast<std::uint64_t>(get_u32_le(&f.data[0])) | static_cast<std::uint64_t>(get_u32_le(&f.data[4])) << 32;
   return true;
 }
 
 bool decode_set_axis_state(const CanFrame& f, std::uint32_t* state) noexcept {
   if (!is_data(f, kSetAxisRequestedState, 4)) return false;
-  *state = get_u32(&f.data[0]);
+  *state = get_u32_le(&f.data[0]);
   return true;
 }
 
 bool decode_set_controller_modes(const CanFrame& f, ControllerModes* out) noexcept {
   if (!is_data(f, kSetControllerModes, 8)) return false;
-  out->control_mode = static_cast<std::int32_t>(get_u32(&f.data[0]));
-  out->input_mode = static_cast<std::int32_t>(get_u32(&f.data[4]));
+  out->control_mode = static_cast<std::int32_t>(get_u32_le(&f.data[0]));
+  out->input_mode = static_cast<std::int32_t>(get_u32_le(&f.data[4]));
   return true;
 }
 
 bool decode_set_input_pos(const CanFrame& f, InputPos* out) noexcept {
   if (!is_data(f, kSetInputPos, 8)) return false;
-  out->position = get_f32(&f.data[0]);
-  out->vel_ff = get_i16(&f.data[4]) * 0.001;
-  out->torque_ff = get_i16(&f.data[6]) * 0.001;
+  out->position = get_f32_le(&f.data[0]);
+  out->vel_ff = get_i16_le(&f.data[4]) * 0.001;
+  out->torque_ff = get_i16_le(&f.data[6]) * 0.001;
   return true;
 }
 
 bool decode_set_input_vel(const CanFrame& f, float* velocity, float* torque_ff) noexcept {
   if (!is_data(f, kSetInputVel, 8)) return false;
-  *velocity = get_f32(&f.data[0]);
-  *torque_ff = get_f32(&f.data[4]);
+  *velocity = get_f32_le(&f.data[0]);
+  *torque_ff = get_f32_le(&f.data[4]);
   return true;
 }
 
 bool decode_set_input_torque(const CanFrame& f, float* torque) noexcept {
   if (!is_data(f, kSetInputTorque, 4)) return false;
-  *torque = get_f32(&f.data[0]);
+  *torque = get_f32_le(&f.data[0]);
   return true;
 }
 
 bool decode_set_limits(const CanFrame& f, Limits* out) noexcept {
   if (!is_data(f, kSetLimits, 8)) return false;
-  out->velocity_limit = get_f32(&f.data[0]);
-  out->current_limit = get_f32(&f.data[4]);
+  out->velocity_limit = get_f32_le(&f.data[0]);
+  out->current_limit = get_f32_le(&f.data[4]);
   return true;
 }
 

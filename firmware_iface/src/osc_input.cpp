@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/osc_dispatch.hpp"
 
 namespace avar::firmware_iface {
@@ -14,10 +15,6 @@ namespace {
 constexpr int kMaxBundleDepth = 8;
 constexpr std::size_t kBundleHeaderSize = 16;  // "#bundle\0" and a time tag
 constexpr std::size_t kMaxArguments = 4;       // more is ignored anyway: controls take one
-
-std::uint32_t read_be32(const std::uint8_t* p) noexcept {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
 
 bool is_bundle(std::span<const std::uint8_t> data) noexcept {
   static constexpr char kTag[8] = {'#', 'b', 'u', 'n', 'd', 'l', 'e', '\0'};
@@ -80,7 +77,7 @@ void dispatch_element(std::span<const std::uint8_t> data, ControlSink& sink, std
   std::size_t at = kBundleHeaderSize;
   while (at < data.size()) {
     if (data.size() - at < 4) return ignore_one();
-    const std::uint32_t size = read_be32(&data[at]);
+    const std::uint32_t size = get_u32_be(&data[at]);
     at += 4;
     if (size > data.size() - at) return ignore_one();
     dispatch_element(data.subspan(at, size), sink, arrived_ns, depth + 1, counters);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::sacn {
 namespace {
 
@@ -18,31 +20,13 @@ constexpr std::size_t kFramingAt = 38;
 constexpr std::size_t kDmpAt = 115;
 constexpr std::size_t kDiscoveryLayerAt = 112;
 
-void put16(std::span<std::uint8_t> out, std::size_t at, std::uint16_t v) noexcept {
-  out[at] = static_cast<std::uint8_t>(v >> 8U);
-  out[at + 1] = static_cast<std::uint8_t>(v & 0xFFU);
-}
-
-void put32(std::span<std::uint8_t> out, std::size_t at, std::uint32_t v) noexcept {
-  for (std::size_t i = 0; i < 4; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (8U * (3 - i)));
-}
-
-std::uint16_t get16(std::span<const std::uint8_t> in, std::size_t at) noexcept {
-  return static_cast<std::uint16_t>(in[at] << 8U | in[at + 1]);
-}
-
-std::uint32_t get32(std::span<const std::uint8_t> in, std::size_t at) noexcept {
-  return static_cast<std::uint32_t>(in[at]) << 24U | static_cast<std::uint32_t>(in[at + 1]) << 16U |
-         static_cast<std::uint32_t>(in[at + 2]) << 8U | in[at + 3];
-}
-
 /// A PDU's flags (0x7) and length: from `at` to the end of a packet of `total` bytes.
 void put_flags_length(std::span<std::uint8_t> out, std::size_t at, std::size_t total) noexcept {
-  put16(out, at, static_cast<std::uint16_t>(0x7000U | ((total - at) & 0x0FFFU)));
+  put_u16_be(&out[at], static_cast<std::uint16_t>(0x7000U | ((total - at) & 0x0FFFU)));
 }
 
 bool flags_length_ok(std::span<const std::uint8_t> in, std::size_t at) noexcept {
-  const std::uint16_t v = get16(in, at);
+  const std::uint16_t v = get_u16_be(&in[at]);
   return (v >> 12U) == 0x7 && (v & 0x0FFFU) == in.size() - at;
 }
 
@@ -50,14 +34,14 @@ bool flags_length_ok(std::span<const std::uint8_t> in, std::size_t at) noexcept 
 void put_root_and_source(std::span<std::uint8_t> out, std::size_t total, std::uint32_t root_vector, std::uint32_t framing_vector,
                          const Source& source) noexcept {
   std::fill_n(out.begin(), total, std::uint8_t{0});
-  put16(out, 0, 0x0010);
-  put16(out, 2, 0x0000);
+  put_u16_be(&out[0], 0x0010);
+  put_u16_be(&out[2], 0x0000);
   std::copy(kAcnPacketIdentifier.begin(), kAcnPacketIdentifier.end(), out.begin() + 4);
   put_flags_length(out, 16, total);
-  put32(out, 18, root_vector);
+  put_u32_be(&out[18], root_vector);
   std::copy(source.cid.begin(), source.cid.end(), out.begin() + 22);
   put_flags_length(out, kFramingAt, total);
-  put32(out, 40, framing_vector);
+  put_u32_be(&out[40], framing_vector);
   const std::size_t name = std::min(source.name.size(), kSourceNameSize - 1);
   std::transform(source.name.begin(), source.name.begin() + static_cast<std::ptrdiff_t>(name), out.begin() + 44,
                  [](char c) { return static_cast<std::uint8_t>(c); });
@@ -66,9 +50,9 @@ void put_root_and_source(std::span<std::uint8_t> out, std::size_t total, std::ui
 /// Checks the root layer and framing vector, reads the CID and source name.
 bool read_root_and_source(std::span<const std::uint8_t> in, std::size_t min_size, std::uint32_t root_vector,
                           std::uint32_t framing_vector, Cid& cid, std::string_view& name) noexcept {
-  if (in.size() < min_size || get16(in, 0) != 0x0010 || get16(in, 2) != 0x0000 ||
+  if (in.size() < min_size || get_u16_be(&in[0]) != 0x0010 || get_u16_be(&in[2]) != 0x0000 ||
       !std::equal(kAcnPacketIdentifier.begin(), kAcnPacketIdentifier.end(), in.begin() + 4) || !flags_length_ok(in, 16) ||
-      get32(in, 18) != root_vector || !flags_length_ok(in, kFramingAt) || get32(in, 40) != framing_vector)
+      get_u32_be(&in[18]) != root_vector || !flags_length_ok(in, kFramingAt) || get_u32_be(&in[40]) != framing_vector)
     return false;
   std::copy_n(in.begin() + 22, cid.size(), cid.begin());
   const auto field = in.subspan(44, kSourceNameSize);
@@ -88,16 +72,16 @@ std::size_t encode_data(std::span<std::uint8_t> out, const Source& source, const
     return 0;
   put_root_and_source(out, total, kVectorRootData, kVectorFramingData, source);
   out[108] = header.priority;
-  put16(out, 109, header.sync_address);
+  put_u16_be(&out[109], header.sync_address);
   out[111] = header.sequence;
   out[112] = header.options;
-  put16(out, 113, header.universe);
+  put_u16_be(&out[113], header.universe);
   put_flags_length(out, kDmpAt, total);
   out[117] = kVectorDmpSetProperty;
   out[118] = kDmpAddressDataType;
-  put16(out, 119, 0x0000);
-  put16(out, 121, 0x0001);
-  put16(out, 123, static_cast<std::uint16_t>(1 + slots.size()));
+  put_u16_be(&out[119], 0x0000);
+  put_u16_be(&out[121], 0x0001);
+  put_u16_be(&out[123], static_cast<std::uint16_t>(1 + slots.size()));
   out[kDataHeaderSize] = header.start_code;
   std::copy(slots.begin(), slots.end(), out.begin() + static_cast<std::ptrdiff_t>(kDataHeaderSize + 1));
   return total;
@@ -108,14 +92,15 @@ std::optional<DataPacket> decode_data(std::span<const std::uint8_t> in) noexcept
   if (!read_root_and_source(in, kDataHeaderSize + 1, kVectorRootData, kVectorFramingData, p.cid, p.source_name))
     return std::nullopt;
   p.header.priority = in[108];
-  p.header.sync_address = get16(in, 109);
+  p.header.sync_address = get_u16_be(&in[109]);
   p.header.sequence = in[111];
   p.header.options = in[112];
-  p.header.universe = get16(in, 113);
-  const std::uint16_t count = get16(in, 123);
+  p.header.universe = get_u16_be(&in[113]);
+  const std::uint16_t count = get_u16_be(&in[123]);
   if (p.header.priority > kMaxPriority || p.header.universe < kMinUniverse || p.header.universe > kMaxUniverse ||
-      !flags_length_ok(in, kDmpAt) || in[117] != kVectorDmpSetProperty || in[118] != kDmpAddressDataType || get16(in, 119) != 0 ||
-      get16(in, 121) != 1 || count < 1 || count > 1 + kMaxSlots || in.size() != kDataHeaderSize + count)
+      !flags_length_ok(in, kDmpAt) || in[117] != kVectorDmpSetProperty || in[118] != kDmpAddressDataType ||
+      get_u16_be(&in[119]) != 0 || get_u16_be(&in[121]) != 1 || count < 1 || count > 1 + kMaxSlots ||
+      in.size() != kDataHeaderSize + count)
     return std::nullopt;
   p.header.start_code = in[kDataHeaderSize];
   p.slots = in.subspan(kDataHeaderSize + 1);
@@ -132,24 +117,24 @@ std::size_t encode_discovery(std::span<std::uint8_t> out, const Source& source, 
   put_root_and_source(out, total, kVectorRootExtended, kVectorFramingDiscovery, source);
   // 108..111 reserved, zero.
   put_flags_length(out, kDiscoveryLayerAt, total);
-  put32(out, 114, kVectorDiscoveryList);
+  put_u32_be(&out[114], kVectorDiscoveryList);
   out[118] = page;
   out[119] = last_page;
-  for (std::size_t i = 0; i < universes.size(); ++i) put16(out, kDiscoveryHeaderSize + 2 * i, universes[i]);
+  for (std::size_t i = 0; i < universes.size(); ++i) put_u16_be(&out[kDiscoveryHeaderSize + 2 * i], universes[i]);
   return total;
 }
 
 std::optional<DiscoveryPacket> decode_discovery(std::span<const std::uint8_t> in, std::span<std::uint16_t> universes) noexcept {
   DiscoveryPacket p;
   if (!read_root_and_source(in, kDiscoveryHeaderSize, kVectorRootExtended, kVectorFramingDiscovery, p.cid, p.source_name) ||
-      !flags_length_ok(in, kDiscoveryLayerAt) || get32(in, 114) != kVectorDiscoveryList)
+      !flags_length_ok(in, kDiscoveryLayerAt) || get_u32_be(&in[114]) != kVectorDiscoveryList)
     return std::nullopt;
   const std::size_t list = in.size() - kDiscoveryHeaderSize;
   p.page = in[118];
   p.last_page = in[119];
   if ((list & 1U) != 0 || list / 2 > kMaxDiscoveryUniverses || p.page > p.last_page) return std::nullopt;
   p.universe_count = std::min(list / 2, universes.size());
-  for (std::size_t i = 0; i < p.universe_count; ++i) universes[i] = get16(in, kDiscoveryHeaderSize + 2 * i);
+  for (std::size_t i = 0; i < p.universe_count; ++i) universes[i] = get_u16_be(&in[kDiscoveryHeaderSize + 2 * i]);
   return p;
 }
 

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::sim {
 namespace canopen = firmware_iface::canopen;
 namespace cia402 = firmware_iface::cia402;
@@ -411,7 +413,7 @@ void SimCia402Drive::apply_rpdo(int k) {
     const std::size_t bytes = m.bits / 8u;
     ObjectEntry* e = od_.find(m.index, m.sub);
     if (e) {
-      std::uint32_t raw = canopen::get_le(&pdo.pending[at], bytes);
+      std::uint32_t raw = get_le(&pdo.pending[at], bytes);
       if (m.index == cia402::kTargetPosition) {
         // Software position limits clamp a PDO target (an SDO write beyond them is refused).
         const std::int64_t t =
@@ -434,7 +436,7 @@ CanFrame SimCia402Drive::tpdo_frame(int k) const {
   for (std::uint8_t s = 1; s <= count; ++s) {
     const canopen::PdoMapping m = canopen::decode_pdo_mapping(od_.get(map, s));
     const std::size_t bytes = m.bits / 8u;
-    canopen::put_le(&f.data[at], od_.get(m.index, m.sub), bytes);
+    put_le(&f.data[at], od_.get(m.index, m.sub), bytes);
     at += bytes;
   }
   f.dlc = static_cast<std::uint8_t>(at);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/wire_time.hpp"
 #include "avar/sim/reply_queue.hpp"
 
@@ -70,7 +71,7 @@ void SimDmx::handle(std::uint8_t label, std::span<const std::uint8_t> data) {
     }
     case dmx::kGetWidgetParameters: {
       if (data.size() != 2) return;
-      const std::size_t user = data[0] | static_cast<std::size_t>(data[1]) << 8;
+      const std::size_t user = get_u16_le(&data[0]);
       if (user > 508) return;
       std::array<std::uint8_t, 508> config_bytes{};  // no user configuration stored: zeros
       std::array<std::uint8_t, dmx::kMaxMessageSize> out{};
@@ -88,7 +89,7 @@ void SimDmx::handle(std::uint8_t label, std::span<const std::uint8_t> data) {
     case dmx::kGetSerialNumber: {
       if (!data.empty()) return;
       std::array<std::uint8_t, 4> serial{};
-      for (int i = 0; i < 4; ++i) serial[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(config_.serial_number >> (8 * i));
+      put_u32_le(serial.data(), config_.serial_number);
       std::array<std::uint8_t, 16> out{};
       const std::size_t n = dmx::encode_message(out, dmx::kGetSerialNumber, serial);
       replies_.insert(replies_.end(), out.begin(), out.begin() + static_cast<long>(n));

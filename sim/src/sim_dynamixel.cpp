@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
 
 namespace avar::sim {
@@ -64,15 +65,9 @@ std::int32_t SimDynamixel::read_i32(std::size_t servo, std::uint16_t address) co
   return dxl::read_i32(std::span(servos_[servo].table).subspan(address, 4));
 }
 
-void SimDynamixel::write_i32(Servo& s, std::uint16_t address, std::int32_t v) {
-  const auto u = static_cast<std::uint32_t>(v);
-  for (int b = 0; b < 4; ++b) s.table[address + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(u >> (8 * b));
-}
+void SimDynamixel::write_i32(Servo& s, std::uint16_t address, std::int32_t v) { put_i32_le(&s.table[address], v); }
 
-void SimDynamixel::write_u16(Servo& s, std::uint16_t address, std::uint16_t v) {
-  s.table[address] = static_cast<std::uint8_t>(v & 0xFF);
-  s.table[address + 1] = static_cast<std::uint8_t>(v >> 8);
-}
+void SimDynamixel::write_u16(Servo& s, std::uint16_t address, std::uint16_t v) { put_u16_le(&s.table[address], v); }
 
 SimDynamixel::Servo* SimDynamixel::find(std::uint8_t id) {
   for (Servo& s : servos_)

@@ -205,8 +205,7 @@ void SimMaestro::execute() {
     case maestro::kGetPosition: {
       record({command_, payload_[0], {}, form_});
       const auto q = channel_ok ? static_cast<std::uint16_t>(std::lround(servos_.output_pulse(channel))) : std::uint16_t{0};
-      reply(static_cast<std::uint8_t>(q & 0xFF));
-      reply(static_cast<std::uint8_t>(q >> 8));
+      reply_u16(q);
       break;
     }
     case maestro::kGetMovingState:
@@ -215,8 +214,7 @@ void SimMaestro::execute() {
       break;
     case maestro::kGetErrors:
       record({command_, 0, {}, form_});
-      reply(static_cast<std::uint8_t>(servos_.errors() & 0xFF));
-      reply(static_cast<std::uint8_t>(servos_.errors() >> 8));
+      reply_u16(servos_.errors());
       servos_.clear_errors();
       break;
     case maestro::kGoHome:

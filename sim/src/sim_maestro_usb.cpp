@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/firmware_iface/maestro_usb_codec.hpp"
 
 namespace avar::sim {
@@ -70,8 +71,7 @@ Status SimMaestroUsb::in_request(const firmware_iface::UsbSetup& setup, std::spa
     case usb::kGetVariables:
       // Stack and call stack are empty, the program counter 0: no script runs.
       size = micro ? usb::kMicroVariablesSize + 6 * usb::kServoRecordSize : usb::kMiniVariablesSize;
-      reply[usb::kErrorsOffset] = static_cast<std::uint8_t>(servos_.errors() & 0xFF);
-      reply[usb::kErrorsOffset + 1] = static_cast<std::uint8_t>(servos_.errors() >> 8);
+      put_u16_le(&reply[usb::kErrorsOffset], servos_.errors());
       reply[micro ? kMicroScriptDoneOffset : kMiniScriptDoneOffset] = kScriptDone;
       if (micro) write_records(reply, usb::kMicroVariablesSize);
       break;

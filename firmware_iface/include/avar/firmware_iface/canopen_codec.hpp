@@ -226,16 +226,4 @@ constexpr PdoMapping decode_pdo_mapping(std::uint32_t entry) noexcept {
   return {static_cast<std::uint16_t>(entry >> 16), static_cast<std::uint8_t>(entry >> 8), static_cast<std::uint8_t>(entry)};
 }
 
-// ---- little-endian helpers -------------------------------------------------------------------
-
-/// Writes the low `size` bytes of `value` to data[0..size), least significant first.
-constexpr void put_le(std::uint8_t* data, std::uint32_t value, std::size_t size) noexcept {
-  for (std::size_t i = 0; i < size; ++i) data[i] = static_cast<std::uint8_t>(value >> (8 * i));
-}
-constexpr std::uint32_t get_le(const std::uint8_t* data, std::size_t size) noexcept {
-  std::uint32_t v = 0;
-  for (std::size_t i = 0; i < size; ++i) v |= static_cast<std::uint32_t>(data[i]) << (8 * i);
-  return v;
-}
-
 }  // namespace avar::firmware_iface::canopen

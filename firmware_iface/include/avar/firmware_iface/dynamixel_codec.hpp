@@ -10,6 +10,8 @@
 #include <span>
 #include <string>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface::dynamixel {
 
 inline constexpr std::uint8_t kBroadcastId = 0xFE;
@@ -117,13 +119,8 @@ DecodeResult decode_status(std::span<const std::uint8_t> in, std::span<std::uint
 std::string describe_processing_error(std::uint8_t error);
 std::string describe_hardware_error(std::uint8_t bits);
 
-/// Little-endian helpers.
-inline std::int32_t read_i32(std::span<const std::uint8_t> p) noexcept {
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-                                   static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24);
-}
-inline std::uint16_t read_u16(std::span<const std::uint8_t> p) noexcept {
-  return static_cast<std::uint16_t>(p[0] | p[1] << 8);
-}
+/// A control-table value (little-endian, avar/core/byte_order.hpp) at the start of `p`.
+inline std::int32_t read_i32(std::span<const std::uint8_t> p) noexcept { return get_i32_le(p.data()); }
+inline std::uint16_t read_u16(std::span<const std::uint8_t> p) noexcept { return get_u16_le(p.data()); }
 
 }  // namespace avar::firmware_iface::dynamixel

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "avar/core/byte_order.hpp"
+
 namespace avar::firmware_iface {
 
 struct UsbSetup {
@@ -18,14 +20,11 @@ struct UsbSetup {
   bool device_to_host() const noexcept { return (request_type & 0x80) != 0; }
   /// The packet as it goes on the wire (words little-endian).
   std::array<std::uint8_t, 8> bytes() const noexcept {
-    return {request_type,
-            request,
-            static_cast<std::uint8_t>(value & 0xFF),
-            static_cast<std::uint8_t>(value >> 8),
-            static_cast<std::uint8_t>(index & 0xFF),
-            static_cast<std::uint8_t>(index >> 8),
-            static_cast<std::uint8_t>(length & 0xFF),
-            static_cast<std::uint8_t>(length >> 8)};
+    std::array<std::uint8_t, 8> b{request_type, request};
+    put_u16_le(&b[2], value);
+    put_u16_le(&b[4], index);
+    put_u16_le(&b[6], length);
+    return b;
   }
 };
 

@@ -23,6 +23,7 @@
 #include <deque>
 #include <vector>
 
+#include "avar/core/byte_order.hpp"
 #include "avar/sim/byte_device.hpp"
 #include "avar/sim/maestro_servos.hpp"
 
@@ -92,6 +93,12 @@ class SimMaestro final : public ByteDevice {
   void record(MaestroCommand command);
   void raise(std::uint16_t error_bits) { servos_.raise(error_bits); }
   void reply(std::uint8_t byte) { replies_.push_back(byte); }
+  /// A two-byte reply, least significant byte first (positions, the error register).
+  void reply_u16(std::uint16_t v) {
+    std::uint8_t le[2];
+    put_u16_le(le, v);
+    replies_.insert(replies_.end(), le, le + 2);
+  }
   std::uint16_t value14(std::size_t at) const;
 
   SimMaestroConfig config_;
