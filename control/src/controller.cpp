@@ -1,7 +1,5 @@
 #include "avar/control/controller.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -44,12 +42,6 @@ const char* to_string(Stage s) noexcept {
     case Stage::send: return "send";
   }
   return "unknown";
-}
-
-std::int64_t monotonic_ns() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
 }
 
 Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 
 namespace avar::firmware_iface {
@@ -104,7 +105,7 @@ void AlsaLtcSource::capture() noexcept {
         // The period's end arrived as the frames still waiting behind it began to.
         const snd_pcm_sframes_t behind = snd_pcm_avail(h);
         const auto late = behind > 0 ? static_cast<std::int64_t>(static_cast<double>(behind) * ns_per_frame) : 0;
-        feed_->take(static_cast<std::size_t>(got), input_arrival_now_ns() - late);
+        feed_->take(static_cast<std::size_t>(got), monotonic_ns() - late);
         frames_captured_.fetch_add(static_cast<std::uint64_t>(got), std::memory_order_relaxed);
         continue;
       }

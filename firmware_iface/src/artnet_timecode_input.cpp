@@ -12,10 +12,10 @@ void ArtnetTimecodeInput::start() {
     switch (artnet::decode_timecode(datagram, t)) {
       case artnet::TimeCodeVerdict::ok:
         mailbox_.publish(TimecodeFix{t, 0.0, false}, arrived_ns);
-        AtomicTimecodeCounters::bump(counters_.fixes);
+        counters_.add(&TimecodeCounters::fixes);
         return;
-      case artnet::TimeCodeVerdict::other_opcode: AtomicTimecodeCounters::bump(counters_.ignored); return;
-      default: AtomicTimecodeCounters::bump(counters_.bad); return;
+      case artnet::TimeCodeVerdict::other_opcode: counters_.add(&TimecodeCounters::ignored); return;
+      default: counters_.add(&TimecodeCounters::bad); return;
     }
   });
 }

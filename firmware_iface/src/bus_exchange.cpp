@@ -21,7 +21,7 @@ Status BusExchange::begin(bool* reopened) noexcept {
   exchange_bytes_ = 0;
   std::fill_n(answered_.get(), devices_.size(), false);
   if (reconnector_.ask(transport_, reopened) != Status::ok) return Status::io_error;
-  AtomicLinkCounters::add(counters_.exchanges);
+  counters_.add(&LinkCounters::exchanges);
   return Status::ok;
 }
 
@@ -30,7 +30,7 @@ Status BusExchange::write(std::span<const std::uint8_t> bytes) noexcept {
   const Status s = transport_.write(bytes);
   if (s == Status::io_error) reconnector_.lost();
   if (s != Status::ok) return s;
-  AtomicLinkCounters::add(counters_.bytes_sent, bytes.size());
+  counters_.add(&LinkCounters::bytes_sent, bytes.size());
   exchange_bytes_ += bytes.size();
   return Status::ok;
 }
@@ -62,25 +62,25 @@ Status BusExchange::collect(std::span<const std::size_t> slots, std::size_t repl
         failure = s;
       }
       if (s != Status::ok) break;
-      AtomicLinkCounters::add(counters_.bytes_received, want);
+      counters_.add(&LinkCounters::bytes_received, want);
       exchange_bytes_ += want;
       have += want;
       bytes_read += want;
       continue;
     }
     if (f == Framing::bad_checksum) {
-      AtomicLinkCounters::add(counters_.crc_errors);
+      counters_.add(&LinkCounters::crc_errors);
       ++lost;
     } else if (f == Framing::stray) {
-      AtomicLinkCounters::add(counters_.framing_errors, used);
+      counters_.add(&LinkCounters::framing_errors, used);
     } else if (f == Framing::reply) {
       for (std::size_t s : slots) {
         if (!awaited_[s] || devices_[s] != reply.device || !take(s, reply)) continue;
         awaited_[s] = false;
         answered_[s] = true;
         ++taken;
-        AtomicLinkCounters::add(counters_.replies);
-        if (reply.device_error) AtomicLinkCounters::add(counters_.device_errors);
+        counters_.add(&LinkCounters::replies);
+        if (reply.device_error) counters_.add(&LinkCounters::device_errors);
         break;
       }
     }
@@ -91,7 +91,7 @@ Status BusExchange::collect(std::span<const std::size_t> slots, std::size_t repl
   for (std::size_t s : slots) awaited_[s] = false;
   if (failure != Status::ok) return failure;
   if (taken < slots.size()) {
-    AtomicLinkCounters::add(counters_.timeouts, slots.size() - taken);
+    counters_.add(&LinkCounters::timeouts, slots.size() - taken);
     return Status::timeout;
   }
   return Status::ok;
@@ -110,7 +110,7 @@ Status BusExchange::retry(std::span<const std::size_t> asked, std::size_t reply_
     if (left == 0) break;
     if (answered_[slot]) continue;
     --left;
-    AtomicLinkCounters::add(counters_.retries);
+    counters_.add(&LinkCounters::retries);
     const std::size_t len = codec_.encode_retry(devices_[slot], request_);
     if (query(slot, std::span(request_).first(len), reply_size, take) == Status::io_error) return Status::io_error;
   }

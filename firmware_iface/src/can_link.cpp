@@ -60,7 +60,7 @@ bool CanLink::dispatch(const CanFrame& f) noexcept {
   for (auto& d : drives_)
     if (d->take(f)) {
       ++stats_.frames_taken;
-      AtomicLinkCounters::add(counters_.replies);
+      counters_.add(&LinkCounters::replies);
       return true;
     }
   ++stats_.frames_ignored;
@@ -100,7 +100,7 @@ Status CanLink::flush() noexcept {
   const FrameCounters before = transport_->counters();
   const Status s = transport_->send(outbox_.frames());
   const FrameCounters after = transport_->counters();
-  AtomicLinkCounters::add(counters_.bytes_sent, after.bytes_sent - before.bytes_sent);
+  counters_.add(&LinkCounters::bytes_sent, after.bytes_sent - before.bytes_sent);
   if (s == Status::ok) {
     stats_.frames_sent += outbox_.size();
     for (const CanFrame& f : outbox_.frames()) stats_.bits_sent += static_cast<std::uint64_t>(can_frame_bits(f));
@@ -110,7 +110,7 @@ Status CanLink::flush() noexcept {
 }
 
 Status CanLink::send(std::span<const double> frame) noexcept {
-  AtomicLinkCounters::add(counters_.exchanges);
+  counters_.add(&LinkCounters::exchanges);
   bool reopened = false;
   if (reconnector_.ask(*transport_, &reopened) != Status::ok) return Status::io_error;
   const FrameCounters before = transport_->counters();
@@ -122,15 +122,15 @@ Status CanLink::send(std::span<const double> frame) noexcept {
   }
   if (s == Status::ok) s = collect();
   const FrameCounters after = transport_->counters();
-  AtomicLinkCounters::add(counters_.bytes_received, after.bytes_received - before.bytes_received);
-  AtomicLinkCounters::add(counters_.framing_errors, after.malformed - before.malformed);
+  counters_.add(&LinkCounters::bytes_received, after.bytes_received - before.bytes_received);
+  counters_.add(&LinkCounters::framing_errors, after.malformed - before.malformed);
   if (s != Status::ok) {
     if (s == Status::io_error) reconnector_.lost();
     return s;
   }
   bool incomplete = false;
   for (auto& d : drives_) incomplete |= d->settle() != Status::ok;
-  if (incomplete) AtomicLinkCounters::add(counters_.timeouts);
+  if (incomplete) counters_.add(&LinkCounters::timeouts);
   // Silent or faulted drives are channel faults (telemetry), not a failed link.
   return Status::ok;
 }

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 
 namespace avar::firmware_iface {
 namespace {
-
-std::int64_t now_ns() noexcept { return input_arrival_now_ns(); }
 
 /// Where inputs go when the owner gave no sink.
 class NoSink final : public ControlSink {
@@ -74,7 +73,7 @@ void GpioInputs::start() { start(g_no_sink); }
 void GpioInputs::start(ControlSink& sink) {
   if (started_) return;
   sink_ = &sink;
-  const std::int64_t now = now_ns();
+  const std::int64_t now = monotonic_ns();
   for (const auto& in : inputs_) {
     bool v = false;
     if (!read(*in, v))
@@ -154,7 +153,7 @@ void GpioInputs::watch(Watch& w) noexcept {
   GpioEdge edges[32];
   std::int64_t next_recheck = 0;
   while (!stopping_.load(std::memory_order_relaxed)) {
-    std::int64_t now = now_ns();
+    std::int64_t now = monotonic_ns();
     // Windows that are over: the line stayed put, take its value.
     for (Input* in : w.inputs) {
       if (!in->debouncer.due(now)) continue;
@@ -187,7 +186,7 @@ void GpioInputs::watch(Watch& w) noexcept {
       nanosleep(&pause, nullptr);
       continue;
     }
-    now = now_ns();
+    now = monotonic_ns();
     for (std::size_t e = 0; e < n; ++e)
       for (Input* in : w.inputs) {
         if (in->config.request.line != edges[e].line) continue;

@@ -35,14 +35,14 @@ Status GpioLink::read_positions(std::span<double> frame, std::span<bool> known) 
 }
 
 Status GpioLink::send(std::span<const double> frame) noexcept {
-  AtomicLinkCounters::add(counters_.exchanges);
+  counters_.add(&LinkCounters::exchanges);
   const bool all_off = all_released_.load(std::memory_order_relaxed);
   Status status = Status::ok;
   for (std::size_t i = 0; i < config_.outputs.size(); ++i) {
     const bool on = !all_off && !table_.released(i) && table_.to_device(i, frame) >= 0.5;
     if (driven_[i] == (on ? 1 : 0)) continue;
     if (chip_->set(config_.outputs[i].line, on) != Status::ok) {
-      AtomicLinkCounters::add(counters_.device_errors);
+      counters_.add(&LinkCounters::device_errors);
       status = Status::io_error;
       continue;
     }

@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/hid_report_decoder.hpp"
 
 namespace avar::firmware_iface {
@@ -56,12 +57,6 @@ void init_hidapi() {
   static int result = 0;
   std::call_once(once, [] { result = hid_init(); });
   if (result != 0) throw std::runtime_error("hidapi: cannot initialise (hid_init failed): " + narrow(hid_error(nullptr)));
-}
-
-std::int64_t monotonic_ns() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
 }
 
 bool parse_hex_id(std::string_view text, std::uint16_t* id) {

@@ -13,9 +13,9 @@ void LtcFeed::feed(std::span<const float> samples, std::int64_t block_end_ns) no
     // The frame's last sample arrived (block_end - last - 1) samples before the block's end.
     const auto early = static_cast<std::int64_t>(std::llround(static_cast<double>(block_end - (last + 1)) * ns_per_sample));
     mailbox_.publish(fix, block_end_ns - early);
-    AtomicTimecodeCounters::bump(counters_.fixes);
+    counters_.add(&TimecodeCounters::fixes);
   });
-  for (std::uint64_t i = bad_before; i < decoder_.bad_frames(); ++i) AtomicTimecodeCounters::bump(counters_.bad);
+  for (std::uint64_t i = bad_before; i < decoder_.bad_frames(); ++i) counters_.add(&TimecodeCounters::bad);
   fed_ = block_end;
 }
 

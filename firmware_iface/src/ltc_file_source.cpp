@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 
 namespace avar::firmware_iface {
@@ -50,7 +51,7 @@ void LtcFileSource::stop() noexcept {
 }
 
 void LtcFileSource::play() noexcept {
-  const std::int64_t start_ns = input_arrival_now_ns();
+  const std::int64_t start_ns = monotonic_ns();
   for (std::size_t end = kLtcBlockSamples; static_cast<std::size_t>(feed_.fed()) < audio_.samples.size() && !stopping_.load();
        end += kLtcBlockSamples) {
     // The block is there once its last sample has played.

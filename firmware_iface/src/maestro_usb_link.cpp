@@ -28,10 +28,10 @@ LinkCounters MaestroUsbLink::counters() const noexcept {
 
 Status MaestroUsbLink::transfer(const UsbSetup& setup, std::span<std::uint8_t> data, std::size_t* got) noexcept {
   const Status s = transport_->control(setup, data, config_.timeout, got);
-  AtomicLinkCounters::add(counters_.bytes_sent, 8 + (setup.device_to_host() ? 0 : *got));
-  if (setup.device_to_host()) AtomicLinkCounters::add(counters_.bytes_received, *got);
-  if (s == Status::timeout) AtomicLinkCounters::add(counters_.timeouts);
-  if (s == Status::bad_data) AtomicLinkCounters::add(counters_.device_errors);  // a stalled request
+  counters_.add(&LinkCounters::bytes_sent, 8 + (setup.device_to_host() ? 0 : *got));
+  if (setup.device_to_host()) counters_.add(&LinkCounters::bytes_received, *got);
+  if (s == Status::timeout) counters_.add(&LinkCounters::timeouts);
+  if (s == Status::bad_data) counters_.add(&LinkCounters::device_errors);  // a stalled request
   if (s == Status::io_error) reconnector_.lost();
   return s;
 }
@@ -42,7 +42,7 @@ Status MaestroUsbLink::read_errors(std::uint16_t& errors) noexcept {
   std::size_t got = 0;
   if (const Status s = transfer(setup, reply, &got); s != Status::ok) return s;
   if (!maestro_usb::decode_errors(std::span(reply.data(), got), &errors)) return Status::bad_data;
-  AtomicLinkCounters::add(counters_.replies);
+  counters_.add(&LinkCounters::replies);
   return Status::ok;
 }
 
@@ -78,10 +78,10 @@ Status MaestroUsbLink::read_records() noexcept {
   if (s != Status::ok) return s;
   if (got != reply_.size()) {
     // A short reply: counted, as a bus counts a broken packet.
-    AtomicLinkCounters::add(counters_.framing_errors);
+    counters_.add(&LinkCounters::framing_errors);
     return Status::bad_data;
   }
-  AtomicLinkCounters::add(counters_.replies);
+  counters_.add(&LinkCounters::replies);
   return Status::ok;
 }
 
@@ -103,7 +103,7 @@ Status MaestroUsbLink::write_targets() noexcept {
   // A Maestro that was unplugged has forgotten its limits.
   if (reopened)
     if (const Status s = send_limits(); s != Status::ok) return s;
-  AtomicLinkCounters::add(counters_.exchanges);
+  counters_.add(&LinkCounters::exchanges);
   std::size_t got = 0;
   for (std::size_t i = 0; i < targets_.size(); ++i) {
     const auto ch = static_cast<std::uint8_t>(config_.actuators[i].device_channel);
@@ -132,7 +132,7 @@ Status MaestroUsbLink::send(std::span<const double> frame) noexcept {
     }
     if (status.position < kLowestPulseQuarterUs || status.position > kHighestPulseQuarterUs) {
       // No Maestro puts out such a pulse: the status is noise (the reply has no checksum).
-      AtomicLinkCounters::add(counters_.framing_errors);
+      counters_.add(&LinkCounters::framing_errors);
       table_.forget_feedback(i);
       continue;
     }

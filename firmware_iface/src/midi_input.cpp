@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "avar/core/monotonic_clock.hpp"
+
 namespace avar::firmware_iface {
 
 struct MidiInput::Device {
@@ -51,11 +53,11 @@ void record_rtmidi_error(RtMidiError::Type type, const std::string& text, void* 
 }
 
 void on_midi_message(double /*delta_seconds*/, std::vector<unsigned char>* message, void* user) {
-  const std::int64_t arrived = input_arrival_now_ns();
+  const std::int64_t arrived = monotonic_ns();
   auto* device = static_cast<MidiInput::Device*>(user);
   MidiControl control;
   const bool moved = device->decoder.decode(*message, &control);
-  device->counters->count(!moved);
+  device->counters->add(InputCounters{1, moved ? 0u : 1u});
   if (moved) device->sink->post(control.name(), control.value, control.bipolar, arrived);
 }
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 #include "avar/firmware_iface/midi_input.hpp"
 #include "avar/firmware_iface/mtc_decoder.hpp"
@@ -36,17 +37,17 @@ void mtc_throw_if_failed(MtcInput::Device& device, const std::string& what) {
 }
 
 void on_mtc_message(double /*delta_seconds*/, std::vector<unsigned char>* message, void* user) {
-  const std::int64_t arrived = input_arrival_now_ns();
+  const std::int64_t arrived = monotonic_ns();
   auto* device = static_cast<MtcInput::Device*>(user);
   TimecodeFix fix;
   switch (device->decoder.decode(*message, fix)) {
     case MtcVerdict::fix:
       device->mailbox->publish(fix, arrived);
-      AtomicTimecodeCounters::bump(device->counters->fixes);
+      device->counters->add(&TimecodeCounters::fixes);
       return;
-    case MtcVerdict::partial: AtomicTimecodeCounters::bump(device->counters->partial); return;
-    case MtcVerdict::not_timecode: AtomicTimecodeCounters::bump(device->counters->ignored); return;
-    case MtcVerdict::malformed: AtomicTimecodeCounters::bump(device->counters->bad); return;
+    case MtcVerdict::partial: device->counters->add(&TimecodeCounters::partial); return;
+    case MtcVerdict::not_timecode: device->counters->add(&TimecodeCounters::ignored); return;
+    case MtcVerdict::malformed: device->counters->add(&TimecodeCounters::bad); return;
   }
 }
 

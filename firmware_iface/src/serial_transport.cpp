@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "avar/core/input_error.hpp"
+#include "avar/core/monotonic_clock.hpp"
 
 namespace avar::firmware_iface {
 namespace {
@@ -190,7 +191,7 @@ Status SerialTransport::read_some(std::span<std::uint8_t> out, std::chrono::mill
   }
 }
 
-std::chrono::nanoseconds SerialTransport::now() const noexcept { return std::chrono::steady_clock::now().time_since_epoch(); }
+std::chrono::nanoseconds SerialTransport::now() const noexcept { return std::chrono::nanoseconds(monotonic_ns()); }
 
 void SerialTransport::discard_input() noexcept {
   try {

@@ -92,7 +92,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
   std::memcpy(tx_.data(), text.data(), text.size());
   tx_[text.size()] = slcan::kCr;
   if (const Status s = port_->write(std::span(tx_.data(), text.size() + 1)); s != Status::ok) return s;
-  AtomicFrameCounters::add(counters_.bytes_sent, text.size() + 1);
+  counters_.add(&FrameCounters::bytes_sent, text.size() + 1);
 
   const std::chrono::nanoseconds deadline = port_->now() + config_.reply_timeout;
   RawLine raw;
@@ -121,7 +121,7 @@ Status SlcanTransport::command(std::string_view text, LineKind expect, bool keep
         hold(f);
       }
     } else if (line.kind == LineKind::malformed) {
-      AtomicFrameCounters::add(counters_.malformed);
+      counters_.add(&FrameCounters::malformed);
     }
   }
 }
@@ -134,7 +134,7 @@ Status SlcanTransport::next_line(std::chrono::nanoseconds deadline, RawLine* lin
       case Take::line: break;
     }
     if (!line->noise) return Status::ok;
-    AtomicFrameCounters::add(counters_.malformed);
+    counters_.add(&FrameCounters::malformed);
   }
 }
 
@@ -188,13 +188,13 @@ SlcanTransport::Take SlcanTransport::take_line(std::chrono::nanoseconds deadline
     if (s == Status::timeout) return Take::none;
     if (s != Status::ok) return Take::io_error;
     rx_end_ += got;
-    AtomicFrameCounters::add(counters_.bytes_received, got);
+    counters_.add(&FrameCounters::bytes_received, got);
   }
 }
 
 void SlcanTransport::accept(CanFrame* frame) noexcept {
   frame->timestamp = port_->now();
-  counters_.count_received(*frame);
+  count_received(counters_, *frame);
   if (frame->error && (frame->id & kCanErrorBusOff)) bus_off_ = true;
 }
 
@@ -215,7 +215,7 @@ Status SlcanTransport::send(std::span<const CanFrame> frames) noexcept {
   const auto flush = [&]() noexcept {
     if (used == 0) return Status::ok;
     const Status s = port_->write(std::span(tx_.data(), used));
-    if (s == Status::ok) AtomicFrameCounters::add(counters_.bytes_sent, used);
+    if (s == Status::ok) counters_.add(&FrameCounters::bytes_sent, used);
     used = 0;
     return s;
   };
@@ -223,7 +223,7 @@ Status SlcanTransport::send(std::span<const CanFrame> frames) noexcept {
     if (tx_.size() - used < slcan::kMaxLineLength)
       if (const Status s = flush(); s != Status::ok) return s;
     used += slcan::encode_frame(std::span(tx_).subspan(used), f);
-    AtomicFrameCounters::add(counters_.frames_sent);
+    counters_.add(&FrameCounters::frames_sent);
   }
   return flush();
 }
@@ -250,7 +250,7 @@ Status SlcanTransport::receive(CanFrame* frame, std::chrono::nanoseconds deadlin
         *frame = line.frame;
         accept(frame);
         return Status::ok;
-      case LineKind::malformed: AtomicFrameCounters::add(counters_.malformed); break;
+      case LineKind::malformed: counters_.add(&FrameCounters::malformed); break;
       default: break;  // acks, bare CRs, stray replies
     }
   }

@@ -15,6 +15,7 @@
 #include <cstring>
 
 #include "avar/core/input_error.hpp"
+#include "avar/core/monotonic_clock.hpp"
 
 namespace avar::firmware_iface {
 namespace socketcan {
@@ -70,7 +71,7 @@ std::string how_to_check(const std::string& interface) {
          interface + "`";
 }
 
-std::chrono::nanoseconds steady_now() noexcept { return std::chrono::steady_clock::now().time_since_epoch(); }
+std::chrono::nanoseconds steady_now() noexcept { return std::chrono::nanoseconds(monotonic_ns()); }
 
 }  // namespace
 
@@ -149,8 +150,8 @@ Status SocketCanTransport::send(std::span<const CanFrame> frames) noexcept {
       }
       return Status::io_error;  // ENETDOWN (interface down, bus-off) and the like
     }
-    AtomicFrameCounters::add(counters_.frames_sent);
-    AtomicFrameCounters::add(counters_.bytes_sent, sizeof(k));
+    counters_.add(&FrameCounters::frames_sent);
+    counters_.add(&FrameCounters::bytes_sent, sizeof(k));
   }
   return Status::ok;
 }
@@ -181,12 +182,12 @@ Status SocketCanTransport::receive(CanFrame* frame, std::chrono::nanoseconds dea
             std::chrono::seconds(real.tv_sec - kernel.tv_sec) + std::chrono::microseconds(real.tv_usec - kernel.tv_usec);
         if (ago.count() > 0) frame->timestamp = read_at - std::chrono::duration_cast<std::chrono::nanoseconds>(ago);
       }
-      counters_.count_received(*frame);
-      AtomicFrameCounters::add(counters_.bytes_received, sizeof(k));
+      count_received(counters_, *frame);
+      counters_.add(&FrameCounters::bytes_received, sizeof(k));
       return Status::ok;
     }
     if (n >= 0) {  // a short frame: not a classic CAN frame
-      AtomicFrameCounters::add(counters_.malformed);
+      counters_.add(&FrameCounters::malformed);
       continue;
     }
     if (errno == EINTR) continue;

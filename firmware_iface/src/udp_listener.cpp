@@ -12,6 +12,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 
 namespace avar::firmware_iface {
@@ -115,7 +116,7 @@ void UdpListener::receive_loop() noexcept {
     const ssize_t n = ::recvfrom(socket_fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT,
                                  reinterpret_cast<sockaddr*>(sender_.data()), &length);
     if (n < 0) continue;  // EAGAIN, or an ICMP error queued on the socket: nothing to read
-    const std::int64_t arrived = input_arrival_now_ns();
+    const std::int64_t arrived = monotonic_ns();
     handler_(std::span(buffer_.data(), static_cast<std::size_t>(n)), arrived);
   }
 }

@@ -25,8 +25,8 @@ Status SimCanTransport::send(std::span<const CanFrame> frames) noexcept {
         s = bus_.host_send(f);
       }
       if (s != Status::ok) return s;
-      firmware_iface::AtomicFrameCounters::add(counters_.frames_sent);
-      firmware_iface::AtomicFrameCounters::add(counters_.bytes_sent, kBytesPerFrame);
+      counters_.add(&firmware_iface::FrameCounters::frames_sent);
+      counters_.add(&firmware_iface::FrameCounters::bytes_sent, kBytesPerFrame);
     }
     if (!bus_.run_until(give_up_s, SimCanBus::Until::host_sent)) return bus_.host_bus_off() ? Status::io_error : Status::timeout;
     return bus_.host_bus_off() ? Status::io_error : Status::ok;
@@ -45,8 +45,8 @@ Status SimCanTransport::receive(CanFrame* frame, std::chrono::nanoseconds deadli
   } catch (...) {
     return Status::io_error;
   }
-  counters_.count_received(*frame);
-  if (!frame->error) firmware_iface::AtomicFrameCounters::add(counters_.bytes_received, kBytesPerFrame);
+  count_received(counters_, *frame);
+  if (!frame->error) counters_.add(&firmware_iface::FrameCounters::bytes_received, kBytesPerFrame);
   return Status::ok;
 }
 

@@ -2,16 +2,9 @@
 
 #include <stdexcept>
 
-#include "avar/firmware_iface/atomic_input_counters.hpp"
+#include "avar/core/monotonic_clock.hpp"
 
 namespace avar::sim {
-namespace {
-
-/// Edge times on the clock input devices stamp with (CLOCK_MONOTONIC).
-std::int64_t monotonic_now_ns() noexcept { return firmware_iface::input_arrival_now_ns(); }
-
-}  // namespace
-
 SimGpioChip::SimGpioChip(const std::string& name, unsigned lines)
     : describe_("simulated GPIO chip '" + name + "'"), lines_(lines) {}
 
@@ -100,7 +93,7 @@ void SimGpioChip::note_edge(unsigned line, bool before) noexcept {
     edges_.pop_front();
     ++edges_dropped_;
   }
-  edges_.push_back({line, after, monotonic_now_ns()});
+  edges_.push_back({line, after, monotonic_ns()});
   edge_ready_.notify_all();
 }
 

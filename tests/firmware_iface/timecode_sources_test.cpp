@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "avar/firmware_iface/artnet_timecode_codec.hpp"
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/firmware_iface/atomic_input_counters.hpp"
 #include "avar/firmware_iface/ltc_file_source.hpp"
 #include "avar/firmware_iface/midi_input.hpp"
@@ -37,7 +38,7 @@ TEST(TimecodeSourcesArtnet, PublishesGoodPacketsAndCountsBadOnes) {
   std::array<std::uint8_t, artnet::kTimeCodeSize> packet{};
   const Timecode t{0, 1, 2, 3, FrameRate::fps30};
   ASSERT_EQ(artnet::encode_timecode(t, 0, packet), packet.size());
-  const std::int64_t before = input_arrival_now_ns();
+  const std::int64_t before = monotonic_ns();
   ASSERT_TRUE(sender.send(port, packet));
   ASSERT_TRUE(tcsrc_eventually([&] { return input.latest().sequence == 1; }));
   TimecodeReading r = input.latest();
@@ -106,7 +107,7 @@ TEST(TimecodeSourcesLtcFile, RealTimePlaybackStampsTheMonotonicClock) {
   const std::string path = testing::temp_path("ltc.wav");
   write_mono_wav(path, encode_ltc_audio(Timecode{0, 0, 0, 0, FrameRate::fps30}, 9, 48000), 48000);
   LtcFileSource source(path, false);
-  const std::int64_t before = input_arrival_now_ns();
+  const std::int64_t before = monotonic_ns();
   source.start();
   ASSERT_TRUE(tcsrc_eventually([&] { return source.latest().sequence >= 7; }));
   const TimecodeReading r = source.latest();

@@ -30,6 +30,7 @@
 #include "avar/control/show_clock.hpp"
 #include "avar/control/supervisor.hpp"
 #include "avar/rig/rig.hpp"
+#include "avar/core/monotonic_clock.hpp"
 #include "avar/core/status.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/playback/runtime/sampler.hpp"
@@ -48,8 +49,8 @@ struct StageTime {
   std::int64_t worst_ns = 0;
 };
 
-/// Reads CLOCK_MONOTONIC in nanoseconds. Real-time safe.
-std::int64_t monotonic_ns() noexcept;
+/// CLOCK_MONOTONIC in nanoseconds (avar/core/monotonic_clock.hpp). Real-time safe.
+using avar::monotonic_ns;
 
 struct ControllerOptions {
   /// How many passes of a looping show to play before stopping; 0 = until stopped.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "avar/core/atomic_counters.hpp"
 #include "avar/core/timecode.hpp"
 #include "avar/firmware_iface/timecode_fix.hpp"
 
@@ -29,19 +30,8 @@ struct TimecodeCounters {
   std::uint64_t bad = 0;      ///< malformed messages, dropped without effect on the show
 };
 
-/// The counters, kept by the source's thread (relaxed atomics), read from any thread.
-struct AtomicTimecodeCounters {
-  std::atomic<std::uint64_t> fixes{0};
-  std::atomic<std::uint64_t> partial{0};
-  std::atomic<std::uint64_t> ignored{0};
-  std::atomic<std::uint64_t> bad{0};
-
-  static void bump(std::atomic<std::uint64_t>& c) noexcept { c.fetch_add(1, std::memory_order_relaxed); }
-  TimecodeCounters snapshot() const noexcept {
-    return {fixes.load(std::memory_order_relaxed), partial.load(std::memory_order_relaxed),
-            ignored.load(std::memory_order_relaxed), bad.load(std::memory_order_relaxed)};
-  }
-};
+/// The counters, kept by the source's thread, read from any thread (avar/core/atomic_counters.hpp).
+using AtomicTimecodeCounters = AtomicCounters<TimecodeCounters>;
 
 /// Latest-value mailbox for one writer thread and any number of readers (a seqlock over
 /// atomics). publish() and read() are real-time safe: no allocation, lock or system call;
