@@ -45,13 +45,15 @@ class AtomicCounters {
   static constexpr std::size_t kCount = sizeof(Counters) / sizeof(std::uint64_t);
   using Values = std::array<std::uint64_t, kCount>;
 
-  /// The counter's place among the members: the member of a Counters whose every member holds
-  /// its own place (folded to a constant when `counter` is one).
-  static constexpr std::size_t index_of(Counter counter) noexcept {
-    Values places{};
-    for (std::size_t i = 0; i < kCount; ++i) places[i] = i;
-    return static_cast<std::size_t>(std::bit_cast<Counters>(places).*counter);
+  /// A Counters whose every member holds its own place among the members.
+  static constexpr Counters places() noexcept {
+    Values v{};
+    for (std::size_t i = 0; i < kCount; ++i) v[i] = i;
+    return std::bit_cast<Counters>(v);
   }
+  static constexpr Counters kPlaces = places();
+  /// The counter's place (a constant when `counter` is one).
+  static constexpr std::size_t index_of(Counter counter) noexcept { return static_cast<std::size_t>(kPlaces.*counter); }
 
   std::array<std::atomic<std::uint64_t>, kCount> values_{};
 };
