@@ -2,13 +2,13 @@
 
 #include <stdexcept>
 
-#include "avar/firmware_iface/atomic_input_counters.hpp"
+#include "avar/inputs/atomic_input_counters.hpp"
 
 namespace avar::sim {
 namespace {
 
 /// Edge times on the clock input devices stamp with (CLOCK_MONOTONIC).
-std::int64_t monotonic_now_ns() noexcept { return firmware_iface::input_arrival_now_ns(); }
+std::int64_t monotonic_now_ns() noexcept { return inputs::input_arrival_now_ns(); }
 
 }  // namespace
 

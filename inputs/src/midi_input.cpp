@@ -1,0 +1,158 @@
+#include "avar/inputs/midi_input.hpp"
+
+#include <rtmidi/RtMidi.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <stdexcept>
+#include <vector>
+
+namespace avar::inputs {
+
+struct MidiInput::Device {
+  std::unique_ptr<RtMidiIn> in;
+  ControlSink* sink = nullptr;
+  AtomicInputCounters* counters = nullptr;
+  MidiDecoder decoder;
+  mutable std::mutex errors_mutex;
+  std::string last_error;  ///< the last error RtMidi reported, "" when none since cleared
+  std::string warnings;    ///< RtMidi's warnings, one a line
+};
+
+namespace {
+
+constexpr const char* kSequencerDevice = "/dev/snd/seq";
+
+std::string lowercase(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+std::string port_list(std::span<const std::string> ports) {
+  if (ports.empty()) return "none";
+  std::string list;
+  for (std::size_t i = 0; i < ports.size(); ++i) {
+    if (i > 0) list += ", ";
+    list += std::to_string(i) + ": '" + ports[i] + "'";
+  }
+  return list;
+}
+
+/// RtMidi's error callback: errors and warnings are recorded, never printed; errors are turned
+/// into exceptions by the caller (RtMidi returns instead of throwing once a callback is set).
+void record_rtmidi_error(RtMidiError::Type type, const std::string& text, void* user) {
+  auto* device = static_cast<MidiInput::Device*>(user);
+  const std::lock_guard lock(device->errors_mutex);
+  if (type == RtMidiError::WARNING || type == RtMidiError::DEBUG_WARNING) device->warnings += text + "\n";
+  else device->last_error = text;
+}
+
+void on_midi_message(double /*delta_seconds*/, std::vector<unsigned char>* message, void* user) {
+  const std::int64_t arrived = input_arrival_now_ns();
+  auto* device = static_cast<MidiInput::Device*>(user);
+  MidiControl control;
+  const bool moved = device->decoder.decode(*message, &control);
+  device->counters->count(!moved);
+  if (moved) device->sink->post(control.name(), control.value, control.bipolar, arrived);
+}
+
+/// Throws what RtMidi reported during `what`, if anything.
+void throw_if_failed(MidiInput::Device& device, const std::string& what) {
+  const std::lock_guard lock(device.errors_mutex);
+  if (device.last_error.empty()) return;
+  const std::string error = device.last_error;
+  device.last_error.clear();
+  throw std::runtime_error("MIDI: " + what + ": " + error);
+}
+
+}  // namespace
+
+std::string midi_input_missing() {
+  if (::access(kSequencerDevice, R_OK | W_OK) == 0) return "";
+  if (::access(kSequencerDevice, F_OK) == 0)
+    return "no permission on the ALSA sequencer (/dev/snd/seq): add yourself to the 'audio' group";
+  return "no ALSA sequencer on this machine (/dev/snd/seq absent; `sudo modprobe snd-seq` loads it)";
+}
+
+std::size_t select_midi_port(std::string_view wanted, std::span<const std::string> ports) {
+  std::size_t number = 0;
+  const auto [end, error] = std::from_chars(wanted.data(), wanted.data() + wanted.size(), number);
+  if (!wanted.empty() && error == std::errc{} && end == wanted.data() + wanted.size()) {
+    if (number < ports.size()) return number;
+    throw std::runtime_error("no MIDI input port number " + std::string(wanted) + " (ports: " + port_list(ports) + ")");
+  }
+  const std::string needle = lowercase(wanted);
+  std::vector<std::size_t> matches;
+  for (std::size_t i = 0; i < ports.size(); ++i) {
+    const std::string name = lowercase(ports[i]);
+    if (name == needle) return i;
+    if (name.find(needle) != std::string::npos) matches.push_back(i);
+  }
+  if (matches.size() == 1) return matches.front();
+  if (matches.empty())
+    throw std::runtime_error("no MIDI input port matching '" + std::string(wanted) + "' (ports: " + port_list(ports) + ")");
+  std::string several;
+  for (const std::size_t i : matches) several += (several.empty() ? "'" : ", '") + ports[i] + "'";
+  throw std::runtime_error("MIDI input '" + std::string(wanted) + "' matches several ports (" + several +
+                           "): give more of the name, or the port number (ports: " + port_list(ports) + ")");
+}
+
+MidiInput::MidiInput(std::string port, MidiDecoderConfig config) : wanted_(std::move(port)), config_(config) {}
+
+MidiInput::~MidiInput() { stop(); }
+
+void MidiInput::start(ControlSink& sink) {
+  if (device_) {
+    if (device_->sink == &sink) return;
+    throw std::logic_error("MIDI input " + describe() + " already delivers into another sink");
+  }
+  // RtMidi prints to stderr before it throws when the sequencer is missing: ask first.
+  if (const std::string missing = midi_input_missing(); !missing.empty())
+    throw std::runtime_error("MIDI input '" + wanted_ + "': " + missing);
+
+  auto device = std::make_unique<Device>();
+  device->sink = &sink;
+  device->counters = &counters_;
+  device->decoder = MidiDecoder(config_);
+  try {
+    device->in = std::make_unique<RtMidiIn>(RtMidi::LINUX_ALSA, "avar");
+  } catch (const RtMidiError& e) {
+    throw std::runtime_error("MIDI: cannot open the ALSA sequencer: " + e.getMessage());
+  }
+  if (device->in->getCurrentApi() != RtMidi::LINUX_ALSA)
+    throw std::runtime_error("MIDI: this RtMidi was built without ALSA support");
+  device->in->setErrorCallback(&record_rtmidi_error, device.get());
+
+  std::vector<std::string> ports;
+  const unsigned count = device->in->getPortCount();
+  throw_if_failed(*device, "listing the input ports");
+  for (unsigned i = 0; i < count; ++i) ports.push_back(device->in->getPortName(i));
+  throw_if_failed(*device, "listing the input ports");
+  const std::size_t index = select_midi_port(wanted_, ports);
+
+  device->in->ignoreTypes(/*midiSysex=*/true, /*midiTime=*/true, /*midiSense=*/true);
+  device->in->setCallback(&on_midi_message, device.get());
+  device->in->openPort(static_cast<unsigned>(index), "avar input");
+  throw_if_failed(*device, "opening '" + ports[index] + "'");
+  opened_ = ports[index];
+  device_ = std::move(device);
+}
+
+void MidiInput::stop() noexcept {
+  if (!device_) return;
+  device_->in->closePort();  // joins RtMidi's input thread: no callback after this
+  device_.reset();
+}
+
+std::string MidiInput::describe() const { return "MIDI '" + (opened_.empty() ? wanted_ : opened_) + "'"; }
+
+std::string MidiInput::warnings() const {
+  if (!device_) return "";
+  const std::lock_guard lock(device_->errors_mutex);
+  return device_->warnings;
+}
+
+}  // namespace avar::inputs
