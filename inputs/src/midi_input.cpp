@@ -1,6 +1,5 @@
 #include "avar/inputs/midi_input.hpp"
 
-#include <rtmidi/RtMidi.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,16 +8,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "rtmidi_port.hpp"
+
 namespace avar::inputs {
 
 struct MidiInput::Device {
-  std::unique_ptr<RtMidiIn> in;
   ControlSink* sink = nullptr;
   AtomicInputCounters* counters = nullptr;
   MidiDecoder decoder;
-  mutable std::mutex errors_mutex;
-  std::string last_error;  ///< the last error RtMidi reported, "" when none since cleared
-  std::string warnings;    ///< RtMidi's warnings, one a line
+  std::unique_ptr<RtMidiPort> port;  // last: closed first, before what its callback uses
 };
 
 namespace {
@@ -41,15 +39,6 @@ std::string port_list(std::span<const std::string> ports) {
   return list;
 }
 
-/// RtMidi's error callback: errors and warnings are recorded, never printed; errors are turned
-/// into exceptions by the caller (RtMidi returns instead of throwing once a callback is set).
-void record_rtmidi_error(RtMidiError::Type type, const std::string& text, void* user) {
-  auto* device = static_cast<MidiInput::Device*>(user);
-  const std::lock_guard lock(device->errors_mutex);
-  if (type == RtMidiError::WARNING || type == RtMidiError::DEBUG_WARNING) device->warnings += text + "\n";
-  else device->last_error = text;
-}
-
 void on_midi_message(double /*delta_seconds*/, std::vector<unsigned char>* message, void* user) {
   const std::int64_t arrived = input_arrival_now_ns();
   auto* device = static_cast<MidiInput::Device*>(user);
@@ -57,15 +46,6 @@ void on_midi_message(double /*delta_seconds*/, std::vector<unsigned char>* messa
   const bool moved = device->decoder.decode(*message, &control);
   device->counters->count(!moved);
   if (moved) device->sink->post(control.name(), control.value, control.bipolar, arrived);
-}
-
-/// Throws what RtMidi reported during `what`, if anything.
-void throw_if_failed(MidiInput::Device& device, const std::string& what) {
-  const std::lock_guard lock(device.errors_mutex);
-  if (device.last_error.empty()) return;
-  const std::string error = device.last_error;
-  device.last_error.clear();
-  throw std::runtime_error("MIDI: " + what + ": " + error);
 }
 
 }  // namespace
@@ -109,41 +89,19 @@ void MidiInput::start(ControlSink& sink) {
     if (device_->sink == &sink) return;
     throw std::logic_error("MIDI input " + describe() + " already delivers into another sink");
   }
-  // RtMidi prints to stderr before it throws when the sequencer is missing: ask first.
-  if (const std::string missing = midi_input_missing(); !missing.empty())
-    throw std::runtime_error("MIDI input '" + wanted_ + "': " + missing);
-
   auto device = std::make_unique<Device>();
   device->sink = &sink;
   device->counters = &counters_;
   device->decoder = MidiDecoder(config_);
-  try {
-    device->in = std::make_unique<RtMidiIn>(RtMidi::LINUX_ALSA, "avar");
-  } catch (const RtMidiError& e) {
-    throw std::runtime_error("MIDI: cannot open the ALSA sequencer: " + e.getMessage());
-  }
-  if (device->in->getCurrentApi() != RtMidi::LINUX_ALSA)
-    throw std::runtime_error("MIDI: this RtMidi was built without ALSA support");
-  device->in->setErrorCallback(&record_rtmidi_error, device.get());
-
-  std::vector<std::string> ports;
-  const unsigned count = device->in->getPortCount();
-  throw_if_failed(*device, "listing the input ports");
-  for (unsigned i = 0; i < count; ++i) ports.push_back(device->in->getPortName(i));
-  throw_if_failed(*device, "listing the input ports");
-  const std::size_t index = select_midi_port(wanted_, ports);
-
-  device->in->ignoreTypes(/*midiSysex=*/true, /*midiTime=*/true, /*midiSense=*/true);
-  device->in->setCallback(&on_midi_message, device.get());
-  device->in->openPort(static_cast<unsigned>(index), "avar input");
-  throw_if_failed(*device, "opening '" + ports[index] + "'");
-  opened_ = ports[index];
+  device->port = std::make_unique<RtMidiPort>(wanted_, RtMidiPortOptions{"MIDI", "avar", "avar input", false}, &on_midi_message,
+                                              device.get());
+  opened_ = device->port->opened();
   device_ = std::move(device);
 }
 
 void MidiInput::stop() noexcept {
   if (!device_) return;
-  device_->in->closePort();  // joins RtMidi's input thread: no callback after this
+  device_->port.reset();  // joins RtMidi's input thread: no callback after this
   device_.reset();
 }
 
@@ -151,8 +109,7 @@ std::string MidiInput::describe() const { return "MIDI '" + (opened_.empty() ? w
 
 std::string MidiInput::warnings() const {
   if (!device_) return "";
-  const std::lock_guard lock(device_->errors_mutex);
-  return device_->warnings;
+  return device_->port->warnings();
 }
 
 }  // namespace avar::inputs
