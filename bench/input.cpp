@@ -23,7 +23,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/live_inputs.hpp"
 #include "avar/control/runner.hpp"
-#include "avar/firmware_iface/input_source_factory.hpp"
+#include "avar/inputs/input_source_factory.hpp"
 #include "support/osc_sender.hpp"
 
 namespace {
@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   SendLog log;
   StampingLink link(live, log, expected);
   const int port = avar::testing::free_udp_port();
-  auto osc = firmware_iface::make_input_source("osc://127.0.0.1:" + std::to_string(port));
+  auto osc = inputs::make_input_source("osc://127.0.0.1:" + std::to_string(port));
   osc->start(live.sink());
   control::ControllerOptions options;
   options.tick_period_s = 1 / kRate;

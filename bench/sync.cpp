@@ -27,10 +27,10 @@
 #include <vector>
 
 #include "avar/control/chase_clock.hpp"
-#include "avar/firmware_iface/artnet_timecode_codec.hpp"
-#include "avar/firmware_iface/ltc_audio.hpp"
-#include "avar/firmware_iface/ltc_decoder.hpp"
-#include "avar/firmware_iface/mtc_decoder.hpp"
+#include "avar/inputs/artnet_timecode_codec.hpp"
+#include "avar/inputs/ltc_audio.hpp"
+#include "avar/inputs/ltc_decoder.hpp"
+#include "avar/inputs/mtc_decoder.hpp"
 
 namespace {
 
@@ -47,16 +47,16 @@ constexpr double kStart = 3600;  // the source starts at 01:00:00:00
 struct ArrivingFix {
   double visible_s;
   double stamp_s;
-  firmware_iface::TimecodeFix fix;
+  inputs::TimecodeFix fix;
 };
 
-class ArrivingFixes final : public firmware_iface::TimecodeSource {
+class ArrivingFixes final : public inputs::TimecodeSource {
  public:
   explicit ArrivingFixes(std::vector<ArrivingFix> fixes) : fixes_(std::move(fixes)) {}
   void start() override {}
   void stop() noexcept override {}
-  firmware_iface::TimecodeReading latest() const noexcept override { return mailbox_.read(); }
-  firmware_iface::TimecodeCounters counters() const noexcept override { return {}; }
+  inputs::TimecodeReading latest() const noexcept override { return mailbox_.read(); }
+  inputs::TimecodeCounters counters() const noexcept override { return {}; }
   std::string describe() const override { return "simulated"; }
   bool stepped() const noexcept override { return true; }
   void advance_to(std::int64_t now_ns) noexcept override {
@@ -68,7 +68,7 @@ class ArrivingFixes final : public firmware_iface::TimecodeSource {
  private:
   std::vector<ArrivingFix> fixes_;  ///< by visible_s
   std::size_t next_ = 0;
-  firmware_iface::TimecodeMailbox mailbox_;
+  inputs::TimecodeMailbox mailbox_;
 };
 
 struct SyncFigures {
@@ -82,7 +82,7 @@ double sync_percentile(std::vector<double> v, double f) {
 }
 
 /// Runs controllers A and B over their sources; the true source time at t is kStart + speed * t.
-SyncFigures run_pair(firmware_iface::TimecodeSource& a, firmware_iface::TimecodeSource& b, double speed = 1.0) {
+SyncFigures run_pair(inputs::TimecodeSource& a, inputs::TimecodeSource& b, double speed = 1.0) {
   control::ChaseOptions o;
   o.offset_s = kStart;
   control::ChaseClock chase_a(a, o, nullptr), chase_b(b, o, nullptr);
@@ -123,12 +123,12 @@ void report(const char* source, const SyncFigures& f) {
 std::vector<ArrivingFix> ltc_arrivals(const std::vector<float>& audio, std::mt19937_64& rng) {
   constexpr double kSampleRate = 48000, kSkew = 1.0 + 50e-6;
   std::uniform_real_distribution<double> jitter(0, 100e-6);
-  firmware_iface::LtcDecoder decoder(kSampleRate);
+  inputs::LtcDecoder decoder(kSampleRate);
   std::vector<ArrivingFix> out;
   for (std::size_t at = 0; at < audio.size(); at += 256) {
     const std::size_t n = std::min<std::size_t>(256, audio.size() - at);
     const double visible = static_cast<double>(at + n) / kSampleRate / kSkew;
-    decoder.feed(std::span(audio.data() + at, n), [&](const firmware_iface::TimecodeFix& fix, std::int64_t end) {
+    decoder.feed(std::span(audio.data() + at, n), [&](const inputs::TimecodeFix& fix, std::int64_t end) {
       out.push_back({visible, static_cast<double>(end + 1) / kSampleRate / kSkew + jitter(rng), fix});
     });
   }
@@ -137,7 +137,7 @@ std::vector<ArrivingFix> ltc_arrivals(const std::vector<float>& audio, std::mt19
 
 SyncFigures bench_ltc() {
   const auto frames = static_cast<std::size_t>((kSeconds + 1) * 25);
-  const std::vector<float> audio = firmware_iface::encode_ltc_audio(Timecode{1, 0, 0, 0, FrameRate::fps25}, frames, 48000);
+  const std::vector<float> audio = inputs::encode_ltc_audio(Timecode{1, 0, 0, 0, FrameRate::fps25}, frames, 48000);
   std::mt19937_64 rng(5);
   ArrivingFixes a(ltc_arrivals(audio, rng)), b(ltc_arrivals(audio, rng));
   // The sample clock is the source's: 50 ppm fast against the machine.
@@ -155,7 +155,7 @@ std::vector<ArrivingFix> message_arrivals(const std::vector<std::pair<double, st
     // A message cannot overtake the one before it on one wire.
     const double arrival = std::max(previous, when + late(rng));
     previous = arrival;
-    firmware_iface::TimecodeFix fix;
+    inputs::TimecodeFix fix;
     if (decode(bytes, fix)) out.push_back({arrival, arrival, fix});
   }
   return out;
@@ -175,9 +175,8 @@ SyncFigures bench_mtc() {
   }
   std::mt19937_64 rng(7);
   const auto decoder = [] {
-    return [d = std::make_shared<firmware_iface::MtcDecoder>()](const std::vector<std::uint8_t>& m,
-                                                                firmware_iface::TimecodeFix& fix) {
-      return d->decode(m, fix) == firmware_iface::MtcVerdict::fix;
+    return [d = std::make_shared<inputs::MtcDecoder>()](const std::vector<std::uint8_t>& m, inputs::TimecodeFix& fix) {
+      return d->decode(m, fix) == inputs::MtcVerdict::fix;
     };
   };
   ArrivingFixes a(message_arrivals(sent, 0.001, rng, decoder())), b(message_arrivals(sent, 0.001, rng, decoder()));
@@ -188,15 +187,15 @@ SyncFigures bench_artnet() {
   std::vector<std::pair<double, std::vector<std::uint8_t>>> sent;
   const std::int64_t first = to_frame_number(Timecode{1, 0, 0, 0, FrameRate::fps25});
   for (int f = 0; f < static_cast<int>((kSeconds + 1) * 25); ++f) {
-    std::vector<std::uint8_t> packet(firmware_iface::artnet::kTimeCodeSize);
-    (void)firmware_iface::artnet::encode_timecode(from_frame_number(first + f, FrameRate::fps25), 0, packet);
+    std::vector<std::uint8_t> packet(inputs::artnet::kTimeCodeSize);
+    (void)inputs::artnet::encode_timecode(from_frame_number(first + f, FrameRate::fps25), 0, packet);
     sent.push_back({f * 0.04, std::move(packet)});
   }
   std::mt19937_64 rng(11);
-  const auto decode = [](const std::vector<std::uint8_t>& m, firmware_iface::TimecodeFix& fix) {
+  const auto decode = [](const std::vector<std::uint8_t>& m, inputs::TimecodeFix& fix) {
     Timecode t;
-    if (firmware_iface::artnet::decode_timecode(m, t) != firmware_iface::artnet::TimeCodeVerdict::ok) return false;
-    fix = firmware_iface::TimecodeFix{t, 0.0, false};
+    if (inputs::artnet::decode_timecode(m, t) != inputs::artnet::TimeCodeVerdict::ok) return false;
+    fix = inputs::TimecodeFix{t, 0.0, false};
     return true;
   };
   ArrivingFixes a(message_arrivals(sent, 0.0002, rng, decode)), b(message_arrivals(sent, 0.0002, rng, decode));

@@ -1,10 +1,15 @@
-# avar_module(NAME SOURCES ... DEPS ...) declares the library of one top-level folder:
+# avar_module(NAME [FOLDER SUB] SOURCES ... DEPS ...) declares the library of one top-level folder:
 # target avar_NAME, alias avar::NAME, public headers under NAME/include/avar/NAME/.
+# With FOLDER, one layer of a module kept in a sub-folder (firmware_iface/codec): its public headers
+# are under SUB/include/; several libraries may share one sub-folder's headers.
 # A folder with headers only becomes an INTERFACE library. Every module is installed and exported
 # as avar::NAME (cmake/AvarPackage.cmake); the project's warning flags stay in the build tree.
 function(avar_module name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "FOLDER" "SOURCES;DEPS" ${ARGN})
   set(include_dir ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  if(ARG_FOLDER)
+    set(include_dir ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_FOLDER}/include)
+  endif()
   if(ARG_SOURCES)
     add_library(avar_${name} STATIC ${ARG_SOURCES})
     target_include_directories(avar_${name} PUBLIC $<BUILD_INTERFACE:${include_dir}>

@@ -18,8 +18,13 @@ function(avar_install_library target export_name)
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT Development
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT Development
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  # A folder of headers that several libraries share (the layers of firmware_iface) is installed once.
+  get_property(installed_dirs GLOBAL PROPERTY AVAR_INSTALLED_INCLUDE_DIRS)
   foreach(dir IN LISTS ARGN)
-    install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT Development)
+    if(NOT dir IN_LIST installed_dirs)
+      install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT Development)
+      set_property(GLOBAL APPEND PROPERTY AVAR_INSTALLED_INCLUDE_DIRS ${dir})
+    endif()
   endforeach()
   set_property(GLOBAL APPEND PROPERTY AVAR_INSTALLED_LIBRARIES ${target})
 endfunction()

@@ -5,10 +5,10 @@
 #include <cstdlib>
 #include <span>
 
-#include "avar/firmware_iface/artnet_timecode_codec.hpp"
+#include "avar/inputs/artnet_timecode_codec.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  namespace artnet = avar::firmware_iface::artnet;
+  namespace artnet = avar::inputs::artnet;
   avar::Timecode label;
   std::uint8_t stream_id = 0;
   const auto verdict = artnet::decode_timecode(std::span<const std::uint8_t>(data, size), label, &stream_id);

@@ -7,13 +7,13 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "avar/firmware_iface/hid_report_decoder.hpp"
-#include "avar/firmware_iface/hid_report_descriptor.hpp"
+#include "avar/inputs/hid_report_decoder.hpp"
+#include "avar/inputs/hid_report_descriptor.hpp"
 #include "fuzz_bytes.hpp"
 
 namespace {
 
-class HidFuzzRangeSink final : public avar::firmware_iface::ControlSink {
+class HidFuzzRangeSink final : public avar::inputs::ControlSink {
  public:
   void post(std::string_view control, double value, bool bipolar, std::int64_t) noexcept override {
     if (control.empty() || !(value >= (bipolar ? -1.0 : 0.0) && value <= 1.0)) std::abort();
@@ -23,7 +23,7 @@ class HidFuzzRangeSink final : public avar::firmware_iface::ControlSink {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  namespace hid = avar::firmware_iface::hid;
+  namespace hid = avar::inputs::hid;
   avar::fuzz::ByteReader in(data, size);
   const auto descriptor_bytes = in.take(in.u16() % 1024);
   try {

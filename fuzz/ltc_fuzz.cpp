@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "avar/firmware_iface/ltc_decoder.hpp"
+#include "avar/inputs/ltc_decoder.hpp"
 #include "fuzz_bytes.hpp"
 #include "timecode_fix_check.hpp"
 
@@ -22,7 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::optional<avar::FrameRate> rate =
       (flags & 2U) != 0 ? std::optional<avar::FrameRate>(avar::FrameRate::fps25) : std::nullopt;
   constexpr double kLtcFuzzRates[] = {8000.0, 44100.0, 48000.0, 96000.0};
-  avar::firmware_iface::LtcDecoder decoder(kLtcFuzzRates[(flags >> 2U) & 3U], rate);
+  avar::inputs::LtcDecoder decoder(kLtcFuzzRates[(flags >> 2U) & 3U], rate);
   std::vector<float> samples;
   const auto bytes = in.rest();
   const std::size_t width = sixteen_bit ? 2 : 1;
@@ -40,7 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t at = 0; at < samples.size(); at += 1024) {
     const auto chunk = std::span<const float>(samples).subspan(at, std::min<std::size_t>(1024, samples.size() - at));
     fed += static_cast<std::int64_t>(chunk.size());
-    decoder.feed(chunk, [&](const avar::firmware_iface::TimecodeFix& fix, std::int64_t end_sample) {
+    decoder.feed(chunk, [&](const avar::inputs::TimecodeFix& fix, std::int64_t end_sample) {
       avar::fuzz::check_timecode_fix(fix);
       if (end_sample < 0 || end_sample > fed) std::abort();
       if (rate && fix.label.rate != *rate) std::abort();

@@ -5,17 +5,17 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "avar/firmware_iface/midi_decoder.hpp"
+#include "avar/inputs/midi_decoder.hpp"
 #include "fuzz_bytes.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   avar::fuzz::ByteReader in(data, size);
-  avar::firmware_iface::MidiDecoderConfig config;
+  avar::inputs::MidiDecoderConfig config;
   config.fourteen_bit_cc = in.flag();
-  avar::firmware_iface::MidiDecoder decoder(config);
+  avar::inputs::MidiDecoder decoder(config);
   while (!in.empty()) {
     const auto message = in.take(in.u8() % 8);
-    avar::firmware_iface::MidiControl control;
+    avar::inputs::MidiControl control;
     if (!decoder.decode(message, &control)) continue;
     const double low = control.bipolar ? -1.0 : 0.0;
     if (!(control.value >= low && control.value <= 1.0) || control.name().empty()) std::abort();

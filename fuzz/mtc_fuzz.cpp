@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "avar/firmware_iface/mtc_decoder.hpp"
+#include "avar/inputs/mtc_decoder.hpp"
 #include "fuzz_bytes.hpp"
 #include "timecode_fix_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   avar::fuzz::ByteReader in(data, size);
-  avar::firmware_iface::MtcDecoder decoder;
+  avar::inputs::MtcDecoder decoder;
   while (!in.empty()) {
     const std::uint8_t length = in.u8();
     if (length == 0xFF) {
@@ -19,8 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     const auto message = in.take(length % 16U);
-    avar::firmware_iface::TimecodeFix fix;
-    if (decoder.decode(message, fix) != avar::firmware_iface::MtcVerdict::fix) continue;
+    avar::inputs::TimecodeFix fix;
+    if (decoder.decode(message, fix) != avar::inputs::MtcVerdict::fix) continue;
     avar::fuzz::check_timecode_fix(fix);
     if (!(fix.frames_after >= -0.25 && fix.frames_after <= 1.5)) std::abort();
   }

@@ -6,11 +6,11 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "avar/firmware_iface/osc_input.hpp"
+#include "avar/inputs/osc_input.hpp"
 
 namespace {
 
-class OscFuzzSink final : public avar::firmware_iface::ControlSink {
+class OscFuzzSink final : public avar::inputs::ControlSink {
  public:
   void post(std::string_view control, double value, bool, std::int64_t) noexcept override {
     if (control.empty() || !std::isfinite(value)) std::abort();
@@ -21,7 +21,7 @@ class OscFuzzSink final : public avar::firmware_iface::ControlSink {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   OscFuzzSink sink;
-  const avar::firmware_iface::InputCounters counters = avar::firmware_iface::dispatch_osc_packet({data, size}, sink, 0);
+  const avar::inputs::InputCounters counters = avar::inputs::dispatch_osc_packet({data, size}, sink, 0);
   if (counters.ignored > counters.messages) std::abort();
   return 0;
 }

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "avar/firmware_iface/timecode_fix.hpp"
+#include "avar/inputs/timecode_fix.hpp"
 
 namespace avar::fuzz {
 
-inline void check_timecode_fix(const avar::firmware_iface::TimecodeFix& fix) {
+inline void check_timecode_fix(const avar::inputs::TimecodeFix& fix) {
   if (!avar::valid(fix.label) || !std::isfinite(fix.frames_after) || !std::isfinite(fix.seconds())) std::abort();
 }
 

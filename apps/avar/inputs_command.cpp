@@ -17,7 +17,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/firmware_iface/input_source_factory.hpp"
+#include "avar/inputs/input_source_factory.hpp"
 #include "avar/interrupts.hpp"
 
 namespace avar::app {
@@ -33,7 +33,7 @@ struct Moved {
 };
 
 /// A sink that any device thread may post to; the command's thread takes what arrived.
-class RecordingSink final : public firmware_iface::ControlSink {
+class RecordingSink final : public inputs::ControlSink {
  public:
   void post(std::string_view control, double value, bool bipolar, std::int64_t arrived_ns) noexcept override {
     if (!std::isfinite(value)) return;
@@ -64,11 +64,11 @@ class RecordingSink final : public firmware_iface::ControlSink {
 };
 
 /// Opens and starts the devices; on failure prints why and returns none.
-std::vector<std::unique_ptr<firmware_iface::InputSource>> open_inputs(const std::vector<std::string>& uris,
-                                                                      firmware_iface::ControlSink& sink, std::ostream& err) {
-  std::vector<std::unique_ptr<firmware_iface::InputSource>> sources;
+std::vector<std::unique_ptr<inputs::InputSource>> open_inputs(const std::vector<std::string>& uris, inputs::ControlSink& sink,
+                                                              std::ostream& err) {
+  std::vector<std::unique_ptr<inputs::InputSource>> sources;
   try {
-    for (const std::string& uri : uris) sources.push_back(firmware_iface::make_input_source(uri));
+    for (const std::string& uri : uris) sources.push_back(inputs::make_input_source(uri));
     for (auto& s : sources) {
       s->start(sink);
       err << "listening: " << s->describe() << '\n';
@@ -128,7 +128,7 @@ int run_inputs_monitor(const InputsOptions& options, std::ostream& out, std::ost
   }
   for (auto& s : sources) {
     s->stop();
-    const firmware_iface::InputCounters k = s->counters();
+    const inputs::InputCounters k = s->counters();
     out << s->describe() << ": " << k.messages << " messages, " << k.ignored << " ignored\n";
   }
   return kExitOk;

@@ -2,13 +2,13 @@
 
 #include <ostream>
 
-#include "avar/firmware_iface/input_source_factory.hpp"
+#include "avar/inputs/input_source_factory.hpp"
 
 namespace avar::app {
 
 LiveSession::LiveSession(const rig::Rig& rig, const config::InputMap& map, const std::vector<std::string>& uris)
     : inputs_(config::live_channels(rig), map.mappings) {
-  for (const std::string& uri : uris) sources_.push_back(firmware_iface::make_input_source(uri));
+  for (const std::string& uri : uris) sources_.push_back(inputs::make_input_source(uri));
   try {
     for (auto& source : sources_) source->start(inputs_.sink());
   } catch (...) {
@@ -25,7 +25,7 @@ void LiveSession::stop() noexcept {
 
 void LiveSession::describe(std::ostream& out) const {
   for (const auto& source : sources_) {
-    const firmware_iface::InputCounters k = source->counters();
+    const inputs::InputCounters k = source->counters();
     out << "  input " << source->describe() << ": " << k.messages << " messages, " << k.ignored << " ignored\n";
   }
   if (const std::uint64_t unknown = inputs_.mailbox().unknown(); unknown > 0)

@@ -9,7 +9,7 @@
 
 #include "avar/config/input_map.hpp"
 #include "avar/control/live_inputs.hpp"
-#include "avar/firmware_iface/input_source.hpp"
+#include "avar/inputs/input_source.hpp"
 #include "avar/rig/rig.hpp"
 
 namespace avar::app {
@@ -33,7 +33,7 @@ class LiveSession {
 
  private:
   control::LiveInputs inputs_;
-  std::vector<std::unique_ptr<firmware_iface::InputSource>> sources_;
+  std::vector<std::unique_ptr<inputs::InputSource>> sources_;
 };
 
 }  // namespace avar::app

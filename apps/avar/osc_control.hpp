@@ -22,7 +22,7 @@
 
 #include "avar/control/runner.hpp"
 #include "avar/control/show_clock.hpp"
-#include "avar/firmware_iface/udp_listener.hpp"
+#include "avar/inputs/udp_listener.hpp"
 
 namespace avar::app {
 
@@ -58,7 +58,7 @@ class OscControlSurface final : public control::ShowClock, public control::TickO
   /// Serialises the lo_message `message` at `path`, sends it to the sender, frees it.
   void send_reply(void* message, const char* path) noexcept;
 
-  firmware_iface::UdpListener listener_;
+  inputs::UdpListener listener_;
   std::string show_name_;
   control::TickObserver* inner_ = nullptr;
   // Requests, OSC thread -> loop.

@@ -227,7 +227,7 @@ bool has_control_inputs(const rig::Rig& rig) {
 
 /// --wait-start: blocks until a start button of the rig is pressed (or Ctrl-C). Nothing has
 /// been commanded yet; the GPIO e-stop is already watched.
-int wait_for_start_button(const rig::Rig& rig, const firmware_iface::GpioInputs* inputs, std::ostream& err) {
+int wait_for_start_button(const rig::Rig& rig, const inputs::GpioInputs* inputs, std::ostream& err) {
   std::string names;
   for (const rig::DigitalInputSpec& d : rig.digital_inputs)
     if (d.role == rig::InputRole::start) names += (names.empty() ? "'" : ", '") + d.name + "'";
@@ -360,7 +360,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   std::unique_ptr<assembly::FigureLinks> figure;
   // GPIO chips are shared by the gpio links and the digital inputs (the e-stop).
   const auto gpio_chips = std::make_shared<assembly::GpioChips>(options.simulate);
-  std::unique_ptr<firmware_iface::GpioInputs> digital_inputs;
+  std::unique_ptr<inputs::GpioInputs> digital_inputs;
   try {
     figure = std::make_unique<assembly::FigureLinks>(
         rig, assembly::LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate, {}, gpio_chips});

@@ -9,9 +9,9 @@
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
-#include "avar/firmware_iface/alsa_ltc_source.hpp"
-#include "avar/firmware_iface/ltc_file_source.hpp"
-#include "avar/firmware_iface/timecode_inputs.hpp"
+#include "avar/inputs/alsa_ltc_source.hpp"
+#include "avar/inputs/ltc_file_source.hpp"
+#include "avar/inputs/timecode_inputs.hpp"
 
 namespace avar::app {
 namespace {
@@ -42,7 +42,7 @@ void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o) {
                   "/avar/show/play NAME; /avar/show/stop, /avar/show/seek SECONDS, /avar/estop, /avar/state");
 }
 
-std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::string& spec, bool fast) {
+std::unique_ptr<inputs::TimecodeSource> open_timecode_source(const std::string& spec, bool fast) {
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
@@ -53,23 +53,21 @@ std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::
       if (device.empty())
         throw std::invalid_argument("--timecode " + spec + ": needs a capture device, ltc:alsa:DEVICE (default, hw:1,0 ...)");
       if (fast) throw std::invalid_argument("--timecode " + spec + ": a live timecode source needs the wall clock; drop --fast");
-      return std::make_unique<firmware_iface::AlsaLtcSource>(device);
+      return std::make_unique<inputs::AlsaLtcSource>(device);
     }
-    return std::make_unique<firmware_iface::LtcFileSource>(rest, fast);
+    return std::make_unique<inputs::LtcFileSource>(rest, fast);
   }
   if (fast) throw std::invalid_argument("--timecode " + spec + ": a live timecode source needs the wall clock; drop --fast");
   if (kind == "mtc") {
     if (rest.empty()) throw std::invalid_argument("--timecode mtc: needs a MIDI port, mtc:PORT (`avar inputs list` names them)");
-    return std::make_unique<firmware_iface::MtcInput>(rest);
+    return std::make_unique<inputs::MtcInput>(rest);
   }
   if (kind == "artnet") {
-    if (rest.empty()) return std::make_unique<firmware_iface::ArtnetTimecodeInput>();
+    if (rest.empty()) return std::make_unique<inputs::ArtnetTimecodeInput>();
     const auto second = rest.find(':');
-    if (second == std::string::npos)
-      return std::make_unique<firmware_iface::ArtnetTimecodeInput>("127.0.0.1", timecode_port(rest, spec));
+    if (second == std::string::npos) return std::make_unique<inputs::ArtnetTimecodeInput>("127.0.0.1", timecode_port(rest, spec));
     try {
-      return std::make_unique<firmware_iface::ArtnetTimecodeInput>(rest.substr(0, second),
-                                                                   timecode_port(rest.substr(second + 1), spec));
+      return std::make_unique<inputs::ArtnetTimecodeInput>(rest.substr(0, second), timecode_port(rest.substr(second + 1), spec));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--timecode " + spec + ": " + e.what());
     }
@@ -111,7 +109,7 @@ void TimecodeRun::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
 }
 
 void TimecodeRun::summarize(std::ostream& out) const {
-  const firmware_iface::TimecodeCounters k = source_->counters();
+  const inputs::TimecodeCounters k = source_->counters();
   out << "timecode: " << source_->describe() << "; " << k.fixes << " positions, " << k.partial << " partial, " << k.ignored
       << " ignored, " << k.bad << " bad (dropped)\n";
   const control::LatencyHistogram& e = chase_->errors();

@@ -17,7 +17,7 @@
 
 #include "avar/control/chase_clock.hpp"
 #include "avar/control/runner.hpp"
-#include "avar/firmware_iface/timecode_source.hpp"
+#include "avar/inputs/timecode_source.hpp"
 
 namespace CLI {
 class App;
@@ -38,7 +38,7 @@ void declare_show_control_options(CLI::App* cmd, ShowControlOptions& o);
 /// Opens (does not start) the source `spec` names. `fast`: the run is on the simulated clock,
 /// where only a file can play. Throws InputError-free std::invalid_argument with what was
 /// expected for a malformed or unusable spec, std::runtime_error for a file that cannot be read.
-std::unique_ptr<firmware_iface::TimecodeSource> open_timecode_source(const std::string& spec, bool fast);
+std::unique_ptr<inputs::TimecodeSource> open_timecode_source(const std::string& spec, bool fast);
 
 /// One column of numbers for the trace, one value a tick (NaN: empty cell).
 struct TraceColumn {
@@ -72,7 +72,7 @@ class TimecodeRun final : public control::TickObserver {
   bool source_lost() const noexcept { return chase_->state() == control::ChaseState::stopped; }
 
  private:
-  std::unique_ptr<firmware_iface::TimecodeSource> source_;
+  std::unique_ptr<inputs::TimecodeSource> source_;
   std::unique_ptr<control::ChaseClock> chase_;
   control::TickObserver* inner_ = nullptr;
   std::vector<double> show_time_, clock_s_, error_ms_;

@@ -7,25 +7,25 @@
 namespace avar::assembly {
 namespace {
 
-firmware_iface::GpioInputRole role_of(rig::InputRole r) {
+inputs::GpioInputRole role_of(rig::InputRole r) {
   switch (r) {
-    case rig::InputRole::estop: return firmware_iface::GpioInputRole::estop;
-    case rig::InputRole::control: return firmware_iface::GpioInputRole::control;
-    case rig::InputRole::start: return firmware_iface::GpioInputRole::start;
+    case rig::InputRole::estop: return inputs::GpioInputRole::estop;
+    case rig::InputRole::control: return inputs::GpioInputRole::control;
+    case rig::InputRole::start: return inputs::GpioInputRole::start;
   }
-  return firmware_iface::GpioInputRole::control;
+  return inputs::GpioInputRole::control;
 }
 
 }  // namespace
 
-std::unique_ptr<firmware_iface::GpioInputs> open_digital_inputs(const rig::Rig& rig, GpioChips& chips) {
+std::unique_ptr<inputs::GpioInputs> open_digital_inputs(const rig::Rig& rig, GpioChips& chips) {
   if (rig.digital_inputs.empty()) return nullptr;
-  std::vector<firmware_iface::GpioInputConfig> configs;
+  std::vector<inputs::GpioInputConfig> configs;
   const rig::DigitalInputSpec* current = nullptr;
   try {
     for (const rig::DigitalInputSpec& in : rig.digital_inputs) {
       current = &in;
-      firmware_iface::GpioInputConfig c;
+      inputs::GpioInputConfig c;
       c.name = in.name;
       c.chip = chips.open(in.chip);
       if (in.line >= c.chip->line_count())
@@ -40,7 +40,7 @@ std::unique_ptr<firmware_iface::GpioInputs> open_digital_inputs(const rig::Rig& 
       configs.push_back(std::move(c));
     }
     current = nullptr;
-    return std::make_unique<firmware_iface::GpioInputs>(std::move(configs));
+    return std::make_unique<inputs::GpioInputs>(std::move(configs));
   } catch (const std::runtime_error& e) {
     // A failed request names the chip and the line; point at the input that asked for it.
     const rig::DigitalInputSpec& at = current ? *current : rig.digital_inputs.front();

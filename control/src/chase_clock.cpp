@@ -22,7 +22,7 @@ const char* to_string(ChaseState s) noexcept {
   return "?";
 }
 
-ChaseClock::ChaseClock(firmware_iface::TimecodeSource& source, ChaseOptions options, std::int64_t (*clock_ns)() noexcept)
+ChaseClock::ChaseClock(inputs::TimecodeSource& source, ChaseOptions options, std::int64_t (*clock_ns)() noexcept)
     : source_(source), options_(options), clock_ns_(clock_ns) {}
 
 ShowClockReading ChaseClock::read(double now_s) noexcept {
@@ -32,7 +32,7 @@ ShowClockReading ChaseClock::read(double now_s) noexcept {
   error_s_ = std::numeric_limits<double>::quiet_NaN();
   if (state_ == ChaseState::stopped) return {std::max(0.0, phase_s_ - options_.offset_s), true};
 
-  const firmware_iface::TimecodeReading r = source_.latest();
+  const inputs::TimecodeReading r = source_.latest();
   const double direction = r.reverse ? -1.0 : 1.0;
   const double arrival_s = static_cast<double>(r.arrival_ns) * 1e-9;
   const bool fresh =

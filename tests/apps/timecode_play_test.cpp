@@ -9,8 +9,8 @@
 #include <fstream>
 #include <thread>
 
-#include "avar/firmware_iface/artnet_timecode_codec.hpp"
-#include "avar/firmware_iface/ltc_audio.hpp"
+#include "avar/inputs/artnet_timecode_codec.hpp"
+#include "avar/inputs/ltc_audio.hpp"
 #include "../support/child_process.hpp"
 #include "../support/cli_run.hpp"
 #include "../support/csv_rows.hpp"
@@ -44,8 +44,7 @@ std::vector<std::vector<std::string>> tcplay_read(const std::string& path) {
 TEST(TimecodePlay, FastRunChasesAnLtcFileAndStopsWhenItEnds) {
   const std::string wav = testing::temp_path("ltc.wav");
   // 6 s of LTC from 01:00:00:00 at 25 fps; the show starts at 01:00:00:10.
-  firmware_iface::write_mono_wav(wav, firmware_iface::encode_ltc_audio(Timecode{1, 0, 0, 0, FrameRate::fps25}, 150, 48000),
-                                 48000);
+  inputs::write_mono_wav(wav, inputs::encode_ltc_audio(Timecode{1, 0, 0, 0, FrameRate::fps25}, 150, 48000), 48000);
   const std::string trace = testing::temp_path("trace.csv");
   const auto r = testing::run_avar({"play", kTcShow, "--rig", kTcRig, "--fast", "--rate", "100", "--timecode", "ltc:" + wav,
                                     "--offset", "01:00:00:10", "--freewheel", "0.5", "--trace", trace});
@@ -130,12 +129,12 @@ TEST(TimecodePlay, TwoControllersChaseOneArtnetSenderInStep) {
   // One sender, both ports: 25 fps for 1.4 s, with a bad packet of every kind among them.
   testing::UdpSender sender;
   const auto start = std::chrono::steady_clock::now();
-  std::array<std::uint8_t, firmware_iface::artnet::kTimeCodeSize> packet{};
+  std::array<std::uint8_t, inputs::artnet::kTimeCodeSize> packet{};
   const std::vector<std::vector<std::uint8_t>> junk{
       {}, {'A', 'r', 't'}, {'A', 'r', 't', '-', 'N', 'e', 't', 0, 0, 0x97, 0, 14, 0}};
   for (int frame = 0; frame < 35; ++frame) {
     std::this_thread::sleep_until(start + std::chrono::milliseconds(40 * frame));
-    (void)firmware_iface::artnet::encode_timecode(from_frame_number(frame, FrameRate::fps25), 0, packet);
+    (void)inputs::artnet::encode_timecode(from_frame_number(frame, FrameRate::fps25), 0, packet);
     ASSERT_TRUE(sender.send(port_a, packet));
     ASSERT_TRUE(sender.send(port_b, packet));
     if (frame % 20 == 10)

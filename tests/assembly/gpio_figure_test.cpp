@@ -153,7 +153,7 @@ TEST(GpioFigure, AnEstopOnTheSimulatedChipMidShowEndsInTheFailSafeState) {
   selection.gpio_chips = chips;
   assembly::FigureLinks figure(rig, selection);
   for (firmware_iface::ActuatorLink* link : figure.links()) ASSERT_EQ(link->start(), Status::ok);
-  std::unique_ptr<firmware_iface::GpioInputs> inputs = assembly::open_digital_inputs(rig, *chips);
+  std::unique_ptr<inputs::GpioInputs> inputs = assembly::open_digital_inputs(rig, *chips);
   ASSERT_TRUE(inputs);
   inputs->start();
   ASSERT_FALSE(inputs->estop().load());  // pulled up, not pressed

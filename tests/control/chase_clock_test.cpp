@@ -19,15 +19,15 @@ namespace {
 
 /// A stepped source: a frame's position arrives at each frame boundary of the source's time
 /// (loop time -> source seconds by `source_at`), late by a seeded jitter, except while `silent`.
-class ScriptedTimecode final : public firmware_iface::TimecodeSource {
+class ScriptedTimecode final : public inputs::TimecodeSource {
  public:
   ScriptedTimecode(std::function<double(double)> source_at, double jitter_s, FrameRate rate = FrameRate::fps25)
       : source_at_(std::move(source_at)), jitter_s_(jitter_s), rate_(rate), rng_(4242) {}
   std::function<bool(double)> silent = [](double) { return false; };
   void start() override {}
   void stop() noexcept override {}
-  firmware_iface::TimecodeReading latest() const noexcept override { return mailbox_.read(); }
-  firmware_iface::TimecodeCounters counters() const noexcept override { return {}; }
+  inputs::TimecodeReading latest() const noexcept override { return mailbox_.read(); }
+  inputs::TimecodeCounters counters() const noexcept override { return {}; }
   std::string describe() const override { return "scripted"; }
   bool stepped() const noexcept override { return true; }
   void advance_to(std::int64_t now_ns) noexcept override {
@@ -41,7 +41,7 @@ class ScriptedTimecode final : public firmware_iface::TimecodeSource {
       const double position = source_at_(sent);
       const double frames = position * frames_per_second(rate_);
       const auto whole = static_cast<std::int64_t>(std::floor(frames));
-      firmware_iface::TimecodeFix fix{from_frame_number(whole, rate_), frames - static_cast<double>(whole), false};
+      inputs::TimecodeFix fix{from_frame_number(whole, rate_), frames - static_cast<double>(whole), false};
       // Arrives late by the jitter; the position named is that of when it was sent (the
       // receiver does not know the lateness).
       const double arrival = sent + late(rng_);
@@ -55,7 +55,7 @@ class ScriptedTimecode final : public firmware_iface::TimecodeSource {
   FrameRate rate_;
   std::mt19937_64 rng_;
   double next_send_ = 0;
-  firmware_iface::TimecodeMailbox mailbox_;
+  inputs::TimecodeMailbox mailbox_;
 };
 
 constexpr double kChaseDt = 0.01;

@@ -16,7 +16,8 @@ std::vector<std::uint8_t> sacn_test_root(std::uint8_t length_low, std::uint8_t v
                               0x41, 0x53,       0x43, 0x2D,  0x45, 0x31, 0x2E, 0x31, 0x37, 0x00, 0x00, 0x00,  // "ASC-E1.17"
                               0x70, length_low,                                                               // flags, length
                               0x00, 0x00,       0x00, vector};
-  b.insert(b.end(), kSacnTestCid.begin(), kSacnTestCid.end());
+  // One byte at a time: GCC 12 warns falsely (array-bounds) on a range insert here.
+  for (const std::uint8_t c : kSacnTestCid) b.push_back(c);
   return b;
 }
 

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "avar/firmware_iface/input_source.hpp"
+#include "avar/inputs/input_source.hpp"
 
 namespace avar::testing {
 
@@ -25,7 +25,7 @@ struct PostedControl {
 };
 
 /// Records every post (allocates: not for allocation tests). Thread-safe.
-class RecordingControlSink final : public firmware_iface::ControlSink {
+class RecordingControlSink final : public inputs::ControlSink {
  public:
   void post(std::string_view control, double value, bool bipolar, std::int64_t arrived_ns) noexcept override {
     const std::lock_guard lock(mutex_);

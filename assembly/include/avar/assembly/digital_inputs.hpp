@@ -1,12 +1,12 @@
 #pragma once
 // A rig's digital inputs (`digital_inputs:`: e-stop, limit switches, start buttons) opened on
-// their GPIO chips, ready to start: firmware_iface::GpioInputs is the class a program starts and
+// their GPIO chips, ready to start: inputs::GpioInputs is the class a program starts and
 // stops, whose estop() flag goes to control::RunOptions::estop. Load-time only.
 
 #include <memory>
 
 #include "avar/assembly/gpio_chips.hpp"
-#include "avar/firmware_iface/gpio_inputs.hpp"
+#include "avar/inputs/gpio_inputs.hpp"
 #include "avar/rig/rig.hpp"
 
 namespace avar::assembly {
@@ -15,6 +15,6 @@ namespace avar::assembly {
 /// `chips` (share them with LinkSelection::gpio_chips so that simulated inputs and outputs are one
 /// chip), not yet started; nullptr when the rig has none. Throws InputError at the input when
 /// its chip is absent or its line cannot be requested.
-std::unique_ptr<firmware_iface::GpioInputs> open_digital_inputs(const rig::Rig& rig, GpioChips& chips);
+std::unique_ptr<inputs::GpioInputs> open_digital_inputs(const rig::Rig& rig, GpioChips& chips);
 
 }  // namespace avar::assembly

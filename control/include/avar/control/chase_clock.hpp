@@ -28,7 +28,7 @@
 
 #include "avar/control/latency_histogram.hpp"
 #include "avar/control/show_clock.hpp"
-#include "avar/firmware_iface/timecode_source.hpp"
+#include "avar/inputs/timecode_source.hpp"
 
 namespace avar::control {
 
@@ -49,7 +49,7 @@ class ChaseClock final : public ShowClock {
  public:
   /// `clock_ns`: the clock the source stamps arrivals with (monotonic_ns for live sources);
   /// nullptr: the source is stepped and its clock is the loop time. The source is borrowed.
-  ChaseClock(firmware_iface::TimecodeSource& source, ChaseOptions options, std::int64_t (*clock_ns)() noexcept);
+  ChaseClock(inputs::TimecodeSource& source, ChaseOptions options, std::int64_t (*clock_ns)() noexcept);
 
   ShowClockReading read(double now_s) noexcept override;
 
@@ -69,7 +69,7 @@ class ChaseClock final : public ShowClock {
   const ChaseOptions& options() const noexcept { return options_; }
 
  private:
-  firmware_iface::TimecodeSource& source_;
+  inputs::TimecodeSource& source_;
   ChaseOptions options_;
   std::int64_t (*clock_ns_)() noexcept;
   ChaseState state_ = ChaseState::waiting;

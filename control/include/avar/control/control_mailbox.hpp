@@ -12,7 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "avar/firmware_iface/input_source.hpp"
+#include "avar/inputs/input_source.hpp"
 
 namespace avar::control {
 
@@ -24,7 +24,7 @@ struct ControlReading {
   std::int64_t arrived_ns = 0;  ///< CLOCK_MONOTONIC of the newest message
 };
 
-class ControlMailbox final : public firmware_iface::ControlSink {
+class ControlMailbox final : public inputs::ControlSink {
  public:
   /// One slot per name (duplicates are one slot). Allocates.
   explicit ControlMailbox(std::vector<std::string> names);
