@@ -74,7 +74,7 @@ test-docs: test-sanitize
 
 docs-site: deps
 	@scripts/gen-cli-reference.py $(DOCS_AVAR) docs/reference/commands mkdocs.yml
-	mkdocs build --strict --site-dir $(BUILD)/site
+	PYTHONWARNINGS=ignore::DeprecationWarning mkdocs build --strict --site-dir $(BUILD)/site
 	@echo "docs: $(BUILD)/site/index.html"
 
 # clang-format and clang-tidy on what changed since .ci/lint-base (or LINT_BASE=<commit>). clang-tidy
