@@ -1,5 +1,6 @@
 # The two commands a new user needs: `make demo` and `make test`. Both install what is missing,
-# configure and build first. `make bench` runs the benchmarks, `make fuzz FUZZ_SECONDS=N` the fuzzers.
+# configure and build first. `make bench` runs the benchmarks, `make fuzz FUZZ_SECONDS=N` the fuzzers,
+# `make docs` builds the manual (docs/) as a site in $(BUILD)/site.
 BUILD ?= build
 SANITIZE_BUILD ?= build-sanitize
 TSAN_BUILD ?= build-tsan
@@ -16,10 +17,12 @@ CMAKE_FLAGS ?=
 WERROR = -DAVAR_WERROR=ON
 BENCH ?= OFF
 AVAR = $(BUILD)/apps/avar
+# The avar binary whose --help the docs' command reference is generated from (`make docs` builds it).
+DOCS_AVAR ?= $(AVAR)
 # Line tables only (-g1): stack traces keep file:line while CI's three builds stay short.
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 
-.PHONY: all deps configure build demo demo-talking lint test test-fast test-sanitize test-tsan bench fuzz package clean
+.PHONY: all deps configure build demo demo-talking docs docs-site test-docs lint test test-fast test-sanitize test-tsan bench fuzz package clean
 
 all: build
 
@@ -56,7 +59,23 @@ demo-talking: configure $(TALKING_VOICE)
 # -O0 the Eigen-heavy tests ran 5x slower.
 TSAN_SUITES = control sim firmware_iface inputs assembly
 TSAN_EXCLUDE = ^Limiter\.
-test: lint test-sanitize test-tsan
+test: lint test-sanitize test-docs test-tsan
+
+# The manual as a site: the command reference generated from the avar binary's own --help into
+# docs/reference/commands/ (not committed), then MkDocs in strict mode, so that a broken link or a
+# page missing from mkdocs.yml's nav fails. `make docs` builds the optimised avar for it; `make test`
+# uses the sanitizer tree's binary, built already, rather than a third build.
+docs: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target avar
+	@$(MAKE) --no-print-directory docs-site DOCS_AVAR=$(AVAR)
+
+test-docs: test-sanitize
+	@$(MAKE) --no-print-directory docs-site DOCS_AVAR=$(SANITIZE_BUILD)/apps/avar
+
+docs-site: deps
+	@scripts/gen-cli-reference.py $(DOCS_AVAR) docs/reference/commands mkdocs.yml
+	PYTHONWARNINGS=ignore::DeprecationWarning mkdocs build --strict --site-dir $(BUILD)/site
+	@echo "docs: $(BUILD)/site/index.html"
 
 # clang-format and clang-tidy on what changed since .ci/lint-base (or LINT_BASE=<commit>). clang-tidy
 # reads the compile database of a configured-only tree: the sanitizer trees compile eight files to
@@ -104,4 +123,4 @@ package: build
 	@dpkg-deb -I $(BUILD)/avar_*.deb | sed -n '/Package:/p;/Version:/p;/Depends:/p'
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD) $(LINT_BUILD) $(FUZZ_BUILD) docs/reference/commands

@@ -136,7 +136,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "or of --inputs FILE) moves it. Without --input the devices listed in that section open.\n"
       "OSC: /avar/control/NAME f V sets a control, /avar/channel/NAME f V a channel in its units.\n"
       "Examples:\n"
-      "  avar puppet --rig examples/rigs/puppet-head.yaml --sim --input osc://127.0.0.1:9000\n"
+      "  avar puppet --rig examples/rigs/hello-head.yaml --sim --input osc://127.0.0.1:9000\n"
       "      then: oscsend localhost 9000 /avar/channel/jaw f 20\n"
       "  avar puppet --rig RIG --inputs my-pad.yaml --input pad=hid:054c:09cc");
 
@@ -169,6 +169,20 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   std::string retime;
   check_cmd->add_option("--retime", retime,
                         "Write a version of the show whose too-fast segments are stretched just enough (OUT.yaml)");
+  check_cmd->footer(
+      "Reads the rig and the show whole, and the rig's inputs: section, and opens no port. It prints:\n"
+      "  error: FILE:LINE:COL: what was found, what was expected   (stderr; exit 2, the show cannot play)\n"
+      "  warning: ...   what playback will change, such as a Bezier handle overshooting a limit (clamped)\n"
+      "  ok: show 'NAME' (4 s, 2 tracks, 7 keys) fits rig 'NAME' (8 channels, 8 actuators, 1 link(s))\n"
+      "  infeasible: show.yaml:5:7: neck_tilt 0-0.05 s: speed 580 deg/s, allowed 220 deg/s\n"
+      "      a segment (from the key at that line) that asks more speed, acceleration or range than the\n"
+      "      channel allows: what it needs against what is allowed\n"
+      "  step: show.yaml:10:7: jaw 0.5-1.5 s: jumps by 25 deg at once (step)   a step key's jump\n"
+      "  then a count of both. The limiter slows or clamps them at playback, so the figure stays safe\n"
+      "either way; --retime writes a show that asks no more than the rig allows. Exit 0 when the show can\n"
+      "play. Examples:\n"
+      "  avar check examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml\n"
+      "  avar check my-show.yaml --rig my-rig.yaml --retime my-show-retimed.yaml");
 
   SampleOptions sample;
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);

@@ -91,12 +91,33 @@ InputsCommands add_inputs_subcommands(CLI::App& app, InputsOptions& o) {
   CLI::App* inputs =
       app.add_subcommand("inputs", "See what live input devices send, and learn which control drives which channel");
   inputs->require_subcommand(1);
+  inputs->footer(
+      "Live inputs are devices that drive channels while a figure plays (avar play/puppet/record --input).\n"
+      "Each device delivers named controls with normalised values: sticks, hats and pitch bend -1..1,\n"
+      "faders, triggers, buttons and notes 0..1. These commands help set them up:\n"
+      "  monitor   print each control as it moves, to learn its name (for the inputs: mappings)\n"
+      "  learn     move one control per channel when asked; writes a mappings file for --inputs\n"
+      "Devices: osc://HOST:PORT (UDP), midi:NAME (ALSA sequencer port), hid:VID:PID[:SERIAL] (gamepad).\n"
+      "Examples:\n"
+      "  avar inputs monitor --input hid:054c:09cc\n"
+      "  avar inputs learn --rig examples/rigs/hello-head.yaml --input midi:nano --channels jaw,neck_pan --out inputs.yaml");
   const char* input_help =
       "Input device, repeatable: osc://HOST:PORT, midi:NAME, hid:VID:PID[:SERIAL]; NAME=URI prefixes its controls";
   InputsCommands cmds;
   cmds.monitor = inputs->add_subcommand("monitor", "Print every control of the devices as it moves (until Ctrl-C)");
   cmds.monitor->add_option("--input", o.inputs, input_help)->required();
   cmds.monitor->add_option("--duration", o.duration_s, "Stop after this many seconds")->check(CLI::PositiveNumber);
+  cmds.monitor->footer(
+      "Opens the devices and prints one line per control each time its value changes:\n"
+      "  1.25 s  pad.x = -0.4961 (bipolar)\n"
+      "seconds since start, the control's name (prefixed by NAME= when given), its value, and its kind:\n"
+      "bipolar controls span -1..1 with rest at 0 (sticks, hats, pitch bend), unipolar 0..1 (faders,\n"
+      "triggers, buttons, notes). Use the names in the control: keys of a rig's inputs: mappings. At the end\n"
+      "(Ctrl-C or --duration) each device prints its counters: messages received and ignored (an OSC\n"
+      "address it does not know, MIDI clock or SysEx). A device that cannot be opened exits 2 with the reason\n"
+      "(HID and MIDI name the devices they can see). Examples:\n"
+      "  avar inputs monitor --input hid:054c:09cc                  # a gamepad: which stick is x, y, z, rz?\n"
+      "  avar inputs monitor --input pad=osc://:9000 --duration 30  # then: oscsend localhost 9000 /avar/control/jaw f 0.5");
   cmds.learn = inputs->add_subcommand("learn", "Map controls to channels by moving them, one channel after the other");
   cmds.learn->add_option("--rig", o.rig_path, "Rig file whose channels to learn")->required();
   cmds.learn->add_option("--input", o.inputs, input_help)->required();
