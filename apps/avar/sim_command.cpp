@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "avar/assembly/can_drive.hpp"
+#include "avar/rig/can_drive_schema.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/firmware_iface/can_frame.hpp"
 #include "avar/firmware_iface/dynamixel_codec.hpp"
@@ -200,10 +201,11 @@ int run_sim_dmx(const SimDmxOptions& options, std::ostream& out, std::ostream& e
 
 int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.pty) return refuse_without_pty(err);
+  const rig::CanDriveSchema* schema = rig::find_drive_schema(options.drive);
   const assembly::CanDriveProtocol* drive = assembly::find_can_drive(options.drive);
-  if (!drive) {
-    err << "error: --drive: '" << options.drive
-        << "' is not a CAN drive protocol; expected one of: " << assembly::can_drive_names() << "\n";
+  if (!schema || !drive) {
+    err << "error: --drive: '" << options.drive << "' is not a CAN drive protocol; expected one of: " << rig::drive_names()
+        << "\n";
     return kExitBadInput;
   }
   if (!firmware_iface::is_standard_can_bitrate(options.bitrate)) {
@@ -211,9 +213,9 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
         << " is not a CAN bitrate; expected 10000, 20000, 50000, 100000, 125000, 250000, 500000, 800000 or 1000000\n";
     return kExitBadInput;
   }
-  if (!drive->accepts_bitrate(options.bitrate)) {
-    err << "error: --bitrate: a " << drive->device_name << " cannot run at " << options.bitrate
-        << "; expected one of: " << drive->bitrates_text << "\n";
+  if (!schema->accepts_bitrate(options.bitrate)) {
+    err << "error: --bitrate: a " << schema->device_name << " cannot run at " << options.bitrate
+        << "; expected one of: " << schema->bitrates_text << "\n";
     return kExitBadInput;
   }
   assembly::CanBusOptions bus;
@@ -222,9 +224,9 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
   std::vector<sim::CanNode*> nodes;
   std::string ids;
   for (int id : options.ids) {
-    if (id < drive->node_low || id > drive->node_high) {
-      err << "error: --ids: " << id << " is not a " << drive->device_name << " node; expected " << drive->node_low << " to "
-          << drive->node_high << "\n";
+    if (id < schema->node_low || id > schema->node_high) {
+      err << "error: --ids: " << id << " is not a " << schema->device_name << " node; expected " << schema->node_low << " to "
+          << schema->node_high << "\n";
       return kExitBadInput;
     }
     if (std::find(options.ids.begin(), options.ids.end(), id) !=
@@ -239,10 +241,10 @@ int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostrea
   sim::SimSlcanAdapter device(sim::SimSlcanConfig{.bus_bitrate = options.bitrate}, nodes);
   return serve_on_pty(
       device,
-      "simulated SLCAN adapter with " + std::string(drive->device_name) + (drives.size() == 1 ? "" : "s") + " at node" +
+      "simulated SLCAN adapter with " + std::string(schema->device_name) + (drives.size() == 1 ? "" : "s") + " at node" +
           (drives.size() == 1 ? " " : "s ") + ids + " on a " + std::to_string(options.bitrate) + " bit/s bus",
       [&] {
-        std::string line = std::string("positions (") + drive->device_unit + "):";
+        std::string line = std::string("positions (") + schema->device_unit + "):";
         char value[24];
         for (std::size_t i = 0; i < drives.size() && i < 8; ++i) {
           std::snprintf(value, sizeof value, " %.3f", drives[i].device_position());

@@ -135,7 +135,7 @@ sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return en
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
 
 bool FigureLinks::reports_telemetry(std::size_t link) const {
-  return protocol_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
+  return rig::schema_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
 }
 
 void FigureLinks::with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f) {

@@ -271,8 +271,8 @@ inline CellRun run_cell(const ProtocolCase& pc, FaultKind kind, std::uint64_t se
   out.show_end = controller.show_end();
   out.tick_s = options.tick_period_s;
   out.watchdog_s = rig.links[0].watchdog_s;
-  if (const ScalarValue* t = rig.links[0].settings.find("heartbeat_timeout_ms"))
-    out.watchdog_s = std::max(out.watchdog_s, static_cast<double>(t->as_integer("heartbeat_timeout_ms")) / 1000.0);
+  if (const auto* can = std::get_if<rig::CanOptions>(&rig.links[0].options); can && can->heartbeat_timeout_ms)
+    out.watchdog_s = std::max(out.watchdog_s, static_cast<double>(*can->heartbeat_timeout_ms) / 1000.0);
   out.final_command.assign(controller.commanded().begin(), controller.commanded().end());
   out.rest = rig.rest_frame();
   figure.finish(controller);

@@ -1,8 +1,9 @@
 #pragma once
-// The registry of protocols: everything avar knows about one kind of link, in one entry. A new
-// protocol joins by one entry (its own source file under assembly/src/protocols/) and one line in
-// the registry's list; the rig reader, the validation, the driver and the simulator all reach it
-// through here. Load-time only: nothing here runs in the tick.
+// The registry of protocols: how avar opens one kind of link, in one entry. What a protocol's
+// settings are and how they parse is its schema in the rig (avar/rig/protocol_schema.hpp); an
+// entry here turns a parsed link into its driver and its simulated device. A new protocol joins
+// by a schema, one entry (its own source file under assembly/src/protocols/) and one line in the
+// registry's list. Load-time only: nothing here runs in the tick.
 
 #include <algorithm>
 #include <chrono>
@@ -16,23 +17,14 @@
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/usb_control_transport.hpp"
+#include "avar/assembly/sim_offer.hpp"
+#include "avar/rig/protocol_schema.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/sim/byte_device.hpp"
 #include "avar/sim/sim_dmx_node.hpp"
 #include "avar/sim/usb_control_device.hpp"
 
 namespace avar::assembly {
-
-/// How an actuator is addressed and calibrated on a link.
-struct AddressRule {
-  const char* key;      ///< device_channel, id or address
-  long long low, high;  ///< valid addresses
-  const char* cal_min;  ///< calibration keys
-  const char* cal_max;
-  const char* trim;
-  double device_low, device_high;  ///< the device's own range
-  const char* unit;
-};
 
 /// A simulated device for one link of a rig, and how to read an actuator's true position off it
 /// (channel units: the ground truth the simulator knows and a real figure never tells).
@@ -62,20 +54,7 @@ struct DriverTuning {
 };
 
 struct Protocol {
-  const char* name;         ///< the settings block's key in a rig file: `maestro: {...}`
-  const char* device_name;  ///< for messages: "Maestro"
-  int default_baud;
-  const char* bauds_text;  ///< the rates the device runs at, for messages
-  bool (*device_accepts_baud)(int baud);
-  /// Checks the link's settings whole (keys, types, ranges); throws InputError at the setting.
-  void (*validate_settings)(const rig::LinkSpec& link);
-  AddressRule (*address_rule)(const rig::LinkSpec& link, bool fine);
-  /// Whether the actuator may set `fine` (16-bit DMX).
-  bool has_fine_addresses;
-  /// Whether an actuator must be calibrated (a DMX dimmer spans its range by default).
-  bool needs_calibration;
-  /// Whether the devices report telemetry (position, load, temperature) with these settings.
-  bool (*reports_telemetry)(const rig::LinkSpec& link);
+  const char* name;  ///< its schema's name (rig::find_schema): `maestro`
   /// The driver of link `link` of a validated rig over `transport` (borrowed).
   std::unique_ptr<firmware_iface::ActuatorLink> (*make_link)(const rig::Rig& rig, std::size_t link,
                                                              firmware_iface::ByteTransport& transport,
@@ -83,16 +62,6 @@ struct Protocol {
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
 
-  // Buses of drives (CAN) only; nullptr for every other protocol.
-
-  /// Interprets an actuator's own keys (a.settings: everything but channel, link, the address,
-  /// speed, acceleration and failsafe), fills a.drive and a.calibration. Throws InputError at
-  /// the key. A protocol with this hook takes no calibration block.
-  void (*finish_actuator)(const rig::Rig& rig, rig::ActuatorSpec& a) = nullptr;
-  /// Checks a link's actuators together once all are read (identifiers that collide on the bus,
-  /// a bitrate a drive cannot run at). Replaces the one-address-one-actuator check. Throws
-  /// InputError at the offending actuator.
-  void (*validate_link_actuators)(const rig::Rig& rig, std::size_t link) = nullptr;
   /// Opens a link whose port is no serial device (a SocketCAN interface, a Maestro on USB) and
   /// makes its driver; nullptr: FigureLinks opens a SerialTransport on the port and calls
   /// make_link. Not called for simulated links.
@@ -101,9 +70,6 @@ struct Protocol {
   /// Whether the link's port (as written or given with --port) is a serial device (make_link)
   /// rather than something open_link opens.
   bool (*port_is_serial)(const rig::LinkSpec& link, const std::string& port) = nullptr;
-  /// Whether the link may leave out its port because the device is found otherwise (a Maestro
-  /// on USB by its serial number); the link's port is then "". Asked before validate_settings.
-  bool (*port_optional)(const rig::LinkSpec& link) = nullptr;
   /// The driver of a link whose device is reached by USB control transfers, over `transport`
   /// (owned): the real device (from open_link) or a simulated one (SimulatedDevice::usb_device).
   std::unique_ptr<firmware_iface::ActuatorLink> (*make_usb_link)(const rig::Rig& rig, std::size_t link,
@@ -113,13 +79,6 @@ struct Protocol {
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;
 
-  /// Keys an actuator on this protocol's links takes besides the common ones and its address key
-  /// (gpio: active_low), as written into ActuatorSpec::settings. Not for buses of drives.
-  std::vector<std::string_view> actuator_keys = {};
-  /// Checks one actuator once read (its channel's kind, its own keys); throws InputError at the
-  /// key. nullptr: nothing more to check.
-  void (*check_actuator)(const rig::Rig& rig, const rig::ActuatorSpec& a) = nullptr;
-
   // Lines of a GPIO chip only; nullptr for every other protocol.
 
   /// The driver of a link whose port names a GPIO chip, over that chip (opened by FigureLinks
@@ -127,6 +86,9 @@ struct Protocol {
   /// make_simulated.
   std::unique_ptr<firmware_iface::ActuatorLink> (*make_chip_link)(const rig::Rig& rig, std::size_t link,
                                                                   std::shared_ptr<firmware_iface::GpioChip> chip) = nullptr;
+
+  /// What `avar sim NAME` serves for this protocol.
+  SimOffer sim = {};
 };
 
 /// Every protocol avar speaks, in the order messages list them.
@@ -135,15 +97,9 @@ const std::vector<const Protocol*>& protocols();
 const Protocol* find_protocol(std::string_view name);
 /// The protocol of a link of a validated rig (std::invalid_argument when unknown).
 const Protocol& protocol_of(const rig::LinkSpec& link);
-/// "maestro, dynamixel, ..." for messages.
-std::string protocol_names();
+/// Its schema.
+const rig::ProtocolSchema& schema_of(const Protocol& p);
 
-/// The baud rate written for a link of protocol `p` (`what` names it: "the baud rate of link
-/// 'arm'"): a standard serial rate that the device runs at. Throws InputError at the value.
-int checked_baud(const Protocol& p, const ScalarValue& written, std::string_view what);
-
-/// Index of an actuator among its link's actuators (the order drivers and simulated devices
-/// list them in).
-std::size_t index_on_link(const rig::Rig& rig, const rig::ActuatorSpec& wanted);
+using rig::index_on_link;
 
 }  // namespace avar::assembly
