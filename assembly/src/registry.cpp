@@ -31,6 +31,20 @@ const Protocol& protocol_of(const rig::LinkSpec& link) {
   throw std::invalid_argument("link '" + link.name + "' speaks an unknown protocol '" + link.protocol + "'");
 }
 
+OpenedLink open_over_bytes(const rig::Rig& rig, std::size_t link, const LinkEndpoint& at,
+                           std::unique_ptr<firmware_iface::ActuatorLink> (*make)(const rig::Rig& rig, std::size_t link,
+                                                                                 firmware_iface::ByteTransport& transport,
+                                                                                 const DriverTuning& tuning)) {
+  OpenedLink opened;
+  if (at.bytes) {
+    opened.driver = make(rig, link, *at.bytes, at.tuning);
+  } else {
+    opened.serial = std::make_unique<firmware_iface::SerialTransport>(at.port, rig.links[link].baud);
+    opened.driver = make(rig, link, *opened.serial, at.tuning);
+  }
+  return opened;
+}
+
 const rig::ProtocolSchema& schema_of(const Protocol& p) {
   if (const rig::ProtocolSchema* schema = rig::find_schema(p.name)) return *schema;
   throw std::invalid_argument(std::string("protocol '") + p.name + "' has no schema");

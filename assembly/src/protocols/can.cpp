@@ -162,25 +162,34 @@ SimOffer drive_sim_offer(const char* name, const char* summary, const char* exam
   };
 }
 
+namespace {
+
+std::unique_ptr<firmware_iface::ActuatorLink> slcan_link(const rig::Rig& rig, std::size_t link,
+                                                         firmware_iface::ByteTransport& serial, const DriverTuning& tuning) {
+  const CanBusOptions bus = can_bus_options(rig, link);
+  auto transport = std::make_unique<firmware_iface::SlcanTransport>(serial, bus.bitrate);
+  return std::make_unique<firmware_iface::CanLink>(std::move(transport), make_drive_sets(rig, link, bus),
+                                                   link_config(rig, link, bus, "SLCAN on " + serial.name(), tuning));
+}
+
+/// Through an SLCAN adapter (a serial port, or a simulated adapter's), else on SocketCAN.
+OpenedLink open_can(const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+  if (at.bytes || at.simulated || uses_slcan(rig.links[link], at.port)) return open_over_bytes(rig, link, at, slcan_link);
+  const CanBusOptions bus = can_bus_options(rig, link);
+  auto transport = std::make_unique<firmware_iface::SocketCanTransport>(at.port, bus.bitrate);
+  OpenedLink opened;
+  opened.driver = std::make_unique<firmware_iface::CanLink>(std::move(transport), make_drive_sets(rig, link, bus),
+                                                            link_config(rig, link, bus, "SocketCAN " + at.port, at.tuning));
+  return opened;
+}
+
+}  // namespace
+
 const Protocol& can_protocol() {
   static const Protocol p{
       .name = "can",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& serial,
-                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        const CanBusOptions bus = can_bus_options(rig, link);
-        auto transport = std::make_unique<firmware_iface::SlcanTransport>(serial, bus.bitrate);
-        return std::make_unique<firmware_iface::CanLink>(std::move(transport), make_drive_sets(rig, link, bus),
-                                                         link_config(rig, link, bus, "SLCAN on " + serial.name(), tuning));
-      },
+      .open = open_can,
       .make_simulated = simulated_can,
-      .open_link = [](const rig::Rig& rig, std::size_t link,
-                      const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        const CanBusOptions bus = can_bus_options(rig, link);
-        auto transport = std::make_unique<firmware_iface::SocketCanTransport>(port, bus.bitrate);
-        return std::make_unique<firmware_iface::CanLink>(std::move(transport), make_drive_sets(rig, link, bus),
-                                                         link_config(rig, link, bus, "SocketCAN " + port, DriverTuning{}));
-      },
-      .port_is_serial = uses_slcan,
       .simulation_runs_during_start = true,
       .sim =
           {

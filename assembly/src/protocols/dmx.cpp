@@ -61,10 +61,14 @@ firmware_iface::DmxLinkConfig dmx_config(const rig::Rig& rig, std::size_t link) 
 const Protocol& dmx_protocol() {
   static const Protocol p{
       .name = "dmx",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
-      },
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
+                                   });
+          },
       .make_simulated = simulated_dmx,
       .sim =
           {

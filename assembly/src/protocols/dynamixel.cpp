@@ -81,12 +81,16 @@ firmware_iface::DynamixelLinkConfig dynamixel_config(const rig::Rig& rig, std::s
 const Protocol& dynamixel_protocol() {
   static const Protocol p{
       .name = "dynamixel",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
-        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
-        return std::make_unique<firmware_iface::DynamixelLink>(transport, config);
-      },
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
+                                     config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
+                                     return std::make_unique<firmware_iface::DynamixelLink>(transport, config);
+                                   });
+          },
       .make_simulated = simulated_dynamixel,
       .sim =
           {

@@ -99,12 +99,16 @@ firmware_iface::FeetechLinkConfig feetech_config(const rig::Rig& rig, std::size_
 const Protocol& feetech_protocol() {
   static const Protocol p{
       .name = "feetech",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
-        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
-        return std::make_unique<firmware_iface::FeetechLink>(transport, config);
-      },
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
+                                     config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
+                                     return std::make_unique<firmware_iface::FeetechLink>(transport, config);
+                                   });
+          },
       .make_simulated = simulated_feetech,
       .sim =
           {

@@ -22,19 +22,16 @@ firmware_iface::GpioLinkConfig gpio_config(const rig::Rig& rig, std::size_t link
 const Protocol& gpio_protocol() {
   static const Protocol p{
       .name = "gpio",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport&,
-                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        throw std::logic_error("gpio link '" + rig.links[link].name + "' is opened on its chip, not a serial port");
-      },
-      .make_simulated = [](const rig::Rig& rig, std::size_t link) -> SimulatedDevice {
-        throw std::logic_error("gpio link '" + rig.links[link].name + "' is simulated by a simulated chip, not a byte device");
-      },
-      .port_is_serial = [](const rig::LinkSpec&, const std::string&) { return false; },
-      .make_chip_link = [](const rig::Rig& rig, std::size_t link,
-                           std::shared_ptr<firmware_iface::GpioChip> chip) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        firmware_iface::GpioLinkConfig config = gpio_config(rig, link, chip->describe());
-        return std::make_unique<firmware_iface::GpioLink>(std::move(chip), std::move(config));
-      },
+      .open =
+          [](const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+            if (!at.chip) throw std::logic_error("gpio link '" + rig.links[link].name + "' is opened on its chip");
+            firmware_iface::GpioLinkConfig config = gpio_config(rig, link, at.chip->describe());
+            OpenedLink opened;
+            opened.driver = std::make_unique<firmware_iface::GpioLink>(std::move(at.chip), std::move(config));
+            return opened;
+          },
+      .make_simulated = nullptr,
+      .on_gpio_chip = true,
       .sim =
           {
               .name = "gpio",

@@ -149,23 +149,39 @@ std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& r
   return std::make_unique<firmware_iface::MaestroUsbLink>(std::move(transport), maestro_usb_config(rig, link, DriverTuning{}));
 }
 
+bool maestro_port_is_serial(const rig::LinkSpec& link, const std::string& port) {
+  return !link.options_as<rig::MaestroOptions>().usb || !port.empty();
+}
+
+namespace {
+
+std::unique_ptr<firmware_iface::ActuatorLink> serial_maestro(const rig::Rig& rig, std::size_t link,
+                                                             firmware_iface::ByteTransport& transport, const DriverTuning&) {
+  return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
+}
+
+/// On USB (a simulated device's, or found by its serial number), else on its virtual serial port:
+/// a port given on the command line (--port /dev/ttyACM0) opens that even when the rig says usb.
+OpenedLink open_maestro(const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+  if (at.usb) {
+    OpenedLink opened;
+    opened.driver = std::make_unique<firmware_iface::MaestroUsbLink>(std::move(at.usb), maestro_usb_config(rig, link, at.tuning));
+    return opened;
+  }
+  if (at.bytes || at.simulated || maestro_port_is_serial(rig.links[link], at.port))
+    return open_over_bytes(rig, link, at, serial_maestro);
+  OpenedLink opened;
+  opened.driver = open_maestro_usb(rig, link);
+  return opened;
+}
+
+}  // namespace
+
 const Protocol& maestro_protocol() {
   static const Protocol p{
       .name = "maestro",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
-      },
+      .open = open_maestro,
       .make_simulated = simulated_maestro,
-      .open_link = [](const rig::Rig& rig, std::size_t link, const std::string&) { return open_maestro_usb(rig, link); },
-      // A port given on the command line (--port /dev/ttyACM0) opens the Maestro's virtual serial
-      // port even when the rig finds it on USB.
-      .port_is_serial = [](const rig::LinkSpec& link,
-                           const std::string& port) { return !link.options_as<rig::MaestroOptions>().usb || !port.empty(); },
-      .make_usb_link = [](const rig::Rig& rig, std::size_t link, std::unique_ptr<firmware_iface::UsbControlTransport> transport,
-                          const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::MaestroUsbLink>(std::move(transport), maestro_usb_config(rig, link, tuning));
-      },
       .sim =
           {
               .name = "maestro",

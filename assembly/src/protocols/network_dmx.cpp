@@ -98,19 +98,14 @@ ServedDevice standalone_sacn(const SimValues& values) {
   return standalone_node(sim::DmxNodeProtocol::sacn, static_cast<std::uint16_t>(universe), values);
 }
 
-/// A DMX-on-the-network protocol: no port, its own link opener.
+/// A DMX-on-the-network protocol: no port; `open` sends to the endpoint's port when given (a
+/// simulated node's, or --port HOST[:PORT]), else to the rig's destination.
 Protocol network_protocol(const char* name, SimulatedDevice (*make_simulated)(const rig::Rig&, std::size_t),
-                          std::unique_ptr<firmware_iface::ActuatorLink> (*open)(const rig::Rig&, std::size_t, const std::string&),
-                          SimOffer sim) {
+                          OpenedLink (*open)(const rig::Rig&, std::size_t, LinkEndpoint), SimOffer sim) {
   return Protocol{
       .name = name,
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport&,
-                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        throw std::logic_error("link '" + rig.links[link].name + "' is on the network, not a serial port");
-      },
+      .open = open,
       .make_simulated = make_simulated,
-      .open_link = open,
-      .port_is_serial = [](const rig::LinkSpec&, const std::string&) { return false; },
       .sim = std::move(sim),
   };
 }
@@ -157,8 +152,8 @@ const Protocol& artnet_protocol() {
         return simulated_node(sim::DmxNodeProtocol::artnet,
                               artnet_port_address(rig.links[link].options_as<rig::ArtnetOptions>()));
       },
-      [](const rig::Rig& rig, std::size_t link, const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::ArtnetLink>(artnet_config(rig, link, port));
+      [](const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+        return OpenedLink{std::make_unique<firmware_iface::ArtnetLink>(artnet_config(rig, link, at.port)), nullptr};
       },
       SimOffer{
           .name = "artnet",
@@ -185,8 +180,8 @@ const Protocol& sacn_protocol() {
       [](const rig::Rig& rig, std::size_t link) {
         return simulated_node(sim::DmxNodeProtocol::sacn, rig.links[link].options_as<rig::SacnOptions>().universe);
       },
-      [](const rig::Rig& rig, std::size_t link, const std::string& port) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::SacnLink>(sacn_config(rig, link, port));
+      [](const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+        return OpenedLink{std::make_unique<firmware_iface::SacnLink>(sacn_config(rig, link, at.port)), nullptr};
       },
       SimOffer{
           .name = "sacn",

@@ -53,10 +53,14 @@ firmware_iface::Ssc32LinkConfig ssc32_config(const rig::Rig& rig, std::size_t li
 const Protocol& ssc32_protocol() {
   static const Protocol p{
       .name = "ssc32",
-      .make_link = [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
-      },
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
+                                   });
+          },
       .make_simulated = simulated_ssc32,
       .sim =
           {

@@ -16,6 +16,9 @@ firmware_iface::MaestroUsbLinkConfig maestro_usb_config(const rig::Rig& rig, std
 /// setting naming what is missing ("no Maestro with serial 00012345 on USB (found: none)",
 /// "libusb: no USB on this machine (...)") or a Maestro of another model than the link's.
 std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& rig, std::size_t link);
+/// Whether the link's port (as written or given with --port) opens the Maestro's virtual serial
+/// port rather than finding it on USB: a link without usb, or any port given.
+bool maestro_port_is_serial(const rig::LinkSpec& link, const std::string& port);
 const Protocol& maestro_protocol();
 
 }  // namespace avar::assembly

@@ -16,6 +16,7 @@
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/gpio_chip.hpp"
+#include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/assembly/sim_offer.hpp"
 #include "avar/rig/protocol_schema.hpp"
@@ -29,15 +30,15 @@ namespace avar::assembly {
 /// A simulated device for one link of a rig, and how to read an actuator's true position off it
 /// (channel units: the ground truth the simulator knows and a real figure never tells).
 struct SimulatedDevice {
-  /// A device behind a serial port: served on a pseudo-terminal to the driver of make_link.
+  /// A device behind a serial port: served on a pseudo-terminal to the link's driver.
   std::unique_ptr<sim::ByteDevice> device;
   std::function<double(const rig::ActuatorSpec&)> true_position;
   /// Instead of `device`, a device driven by USB control transfers: served in this process to
-  /// the driver of make_usb_link, its connection named usb_name ("USB (serial 00012345)").
+  /// the link's driver, its connection named usb_name ("USB (serial 00012345)").
   std::unique_ptr<sim::UsbControlDevice> usb_device = nullptr;
   std::string usb_name = {};
   /// Instead of `device`, a node on the network (Art-Net, sACN) listening on loopback: the
-  /// protocol's open_link sends to its endpoint().
+  /// link's driver sends to its endpoint().
   std::unique_ptr<sim::SimDmxNode> network_node = nullptr;
 };
 
@@ -53,43 +54,53 @@ struct DriverTuning {
   }
 };
 
+/// Where a link's driver talks: one of a port, a byte transport, a USB device or a GPIO chip.
+struct LinkEndpoint {
+  /// A serial device (/dev/ttyACM0, or a simulated device's pseudo-terminal), a SocketCAN
+  /// interface (can0), a network destination (HOST[:PORT]), or "" for a device the rig finds
+  /// otherwise (a Maestro on USB by its serial number, a network node the rig names).
+  std::string port;
+  /// The port is the pseudo-terminal of a simulated device (a byte device, whatever the rig says).
+  bool simulated = false;
+  /// Instead of a port: a byte transport the caller owns and keeps until the driver goes.
+  firmware_iface::ByteTransport* bytes = nullptr;
+  /// Instead of a port: a device reached by USB control transfers (the driver takes it).
+  std::unique_ptr<firmware_iface::UsbControlTransport> usb = nullptr;
+  /// Instead of a port: the GPIO chip of a link on a chip's lines (real, or simulated).
+  std::shared_ptr<firmware_iface::GpioChip> chip = nullptr;
+  DriverTuning tuning = {};
+};
+
+/// A link's driver, and the serial port it borrows when open opened one (closed after the driver).
+struct OpenedLink {
+  std::unique_ptr<firmware_iface::ActuatorLink> driver;
+  std::unique_ptr<firmware_iface::SerialTransport> serial;
+};
+
 struct Protocol {
   const char* name;  ///< its schema's name (rig::find_schema): `maestro`
-  /// The driver of link `link` of a validated rig over `transport` (borrowed).
-  std::unique_ptr<firmware_iface::ActuatorLink> (*make_link)(const rig::Rig& rig, std::size_t link,
-                                                             firmware_iface::ByteTransport& transport,
-                                                             const DriverTuning& tuning);
+  /// The one way to make the driver of link `link` of a parsed rig: over the endpoint given (a
+  /// real device, or a simulated one served by the caller). Throws InputError at the link's
+  /// settings for a device that cannot be reached as the rig says.
+  OpenedLink (*open)(const rig::Rig& rig, std::size_t link, LinkEndpoint at);
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
+  /// nullptr for links on a GPIO chip, which FigureLinks simulates as a chip.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
-
-  /// Opens a link whose port is no serial device (a SocketCAN interface, a Maestro on USB) and
-  /// makes its driver; nullptr: FigureLinks opens a SerialTransport on the port and calls
-  /// make_link. Not called for simulated links.
-  std::unique_ptr<firmware_iface::ActuatorLink> (*open_link)(const rig::Rig& rig, std::size_t link,
-                                                             const std::string& port) = nullptr;
-  /// Whether the link's port (as written or given with --port) is a serial device (make_link)
-  /// rather than something open_link opens.
-  bool (*port_is_serial)(const rig::LinkSpec& link, const std::string& port) = nullptr;
-  /// The driver of a link whose device is reached by USB control transfers, over `transport`
-  /// (owned): the real device (from open_link) or a simulated one (SimulatedDevice::usb_device).
-  std::unique_ptr<firmware_iface::ActuatorLink> (*make_usb_link)(const rig::Rig& rig, std::size_t link,
-                                                                 std::unique_ptr<firmware_iface::UsbControlTransport> transport,
-                                                                 const DriverTuning& tuning) = nullptr;
+  /// The link's port names a GPIO chip: FigureLinks opens it (real or simulated) for `open`.
+  bool on_gpio_chip = false;
   /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;
-
-  // Lines of a GPIO chip only; nullptr for every other protocol.
-
-  /// The driver of a link whose port names a GPIO chip, over that chip (opened by FigureLinks
-  /// through its GpioChips: real, or simulated for port sim). Replaces make_link, open_link and
-  /// make_simulated.
-  std::unique_ptr<firmware_iface::ActuatorLink> (*make_chip_link)(const rig::Rig& rig, std::size_t link,
-                                                                  std::shared_ptr<firmware_iface::GpioChip> chip) = nullptr;
-
   /// What `avar sim NAME` serves for this protocol.
   SimOffer sim = {};
 };
+
+/// A driver over bytes: `at.bytes` when given, else a serial port opened on `at.port` at the
+/// link's baud rate. `make` builds the protocol's driver over that transport.
+OpenedLink open_over_bytes(const rig::Rig& rig, std::size_t link, const LinkEndpoint& at,
+                           std::unique_ptr<firmware_iface::ActuatorLink> (*make)(const rig::Rig& rig, std::size_t link,
+                                                                                 firmware_iface::ByteTransport& transport,
+                                                                                 const DriverTuning& tuning));
 
 /// Every protocol avar speaks, in the order messages list them.
 const std::vector<const Protocol*>& protocols();
