@@ -1,8 +1,12 @@
-# avar_check_links_only(TARGET ALLOWED...): fails the configure step when TARGET links, directly or
-# through any library it links, anything but the targets ALLOWED (by their real names, avar_core),
-# or when one of those links anything. The project's build flags (avar_build_flags: warnings,
-# sanitizers) are compile and link options, not libraries, and pass. Call it after TARGET's
-# dependencies are declared: the walk reads their link lists as they stand.
+# Build checks of the architecture's layering, walked through CMake's link interfaces.
+#
+# avar_link_closure(TARGET OUT): sets OUT to every item TARGET links, directly or through another
+# target's link interface: targets by their real names (aliases resolved), libraries and flags as
+# written. $<BUILD_INTERFACE:x> and $<LINK_ONLY:x>, nested too, still link x and are looked into;
+# $<INSTALL_INTERFACE:...> is not part of the build. The project's build flags (avar_build_flags:
+# warnings, sanitizers) are compile and link options, not libraries: left out, and refused if they
+# ever link a library. The walk reads link lists as they stand: call it after every dependency of
+# TARGET is declared (at the end of the top-level directory, or after the targets involved).
 function(_avar_link_items target out)
   get_target_property(type ${target} TYPE)
   set(properties INTERFACE_LINK_LIBRARIES)
@@ -19,23 +23,28 @@ function(_avar_link_items target out)
   set(${out} ${items} PARENT_SCOPE)
 endfunction()
 
-function(avar_check_links_only target)
-  set(allowed ${ARGN})
+function(avar_link_closure target out)
   set(pending ${target})
-  set(seen)
+  set(walked)
+  set(closure)
   while(pending)
     list(POP_FRONT pending current)
-    if(current IN_LIST seen)
+    if(current IN_LIST walked)
       continue()
     endif()
-    list(APPEND seen ${current})
+    list(APPEND walked ${current})
+    if(NOT TARGET ${current})
+      continue()
+    endif()
     _avar_link_items(${current} items)
     foreach(entry IN LISTS items)
-      # $<BUILD_INTERFACE:x> and $<LINK_ONLY:x>, nested too, still link x: look inside.
       set(item "${entry}")
       while(item MATCHES "^\\$<(BUILD_INTERFACE|LINK_ONLY):(.*)>$")
         set(item "${CMAKE_MATCH_2}")
       endwhile()
+      if(item STREQUAL "" OR item MATCHES "^\\$<INSTALL_INTERFACE:")
+        continue()
+      endif()
       if(item STREQUAL "avar_build_flags")
         get_target_property(flag_links avar_build_flags INTERFACE_LINK_LIBRARIES)
         if(flag_links)
@@ -49,10 +58,22 @@ function(avar_check_links_only target)
           set(item ${real})
         endif()
       endif()
-      if(NOT item IN_LIST allowed)
-        message(FATAL_ERROR "${target} must link only ${allowed}, but ${current} links ${item}")
+      if(NOT item IN_LIST closure)
+        list(APPEND closure ${item})
       endif()
       list(APPEND pending ${item})
     endforeach()
   endwhile()
+  set(${out} ${closure} PARENT_SCOPE)
+endfunction()
+
+# avar_check_links_only(TARGET ALLOWED...): fails the configure step when TARGET's link closure
+# holds anything but the targets ALLOWED (by their real names, e.g. avar_core).
+function(avar_check_links_only target)
+  avar_link_closure(${target} closure)
+  foreach(item IN LISTS closure)
+    if(NOT item IN_LIST ARGN)
+      message(FATAL_ERROR "${target} must link only ${ARGN}, but its link closure holds ${item} (all: ${closure})")
+    endif()
+  endforeach()
 endfunction()

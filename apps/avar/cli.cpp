@@ -108,9 +108,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      a talking figure's jaw track from a voice recording\n"
       "  avar visemes voice.tsv --rig RIG --out lips.yaml\n"
       "      lip-sync tracks from Rhubarb or Papagayo mouth cues through the rig's visemes: table\n"
-      "  avar sim maestro --pty     /   avar sim dynamixel --pty --ids 1,2,3   /   avar sim feetech|ssc32|dmx --pty\n"
-      "      run a simulated device and print the serial port other programs can open\n"
-      "  avar sim slcan --pty --drive odrive --ids 1,2,3\n"
+      "  avar sim maestro   /   avar sim dynamixel --ids 1,2,3   /   avar sim feetech|ssc32|dmx|artnet|sacn\n"
+      "      run a simulated device and print where other programs reach it (a serial port, or HOST:PORT)\n"
+      "  avar sim odrive --ids 1,2,3   /   avar sim can --drive cia402 --ids 5   (can is also slcan)\n"
       "      a simulated SLCAN adapter (CANable-like) with simulated CAN drives behind it\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");
   app.require_subcommand(1);
@@ -202,50 +202,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   MocapBakeOptions mocap_bake;
   CLI::App* mocap_bake_cmd = add_mocap_bake_subcommand(*mocap_cmds.mocap, mocap_bake);
 
-  SimMaestroOptions sim_maestro;
-  CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
-  sim_cmd->require_subcommand(1);
-  CLI::App* sim_maestro_cmd =
-      sim_cmd->add_subcommand("maestro", "A simulated Pololu Maestro on a pseudo-terminal; prints the port path, serves until Ctrl-C");
-  sim_maestro_cmd->add_flag("--pty", sim_maestro.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_maestro_cmd->add_option("--channels", sim_maestro.channels, "Channel count: 6, 12, 18 or 24")
-      ->check(CLI::IsMember({6, 12, 18, 24}));
-  sim_maestro_cmd->add_option("--device-number", sim_maestro.device_number, "Device number for the Pololu protocol, 0 to 127")
-      ->check(CLI::Range(0, 127));
-  sim_maestro_cmd->add_flag("--crc", sim_maestro.crc, "Expect a CRC-7 byte after every command");
-  SimDynamixelOptions sim_dynamixel;
-  CLI::App* sim_dynamixel_cmd = sim_cmd->add_subcommand(
-      "dynamixel", "Simulated DYNAMIXEL X-series servos on one Protocol 2.0 bus; prints the port path, serves until Ctrl-C");
-  sim_dynamixel_cmd->add_flag("--pty", sim_dynamixel.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_dynamixel_cmd->add_option("--ids", sim_dynamixel.ids, "Servo IDs on the bus, comma-separated (default 1)")
-      ->delimiter(',');
-  SimFeetechOptions sim_feetech;
-  CLI::App* sim_feetech_cmd = sim_cmd->add_subcommand(
-      "feetech", "Simulated Feetech STS or SCS servos on one bus; prints the port path, serves until Ctrl-C");
-  sim_feetech_cmd->add_flag("--pty", sim_feetech.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_feetech_cmd->add_option("--ids", sim_feetech.ids, "Servo IDs on the bus, comma-separated (default 1)")->delimiter(',');
-  sim_feetech_cmd->add_option("--series", sim_feetech.series, "sts (little-endian, default) or scs (big-endian)");
-  sim_feetech_cmd->add_option("--baud", sim_feetech.baud, "Bus rate the servos are set to (default 1000000)");
-  SimSsc32Options sim_ssc32;
-  CLI::App* sim_ssc32_cmd = sim_cmd->add_subcommand(
-      "ssc32", "A simulated Lynxmotion SSC-32U (32 hobby servos, ASCII commands); prints the port path, serves until Ctrl-C");
-  sim_ssc32_cmd->add_flag("--pty", sim_ssc32.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  SimDmxOptions sim_dmx;
-  CLI::App* sim_dmx_cmd = sim_cmd->add_subcommand(
-      "dmx", "A simulated ENTTEC DMX USB Pro widget (one DMX universe); prints the port path, serves until Ctrl-C");
-  sim_dmx_cmd->add_flag("--pty", sim_dmx.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-
-  SimSlcanOptions sim_slcan;
-  CLI::App* sim_slcan_cmd = sim_cmd->add_subcommand(
-      "slcan",
-      "A simulated SLCAN (Lawicel) USB-CAN adapter with simulated drives on its bus; prints the port path, serves until Ctrl-C. "
-      "Any SLCAN client can open it: avar (a rig link with port: /dev/pts/N), python-can's slcan interface, slcand");
-  sim_slcan_cmd->add_flag("--pty", sim_slcan.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_slcan_cmd->add_option("--drive", sim_slcan.drive,
-                            "The drives on the bus: odrive (CAN Simple), cia402 (CANopen) or mit (default odrive)");
-  sim_slcan_cmd->add_option("--ids", sim_slcan.ids, "Node ids of the drives, comma-separated (default 1)")->delimiter(',');
-  sim_slcan_cmd->add_option("--bitrate", sim_slcan.bitrate,
-                            "Bus bitrate in bit/s; open the adapter at the same rate (default 1000000)");
+  SimCommands sims;
+  add_sim_subcommands(app, sims);
 
   try {
     app.parse(argc, argv);
@@ -282,12 +240,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*fit_cmd) return run_fit(fit, out, err);
   if (*jaw_cmd) return run_jaw(jaw, out, err);
   if (*visemes_cmd) return run_visemes(visemes, out, err);
-  if (*sim_maestro_cmd) return run_sim_maestro(sim_maestro, out, err);
-  if (*sim_dynamixel_cmd) return run_sim_dynamixel(sim_dynamixel, out, err);
-  if (*sim_feetech_cmd) return run_sim_feetech(sim_feetech, out, err);
-  if (*sim_ssc32_cmd) return run_sim_ssc32(sim_ssc32, out, err);
-  if (*sim_dmx_cmd) return run_sim_dmx(sim_dmx, out, err);
-  if (*sim_slcan_cmd) return run_sim_slcan(sim_slcan, out, err);
+  if (*sims.sim) return run_sim(sims, out, err);
   return kExitBadInput;
 }
 

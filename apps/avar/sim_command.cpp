@@ -3,26 +3,17 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
+#include <chrono>
 #include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
 
-#include "avar/assembly/can_drive.hpp"
+#include <CLI/CLI.hpp>
+
+#include "avar/assembly/sim_offer.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/firmware_iface/can_frame.hpp"
-#include "avar/firmware_iface/dynamixel_codec.hpp"
-#include "avar/firmware_iface/feetech_codec.hpp"
 #include "avar/sim/pty_device_host.hpp"
-#include "avar/sim/sim_dmx.hpp"
-#include "avar/sim/sim_dynamixel.hpp"
-#include "avar/sim/sim_feetech.hpp"
-#include "avar/sim/sim_maestro.hpp"
-#include "avar/sim/sim_slcan_adapter.hpp"
-#include "avar/sim/sim_ssc32.hpp"
 
 namespace avar::app {
 namespace {
@@ -62,195 +53,95 @@ int serve_on_pty(sim::ByteDevice& device, const std::string& description, const 
   return kExitOk;
 }
 
-int refuse_without_pty(std::ostream& err) {
-  err << "error: say where to serve: --pty (a pseudo-terminal)\n";
-  return kExitBadInput;
-}
-
-/// Checks bus IDs (each 0..max_id, none twice) into `ids`; reports the first bad one on err.
-bool checked_ids(const std::vector<int>& given, int max_id, const char* what, std::vector<std::uint8_t>& ids, std::ostream& err) {
-  for (int id : given) {
-    if (id < 0 || id > max_id) {
-      err << "error: --ids: " << id << " is not " << what << "; expected 0 to " << max_id << "\n";
-      return false;
-    }
-    if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
-      err << "error: --ids: " << id << " is given twice; every servo on a bus needs its own ID\n";
-      return false;
-    }
-    ids.push_back(static_cast<std::uint8_t>(id));
+/// Serves a node on loopback until SIGINT or SIGTERM, taking its datagrams as they come.
+int serve_on_udp(sim::SimDmxNode& node, const std::string& description, const std::function<std::string()>& state,
+                 std::ostream& out, std::ostream& err) {
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  sigset_t previous;
+  pthread_sigmask(SIG_BLOCK, &stop_signals, &previous);
+  out << node.endpoint() << std::endl;
+  err << description << " on " << node.endpoint() << "; Ctrl-C to stop\n";
+  const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  const timespec none{0, 0};
+  std::uint64_t last = 0;
+  // Each pass waits up to half a second for datagrams, then looks for a signal without waiting.
+  while (sigtimedwait(&stop_signals, nullptr, &none) < 0) {
+    node.receive_until(node.counters().bytes + 1, std::chrono::milliseconds(500));
+    if (terminal && node.counters().bytes != last)
+      err << '\r' << node.counters().bytes << " bytes received; " << state() << "\033[K" << std::flush;
+    last = node.counters().bytes;
   }
-  return true;
+  if (terminal) err << '\n';
+  err << description << " stopped after " << node.counters().bytes << " bytes\n";
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  return kExitOk;
 }
 
-std::string id_list(const std::vector<std::uint8_t>& ids) {
-  std::string out;
-  for (std::uint8_t id : ids) out += (out.empty() ? "" : ",") + std::to_string(id);
-  return out;
+/// The text after `avar sim`'s own options.
+std::string sim_footer() {
+  return "A simulated device speaks its protocol byte for byte, as the hardware does, so any program can drive it: avar "
+         "itself (avar play RIG SHOW --port PATH), a vendor's tool, a script. Serial devices are served on a "
+         "pseudo-terminal, network ones on UDP at 127.0.0.1; the first line on stdout is where (a path or HOST:PORT), "
+         "status goes to stderr, Ctrl-C stops it. `avar sim NAME --help` tells what each device is, its options and an "
+         "example.\n"
+         "\nExample:\n  avar sim maestro --channels 12        # prints /dev/pts/N\n"
+         "  avar play examples/rigs/hello-head.yaml examples/shows/hello-head.yaml --port /dev/pts/N\n";
 }
 
 }  // namespace
 
-int run_sim_maestro(const SimMaestroOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  sim::SimMaestroConfig config;
-  config.channel_count = options.channels;
-  config.device_number = static_cast<std::uint8_t>(options.device_number);
-  config.crc = options.crc;
-  sim::SimMaestro device(config);
-  const std::string description = "simulated Maestro (" + std::to_string(options.channels) + " channels, device number " +
-                                  std::to_string(options.device_number) + (options.crc ? ", CRC on" : "") + ")";
-  return serve_on_pty(
-      device, description,
-      [&] {
-        std::string line = "outputs (µs):";
-        char value[16];
-        for (int ch = 0; ch < options.channels && ch < 12; ++ch) {
-          std::snprintf(value, sizeof value, " %.0f", device.output_pulse(ch) / 4.0);
-          line += value;
-        }
-        return line;
-      },
-      out, err);
+void add_sim_subcommands(CLI::App& app, SimCommands& commands) {
+  commands.sim = app.add_subcommand("sim", "Run a simulated device (servo controller, bus, drive, DMX node) for other programs");
+  commands.sim->require_subcommand(1);
+  commands.sim->footer(sim_footer());
+  for (const assembly::SimOffer* offer : assembly::sim_offers()) {
+    SimCommands::Device& d = commands.devices.emplace_back();
+    d.offer = offer;
+    d.command = commands.sim->add_subcommand(offer->name, offer->summary);
+    if (offer->alias) d.command->alias(offer->alias);
+    d.command->footer(assembly::sim_offer_help(*offer));
+    if (offer->transport == assembly::SimTransport::pty)
+      d.command->add_flag("--pty", d.pty, "Serve on a pseudo-terminal (the default: a serial device is served there)");
+    for (const assembly::SimOption& o : offer->options) {
+      const std::string flag = "--" + std::string(o.name);
+      if (o.flag) {
+        d.command->add_flag(flag, d.flags[o.name], o.help);
+      } else {
+        std::string& value = d.values[o.name];
+        value = o.default_value;
+        d.command->add_option(flag, value, std::string(o.help) + " (default " + o.default_value + ")");
+      }
+    }
+  }
 }
 
-int run_sim_dynamixel(const SimDynamixelOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  std::vector<std::uint8_t> ids;
-  if (!checked_ids(options.ids, firmware_iface::dynamixel::kMaxId, "a Dynamixel ID", ids, err)) return kExitBadInput;
-  sim::SimDynamixelConfig config;
-  for (std::uint8_t id : ids) {
-    sim::SimDynamixelServo servo;
-    servo.id = id;
-    config.servos.push_back(servo);
-  }
-  sim::SimDynamixel device(config);
-  return serve_on_pty(
-      device, "simulated Dynamixel bus (IDs " + id_list(ids) + ")",
-      [&] {
-        std::string line = "positions:";
-        for (std::size_t i = 0; i < config.servos.size() && i < 8; ++i)
-          line += " " + std::to_string(static_cast<long>(device.position(i)));
-        return line;
-      },
-      out, err);
-}
-
-int run_sim_feetech(const SimFeetechOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  std::vector<std::uint8_t> ids;
-  if (!checked_ids(options.ids, firmware_iface::feetech::kMaxId, "a Feetech ID", ids, err)) return kExitBadInput;
-  sim::SimFeetechConfig config;
-  if (options.series == "sts" || options.series == "scs") {
-    config.series = options.series == "sts" ? firmware_iface::feetech::Series::sts : firmware_iface::feetech::Series::scs;
-  } else {
-    err << "error: --series: '" << options.series << "' is not a Feetech series; expected sts or scs\n";
-    return kExitBadInput;
-  }
-  if (sim::SimFeetech::baud_code(options.baud) < 0) {
-    err << "error: --baud: a Feetech servo cannot run at " << options.baud
-        << "; expected 1000000, 500000, 250000, 128000, 115200, 76800, 57600, 38400, 19200, 14400, 9600 or 4800\n";
-    return kExitBadInput;
-  }
-  config.baud = options.baud;
-  for (std::uint8_t id : ids) {
-    sim::SimFeetechServo servo;
-    servo.id = id;
-    config.servos.push_back(servo);
-  }
-  sim::SimFeetech device(config);
-  return serve_on_pty(
-      device,
-      "simulated Feetech " + std::string(options.series == "sts" ? "STS" : "SCS") + " bus (IDs " + id_list(ids) + ", " +
-          std::to_string(options.baud) + " baud)",
-      [&] {
-        std::string line = "positions:";
-        for (std::size_t i = 0; i < config.servos.size() && i < 8; ++i)
-          line += " " + std::to_string(std::lround(device.position(i)));
-        return line;
-      },
-      out, err);
-}
-
-int run_sim_ssc32(const SimSsc32Options& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  sim::SimSsc32 device(sim::SimSsc32Config{});
-  return serve_on_pty(
-      device, "simulated SSC-32U (32 channels)",
-      [&] {
-        std::string line = "outputs (µs):";
-        for (int ch = 0; ch < 12; ++ch) line += " " + std::to_string(std::lround(device.output_pulse(ch)));
-        return line;
-      },
-      out, err);
-}
-
-int run_sim_dmx(const SimDmxOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  sim::SimDmx device(sim::SimDmxConfig{});
-  return serve_on_pty(
-      device, "simulated DMX USB Pro (one universe)",
-      [&] {
-        std::string line = std::to_string(device.frames_received()) + " frames; slots:";
-        for (int address = 1; address <= 16; ++address) line += " " + std::to_string(device.slot(address));
-        return line;
-      },
-      out, err);
-}
-
-int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.pty) return refuse_without_pty(err);
-  const assembly::CanDriveProtocol* drive = assembly::find_can_drive(options.drive);
-  if (!drive) {
-    err << "error: --drive: '" << options.drive
-        << "' is not a CAN drive protocol; expected one of: " << assembly::can_drive_names() << "\n";
-    return kExitBadInput;
-  }
-  if (!firmware_iface::is_standard_can_bitrate(options.bitrate)) {
-    err << "error: --bitrate: " << options.bitrate
-        << " is not a CAN bitrate; expected 10000, 20000, 50000, 100000, 125000, 250000, 500000, 800000 or 1000000\n";
-    return kExitBadInput;
-  }
-  if (!drive->accepts_bitrate(options.bitrate)) {
-    err << "error: --bitrate: a " << drive->device_name << " cannot run at " << options.bitrate
-        << "; expected one of: " << drive->bitrates_text << "\n";
-    return kExitBadInput;
-  }
-  assembly::CanBusOptions bus;
-  bus.bitrate = options.bitrate;
-  std::vector<assembly::SimulatedDrive> drives;
-  std::vector<sim::CanNode*> nodes;
-  std::string ids;
-  for (int id : options.ids) {
-    if (id < drive->node_low || id > drive->node_high) {
-      err << "error: --ids: " << id << " is not a " << drive->device_name << " node; expected " << drive->node_low << " to "
-          << drive->node_high << "\n";
+int run_sim(const SimCommands& commands, std::ostream& out, std::ostream& err) {
+  for (const SimCommands::Device& d : commands.devices) {
+    if (!*d.command) continue;
+    const assembly::SimOffer& offer = *d.offer;
+    if (!offer.make) {
+      err << "error: a simulated " << offer.name << " device is served " << assembly::to_string(offer.transport) << ".\n"
+          << offer.description << "\nExample:\n"
+          << offer.example << "\n";
       return kExitBadInput;
     }
-    if (std::find(options.ids.begin(), options.ids.end(), id) !=
-        options.ids.begin() + static_cast<std::ptrdiff_t>(drives.size())) {
-      err << "error: --ids: " << id << " is given twice; every drive on a bus needs its own node id\n";
+    assembly::SimValues values;
+    for (const auto& [name, value] : d.values) values.set(name, value);
+    for (const auto& [name, given] : d.flags) values.set(name, given ? "true" : "");
+    assembly::ServedDevice device;
+    try {
+      device = offer.make(values);
+    } catch (const assembly::SimOptionError& e) {
+      err << "error: " << e.what() << "\n";
       return kExitBadInput;
     }
-    drives.push_back(drive->make_simulated(nullptr, static_cast<std::uint32_t>(id), 0, bus));
-    nodes.push_back(drives.back().node.get());
-    ids += (ids.empty() ? "" : ",") + std::to_string(id);
+    if (device.network_node) return serve_on_udp(*device.network_node, device.description, device.state, out, err);
+    return serve_on_pty(*device.device, device.description, device.state, out, err);
   }
-  sim::SimSlcanAdapter device(sim::SimSlcanConfig{.bus_bitrate = options.bitrate}, nodes);
-  return serve_on_pty(
-      device,
-      "simulated SLCAN adapter with " + std::string(drive->device_name) + (drives.size() == 1 ? "" : "s") + " at node" +
-          (drives.size() == 1 ? " " : "s ") + ids + " on a " + std::to_string(options.bitrate) + " bit/s bus",
-      [&] {
-        std::string line = std::string("positions (") + drive->device_unit + "):";
-        char value[24];
-        for (std::size_t i = 0; i < drives.size() && i < 8; ++i) {
-          std::snprintf(value, sizeof value, " %.3f", drives[i].device_position());
-          line += value;
-        }
-        return line;
-      },
-      out, err);
+  return kExitBadInput;
 }
 
 }  // namespace avar::app

@@ -1,54 +1,43 @@
 #pragma once
-// `avar sim maestro|dynamixel|feetech|ssc32|dmx|slcan --pty`: a simulated device for other programs (or another avar)
-// to drive, on a pseudo-terminal.
+// `avar sim NAME [options]`: a simulated device for other programs (or another avar) to drive.
+// One subcommand per offer of the protocol registry (avar::assembly::sim_offers()): each
+// protocol and each CAN drive protocol, with the options, help and transport its entry gives.
 
 #include <iosfwd>
+#include <list>
+#include <map>
 #include <string>
-#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace avar::assembly {
+struct SimOffer;
+}
 
 namespace avar::app {
 
-struct SimMaestroOptions {
-  bool pty = false;
-  int channels = 24;
-  int device_number = 12;
-  bool crc = false;
+struct SimCommands {
+  struct Device {
+    CLI::App* command = nullptr;
+    const assembly::SimOffer* offer = nullptr;
+    std::map<std::string, std::string> values;  ///< option name -> value as given (defaults filled in)
+    std::map<std::string, bool> flags;          ///< flag name -> given
+    bool pty = false;                           ///< --pty given (the default transport of a serial device)
+  };
+  CLI::App* sim = nullptr;
+  std::list<Device> devices;  ///< a list: CLI11 writes into the maps through stable addresses
 };
 
-struct SimDynamixelOptions {
-  bool pty = false;
-  std::vector<int> ids{1};
-};
+/// Declares `sim` and one subcommand per offer of the registry on `app`; `commands` must stay
+/// where it is while `app` parses.
+void add_sim_subcommands(CLI::App& app, SimCommands& commands);
 
-struct SimFeetechOptions {
-  bool pty = false;
-  std::vector<int> ids{1};
-  std::string series = "sts";  ///< "sts" or "scs"
-  int baud = 1'000'000;
-};
-
-struct SimSsc32Options {
-  bool pty = false;
-};
-
-struct SimDmxOptions {
-  bool pty = false;
-};
-
-struct SimSlcanOptions {
-  bool pty = false;
-  std::string drive = "odrive";  ///< a CAN drive protocol: odrive, cia402, mit
-  std::vector<int> ids{1};       ///< node ids of the drives on the bus
-  int bitrate = 1'000'000;       ///< bit/s of the bus
-};
-
-/// Each prints the pseudo-terminal's path on `out` (one line, nothing else, so scripts can read
-/// it), a status line on `err`, and serves until SIGINT/SIGTERM. Returns the exit code.
-int run_sim_maestro(const SimMaestroOptions& options, std::ostream& out, std::ostream& err);
-int run_sim_dynamixel(const SimDynamixelOptions& options, std::ostream& out, std::ostream& err);
-int run_sim_feetech(const SimFeetechOptions& options, std::ostream& out, std::ostream& err);
-int run_sim_ssc32(const SimSsc32Options& options, std::ostream& out, std::ostream& err);
-int run_sim_dmx(const SimDmxOptions& options, std::ostream& out, std::ostream& err);
-int run_sim_slcan(const SimSlcanOptions& options, std::ostream& out, std::ostream& err);
+/// Runs the subcommand given: makes its device, prints where it is served on `out` (one line,
+/// nothing else, so scripts can read it: a pseudo-terminal's path or HOST:PORT), a status line on
+/// `err`, and serves until SIGINT/SIGTERM. Returns the exit code (2 for a bad option, or for a
+/// device served only inside the avar that drives it).
+int run_sim(const SimCommands& commands, std::ostream& out, std::ostream& err);
 
 }  // namespace avar::app

@@ -23,10 +23,9 @@ const CanDriveProtocol& can_drive_of(const rig::ActuatorSpec& a) {
   throw std::invalid_argument("unknown CAN drive protocol '" + a.drive + "'");
 }
 
-std::string can_drive_names() {
-  std::string names;
-  for (const CanDriveProtocol* d : can_drive_protocols()) names += (names.empty() ? "" : ", ") + std::string(d->name);
-  return names;
+const rig::CanDriveSchema& schema_of(const CanDriveProtocol& d) {
+  if (const rig::CanDriveSchema* schema = rig::find_drive_schema(d.name)) return *schema;
+  throw std::invalid_argument(std::string("CAN drive protocol '") + d.name + "' has no schema");
 }
 
 }  // namespace avar::assembly

@@ -29,14 +29,13 @@ struct FigureLinks::Entry {
 
 namespace {
 
-/// A gpio link: its chip (simulated for port sim or --sim), shared through the selection's chips.
-void open_on_chip(const rig::Rig& rig, std::size_t i, const Protocol& protocol, const std::string& port,
-                  const LinkSelection& selection, FigureLinks::Entry& entry, std::shared_ptr<GpioChips>& chips) {
+/// A gpio link's chip (simulated for port sim or --sim), shared through the selection's chips.
+std::shared_ptr<firmware_iface::GpioChip> open_chip(const rig::Rig& rig, std::size_t i, const std::string& port, bool simulated,
+                                                    const LinkSelection& selection, std::shared_ptr<GpioChips>& chips) {
   if (!chips) chips = selection.gpio_chips ? selection.gpio_chips : std::make_shared<GpioChips>(selection.simulate_all);
   const rig::LinkSpec& spec = rig.links[i];
   try {
-    entry.chip = chips->open(port, entry.simulated);
-    entry.link = protocol.make_chip_link(rig, i, entry.chip);
+    return chips->open(port, simulated);
   } catch (const std::runtime_error& e) {
     throw InputError({rig.file, spec.where.line, spec.where.column}, "link '" + spec.name + "': " + e.what());
   }
@@ -54,43 +53,41 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     const Protocol& protocol = protocol_of(rig.links[i]);
     auto entry = std::make_unique<Entry>();
     entry->link_index = i;
-    std::string port = selection.port.value_or(rig.links[i].port);
+    const std::string port = selection.port.value_or(rig.links[i].port);
     entry->simulated = selection.simulate_all || port == "sim";
-    DriverTuning tuning;
-    if (protocol.make_chip_link) {
-      open_on_chip(rig, i, protocol, port, selection, *entry, gpio_chips_);
-    } else {
-      if (entry->simulated) entry->device = protocol.make_simulated(rig, i);
+    // Where the driver talks: the port, or the simulated device served here (a byte device on a
+    // pseudo-terminal, a USB device in this process, a node on loopback, a simulated chip).
+    LinkEndpoint at;
+    at.port = port;
+    if (protocol.on_gpio_chip) {
+      entry->chip = open_chip(rig, i, port, entry->simulated, selection, gpio_chips_);
+      at.chip = entry->chip;
+    } else if (entry->simulated) {
+      entry->device = protocol.make_simulated(rig, i);
       if (entry->device.network_node) {
-        // A simulated network node listens on loopback: the real driver sends to it there.
-        entry->link = protocol.open_link(rig, i, entry->device.network_node->endpoint());
+        at.port = entry->device.network_node->endpoint();
       } else if (entry->device.usb_device) {
-        // A simulated USB device answers the real driver's control transfers in this process.
         entry->usb_host = std::make_unique<sim::UsbDeviceHost>(*entry->device.usb_device, entry->device.usb_name);
-        entry->link = protocol.make_usb_link(rig, i, entry->usb_host->connect(), tuning);
+        at.usb = entry->usb_host->connect();
       } else {
-        if (entry->simulated) {
-          if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
-          // Drives that need their own time to come up (a heartbeat) run on the wall clock until
-          // the first tick; every other simulator waits for the loop's stepped clock from the start.
-          const auto clock =
-              protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
-          entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
-          port = entry->host->slave_path();
-          // A simulated device answers from a thread of this process, which a busy machine may keep
-          // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
-          // saturated 2-core machine under the sanitizers): give it a second (it answers at once
-          // when it runs, so only a lost reply would ever wait this long).
-          tuning.min_reply_timeout_ms = 1000;
-        }
-        if (!entry->simulated && protocol.open_link && !protocol.port_is_serial(rig.links[i], port)) {
-          entry->link = protocol.open_link(rig, i, port);
-        } else {
-          entry->transport = std::make_unique<firmware_iface::SerialTransport>(port, rig.links[i].baud);
-          entry->link = protocol.make_link(rig, i, *entry->transport, tuning);
-        }
+        if (selection.prepare_simulated) selection.prepare_simulated(i, *entry->device.device);
+        // Drives that need their own time to come up (a heartbeat) run on the wall clock until
+        // the first tick; every other simulator waits for the loop's stepped clock from the start.
+        const auto clock =
+            protocol.simulation_runs_during_start ? sim::PtyDeviceHost::Clock::wall : sim::PtyDeviceHost::Clock::stepped;
+        entry->host = std::make_unique<sim::PtyDeviceHost>(*entry->device.device, clock);
+        at.port = entry->host->slave_path();
+        at.simulated = true;
+        // A simulated device answers from a thread of this process, which a busy machine may keep
+        // waiting for longer than a real servo's reply timeout (200 ms was once not enough on a
+        // saturated 2-core machine under the sanitizers): give it a second (it answers at once
+        // when it runs, so only a lost reply would ever wait this long).
+        at.tuning.min_reply_timeout_ms = 1000;
       }
     }
+    OpenedLink opened = protocol.open(rig, i, std::move(at));
+    entry->transport = std::move(opened.serial);
+    entry->link = std::move(opened.driver);
     if (selection.threaded_rate_hz > 0) {
       const auto watchdog_ticks = static_cast<std::uint32_t>(std::ceil(rig.links[i].watchdog_s * selection.threaded_rate_hz));
       entry->threaded = std::make_unique<control::ThreadedLink>(*entry->link, rig.channels.size(), watchdog_ticks);
@@ -135,7 +132,7 @@ sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return en
 firmware_iface::LinkCounters FigureLinks::counters(std::size_t link) const { return entries_[link]->outer()->counters(); }
 
 bool FigureLinks::reports_telemetry(std::size_t link) const {
-  return protocol_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
+  return rig::schema_of(rig_.links[link]).reports_telemetry(rig_.links[link]);
 }
 
 void FigureLinks::with_simulated(std::size_t link, const std::function<void(sim::ByteDevice&)>& f) {

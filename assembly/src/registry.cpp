@@ -10,7 +10,6 @@
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/assembly/network_dmx_protocol.hpp"
 #include "avar/assembly/ssc32_protocol.hpp"
-#include "avar/firmware_iface/serial_transport.hpp"
 
 namespace avar::assembly {
 
@@ -32,31 +31,23 @@ const Protocol& protocol_of(const rig::LinkSpec& link) {
   throw std::invalid_argument("link '" + link.name + "' speaks an unknown protocol '" + link.protocol + "'");
 }
 
-std::string protocol_names() {
-  std::string names;
-  for (const Protocol* p : protocols()) names += (names.empty() ? "" : ", ") + std::string(p->name);
-  return names;
-}
-
-int checked_baud(const Protocol& p, const ScalarValue& written, std::string_view what) {
-  const long long b = written.as_integer(what);
-  const bool standard = b > 0 && b <= 4'000'000 && firmware_iface::SerialTransport::is_supported_baud(static_cast<int>(b));
-  if (!standard)
-    written.fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " +
-                 written.describe());
-  if (!p.device_accepts_baud(static_cast<int>(b)))
-    written.fail("a " + std::string(p.name) + " device cannot run at " + written.describe() +
-                 " baud; expected one of: " + p.bauds_text);
-  return static_cast<int>(b);
-}
-
-std::size_t index_on_link(const rig::Rig& rig, const rig::ActuatorSpec& wanted) {
-  std::size_t i = 0;
-  for (const rig::ActuatorSpec& a : rig.actuators_on(wanted.link)) {
-    if (&a == &wanted) return i;
-    ++i;
+OpenedLink open_over_bytes(const rig::Rig& rig, std::size_t link, const LinkEndpoint& at,
+                           std::unique_ptr<firmware_iface::ActuatorLink> (*make)(const rig::Rig& rig, std::size_t link,
+                                                                                 firmware_iface::ByteTransport& transport,
+                                                                                 const DriverTuning& tuning)) {
+  OpenedLink opened;
+  if (at.bytes) {
+    opened.driver = make(rig, link, *at.bytes, at.tuning);
+  } else {
+    opened.serial = std::make_unique<firmware_iface::SerialTransport>(at.port, rig.links[link].baud);
+    opened.driver = make(rig, link, *opened.serial, at.tuning);
   }
-  return i;
+  return opened;
+}
+
+const rig::ProtocolSchema& schema_of(const Protocol& p) {
+  if (const rig::ProtocolSchema* schema = rig::find_schema(p.name)) return *schema;
+  throw std::invalid_argument(std::string("protocol '") + p.name + "' has no schema");
 }
 
 }  // namespace avar::assembly

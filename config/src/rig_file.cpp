@@ -11,7 +11,7 @@
 #include "idle_section.hpp"
 #include "viseme_table.hpp"
 #include "yaml_support.hpp"
-#include "avar/assembly/protocol.hpp"
+#include "avar/rig/protocol_schema.hpp"
 
 namespace avar::config {
 namespace {
@@ -83,11 +83,14 @@ ChannelSpec read_channel(const std::string& name, const YamlRef& node) {
   c.min = node.at("min", what).as_double("min of " + what);
   const YamlRef max = node.at("max", what);
   c.max = max.as_double("max of " + what);
-  if (!(c.max > c.min)) max.fail("expected max of " + what + " to be greater than its min " + format_number(c.min) + ", found " + format_number(c.max));
+  if (!(c.max > c.min))
+    max.fail("expected max of " + what + " to be greater than its min " + format_number(c.min) + ", found " +
+             format_number(c.max));
   const YamlRef rest = node.at("rest", what);
   c.rest = rest.as_double("rest of " + what);
   if (c.rest < c.min || c.rest > c.max)
-    rest.fail("expected rest of " + what + " inside its limits [" + format_number(c.min) + ", " + format_number(c.max) + "], found " + format_number(c.rest));
+    rest.fail("expected rest of " + what + " inside its limits [" + format_number(c.min) + ", " + format_number(c.max) +
+              "], found " + format_number(c.rest));
   const double range = c.max - c.min;
   // Defaults: a hobby servo crosses its range in ~0.25 s, reaches that speed in ~0.1 s and its
   // full acceleration in ~0.05 s; the soft start and stop take ~2 s for the whole range.
@@ -124,9 +127,9 @@ rig::LinkSettings read_settings(const YamlRef& block, const std::string& what) {
 
 LinkSpec read_link(const std::string& name, const YamlRef& node) {
   const std::string what = "link '" + name + "'";
-  const std::string names = assembly::protocol_names();
+  const std::string names = rig::protocol_names();
   std::vector<std::string_view> keys{"port", "baud", "watchdog_ms"};
-  for (const assembly::Protocol* p : assembly::protocols()) keys.push_back(p->name);
+  for (const rig::ProtocolSchema* p : rig::schemas()) keys.push_back(p->name);
   node.expect_only_keys(keys, what);
   LinkSpec link;
   link.name = name;
@@ -137,8 +140,8 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
 
   // The protocol is the one settings block the link has: maestro: {...}, dynamixel: {} ...
   std::optional<YamlRef> settings;
-  const assembly::Protocol* protocol = nullptr;
-  for (const assembly::Protocol* p : assembly::protocols()) {
+  const rig::ProtocolSchema* protocol = nullptr;
+  for (const rig::ProtocolSchema* p : rig::schemas()) {
     auto block = node.find(p->name);
     if (!block) continue;
     if (settings) block->fail(what + " names two protocols; expected exactly one of: " + names);
@@ -153,16 +156,17 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
     settings->fail("expected the " + link.protocol + " settings of " + what + " to be a map (use {} for the defaults)");
 
   link.baud = protocol->default_baud;
-  if (auto baud = node.find("baud")) link.baud = assembly::checked_baud(*protocol, baud->scalar(), "the baud rate of " + what);
+  if (auto baud = node.find("baud")) link.baud = rig::checked_baud(*protocol, baud->scalar(), "the baud rate of " + what);
   if (auto w = node.find("watchdog_ms")) {
     const double ms = w->as_double("watchdog_ms of " + what);
-    if (ms < 1 || ms > 60000) w->fail("expected watchdog_ms of " + what + " from 1 to 60000 milliseconds, found " + w->describe());
+    if (ms < 1 || ms > 60000)
+      w->fail("expected watchdog_ms of " + what + " from 1 to 60000 milliseconds, found " + w->describe());
     link.watchdog_s = ms / 1000.0;
   }
-  link.settings = read_settings(*settings, "the " + link.protocol + " settings of " + what);
+  const rig::LinkSettings written = read_settings(*settings, "the " + link.protocol + " settings of " + what);
   // A link whose device is found otherwise (a Maestro on USB by its serial number) needs no port.
-  if (!port && !(protocol->port_optional && protocol->port_optional(link))) node.at("port", what).as_string(port_what);
-  protocol->validate_settings(link);
+  if (!port && !(protocol->port_optional && protocol->port_optional(written))) node.at("port", what).as_string(port_what);
+  link.options = protocol->parse(link, written);
   return link;
 }
 
@@ -170,11 +174,12 @@ LinkSpec read_link(const std::string& name, const YamlRef& node) {
 constexpr std::string_view kActuatorKeys[] = {"channel", "protocol",    "link",  "device_channel", "id",      "address",
                                               "fine",    "calibration", "speed", "acceleration",   "failsafe"};
 
-/// On a bus of drives, the keys its protocol interprets (everything but the common ones) go to
-/// a.settings as written; the protocol then checks them.
-void read_drive_settings(const YamlRef& node, const std::string& what, const assembly::AddressRule& rule, ActuatorSpec& a) {
-  a.settings.where = node.where();
-  a.settings.what = "the settings of " + what;
+/// On a bus of drives, the keys its protocol interprets (everything but the common ones), as
+/// written; the protocol then parses them.
+rig::LinkSettings read_drive_settings(const YamlRef& node, const std::string& what, const rig::AddressRule& rule) {
+  rig::LinkSettings own;
+  own.where = node.where();
+  own.what = "the settings of " + what;
   for (auto it = node.node.begin(); it != node.node.end(); ++it) {
     const std::string key = it->first.Scalar();
     // The protocol and the address stay in too: the drive's entry checks them.
@@ -182,12 +187,13 @@ void read_drive_settings(const YamlRef& node, const std::string& what, const ass
         std::find(std::begin(kActuatorKeys), std::end(kActuatorKeys), key) != std::end(kActuatorKeys))
       continue;
     const YamlRef value{it->second, node.file};
-    a.settings.entries.push_back({key, YamlRef{it->first, node.file}.where(), value.scalar()});
+    own.entries.push_back({key, YamlRef{it->first, node.file}.where(), value.scalar()});
   }
+  return own;
 }
 
 /// "active_low" for messages: the keys a protocol's actuators take of their own.
-std::string own_keys(const assembly::Protocol& p) {
+std::string own_keys(const rig::ProtocolSchema& p) {
   std::string list;
   for (std::string_view k : p.actuator_keys) list += (list.empty() ? "" : ", ") + std::string(k);
   return list;
@@ -215,7 +221,7 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   }
   a.link = rig::LinkIndex{*li};
   const LinkSpec& spec = rig.link(a.link);
-  const assembly::Protocol& link_protocol = assembly::protocol_of(spec);
+  const rig::ProtocolSchema& link_protocol = rig::schema_of(spec);
   const std::string& protocol_name = spec.protocol;
   const bool drive_bus = link_protocol.finish_actuator != nullptr;
   // A bus of drives takes keys of its own, which its protocol checks (finish_actuator); other
@@ -238,8 +244,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
       fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
   } else if (auto protocol = node.find("protocol")) {
     const std::string p = protocol->as_string("the protocol of " + what);
-    if (!assembly::find_protocol(p))
-      protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + assembly::protocol_names());
+    if (!rig::find_schema(p))
+      protocol->fail("unknown protocol " + protocol->describe() + "; expected one of: " + rig::protocol_names());
     if (p != protocol_name)
       protocol->fail("link '" + link_name + "' speaks " + protocol_name + ", not " + p + "; expected protocol: " + protocol_name);
   }
@@ -249,7 +255,7 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
       fine->fail("fine (16-bit DMX) applies to dmx links only; link '" + link_name + "' speaks " + protocol_name);
     a.fine = fine->as_bool("fine");
   }
-  const assembly::AddressRule rule = link_protocol.address_rule(spec, a.fine);
+  const rig::AddressRule rule = link_protocol.address_rule(spec, a.fine);
   for (const char* key : {"device_channel", "id", "address"})
     if (std::string(key) != rule.key)
       if (auto wrong = node.find(key))
@@ -260,6 +266,7 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
     dc.fail("expected " + std::string(rule.key) + " from " + std::to_string(rule.low) + " to " + std::to_string(rule.high) +
             " on " + protocol_name + " link '" + link_name + "', found " + dc.describe());
   a.device_channel = static_cast<int>(address);
+  a.address_where = dc.where();
 
   a.calibration.channel_min = ch.min;
   a.calibration.channel_max = ch.max;
@@ -269,8 +276,8 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   auto device_value = [&](const YamlRef& n, const char* key) {
     const double v = n.as_double(std::string(key) + " (" + rule.unit + ")");
     if (v < rule.device_low || v > rule.device_high)
-      n.fail(std::string("expected ") + key + " from " + format_number(rule.device_low) + " to " + format_number(rule.device_high) +
-             " " + rule.unit + ", found " + n.describe());
+      n.fail(std::string("expected ") + key + " from " + format_number(rule.device_low) + " to " +
+             format_number(rule.device_high) + " " + rule.unit + ", found " + n.describe());
     return v;
   };
   if (!rule.cal_min)
@@ -310,15 +317,15 @@ ActuatorSpec read_actuator(const Rig& rig, const YamlRef& node, std::size_t inde
   if (auto s = node.find("acceleration"))
     a.acceleration_limit = positive(*s, "the acceleration limit of " + what + " (" + ch.unit + "/s²)");
   if (drive_bus) {
-    read_drive_settings(node, what, rule, a);
-    link_protocol.finish_actuator(rig, a);
-  } else if (!link_protocol.actuator_keys.empty()) {
-    a.settings.where = node.where();
-    a.settings.what = "the settings of " + what;
+    link_protocol.finish_actuator(rig, a, read_drive_settings(node, what, rule));
+  } else if (link_protocol.check_actuator) {
+    rig::LinkSettings own;
+    own.where = node.where();
+    own.what = "the settings of " + what;
     for (std::string_view key : link_protocol.actuator_keys)
-      if (auto k = node.find(key)) a.settings.entries.push_back({std::string(key), k->where(), k->scalar()});
+      if (auto k = node.find(key)) own.entries.push_back({std::string(key), k->where(), k->scalar()});
+    link_protocol.check_actuator(rig, a, own);
   }
-  if (link_protocol.check_actuator) link_protocol.check_actuator(rig, a);
   return a;
 }
 
@@ -392,7 +399,8 @@ rig::Rig rig_from_yaml(const YAML::Node& root_node, const std::string& path) {
                                : std::filesystem::path(path).stem().string();
   if (auto rate = root.find("rate_hz")) {
     rig.rate_hz = rate->as_double("rate_hz");
-    if (rig.rate_hz < 1 || rig.rate_hz > 1000) rate->fail("expected rate_hz from 1 to 1000 ticks per second, found " + rate->describe());
+    if (rig.rate_hz < 1 || rig.rate_hz > 1000)
+      rate->fail("expected rate_hz from 1 to 1000 ticks per second, found " + rate->describe());
   }
 
   const YamlRef links = root.at("links", "the rig file");
@@ -417,13 +425,13 @@ rig::Rig rig_from_yaml(const YAML::Node& root_node, const std::string& path) {
     const YamlRef node = actuators[i];
     ActuatorSpec a = read_actuator(rig, node, i);
     const LinkSpec& link = rig.link(a.link);
-    const assembly::Protocol& protocol = assembly::protocol_of(link);
+    const rig::ProtocolSchema& protocol = rig::schema_of(link);
     // A bus of drives checks its identifiers itself, once every actuator is read.
     if (protocol.validate_link_actuators) {
       rig.actuators.push_back(std::move(a));
       continue;
     }
-    const assembly::AddressRule rule = protocol.address_rule(link, a.fine);
+    const rig::AddressRule rule = protocol.address_rule(link, a.fine);
     // A 16-bit DMX channel takes two slots.
     for (int slot = a.device_channel; slot <= a.device_channel + (a.fine ? 1 : 0); ++slot)
       if (!used.insert({a.link.value, slot}).second)
@@ -433,7 +441,7 @@ rig::Rig rig_from_yaml(const YAML::Node& root_node, const std::string& path) {
     rig.actuators.push_back(std::move(a));
   }
   for (std::size_t i = 0; i < rig.links.size(); ++i)
-    if (const auto check = assembly::protocol_of(rig.links[i]).validate_link_actuators) check(rig, i);
+    if (const auto check = rig::schema_of(rig.links[i]).validate_link_actuators) check(rig, i);
   if (auto kin = root.find("kinematics")) rig.kinematics = read_rig_kinematics(rig, *kin);
   if (auto inputs = root.find("digital_inputs")) {
     inputs->expect_map("digital_inputs (a map of input name to its chip, line and role)");

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <map>
 
-#include "avar/firmware_iface/udp_sender.hpp"
+#include "avar/firmware_iface/udp_destination.hpp"
 #include "avar/core/format.hpp"
 #include "show_tracks.hpp"
 

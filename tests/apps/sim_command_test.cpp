@@ -1,4 +1,4 @@
-// `avar sim maestro|dynamixel|feetech|ssc32|dmx --pty` as another program uses it: read the port path from its output, talk
+// `avar sim maestro|dynamixel|feetech|ssc32|dmx [--pty]` as another program uses it: read the port path from its output, talk
 // to it, stop it with Ctrl-C.
 #include <gtest/gtest.h>
 
@@ -137,10 +137,16 @@ TEST(SimCommand, ServesADmxWidgetThatAnswersItsParameters) {
   EXPECT_NE(sim.err().find("simulated DMX USB Pro"), std::string::npos) << sim.err();
 }
 
-TEST(SimCommand, RefusesWithoutATransport) {
+TEST(SimCommand, ServesASerialDeviceOnAPseudoTerminalWithoutBeingTold) {
   testing::ChildProcess sim({AVAR_BINARY, "sim", "maestro"});
-  EXPECT_EQ(sim.wait(), 2);
-  EXPECT_NE(sim.err().find("--pty"), std::string::npos) << sim.err();
+  ASSERT_TRUE(sim.started());
+  std::string path = sim.read_out_until("\n");
+  ASSERT_FALSE(path.empty()) << sim.err();
+  path.pop_back();
+  EXPECT_EQ(path.rfind("/dev/pts/", 0), 0u) << path;
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(), 0) << sim.err();
+  EXPECT_NE(sim.err().find("simulated Maestro (24 channels"), std::string::npos) << sim.err();
 }
 
 }  // namespace

@@ -76,9 +76,8 @@ TEST(MaestroUsbFigure, PlaysTheExampleShowOnTheSimulatedUsbMaestroAsOnTheSerialO
 
 TEST(MaestroUsbFigure, AnExplicitPortOpensTheVirtualSerialPortInstead) {
   const rig::Rig rig = config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/maestro-usb.yaml");
-  const assembly::Protocol& maestro = assembly::maestro_protocol();
-  EXPECT_FALSE(maestro.port_is_serial(rig.links[0], ""));             // found on USB
-  EXPECT_TRUE(maestro.port_is_serial(rig.links[0], "/dev/ttyACM0"));  // --port /dev/ttyACM0
+  EXPECT_FALSE(assembly::maestro_port_is_serial(rig.links[0], ""));             // found on USB
+  EXPECT_TRUE(assembly::maestro_port_is_serial(rig.links[0], "/dev/ttyACM0"));  // --port /dev/ttyACM0
   // --port sim still simulates it on USB.
   assembly::LinkSelection sim_port;
   sim_port.port = "sim";

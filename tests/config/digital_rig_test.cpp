@@ -49,7 +49,7 @@ TEST(DigitalRig, LoadsDigitalChannelsGpioOutputsAndInputs) {
   EXPECT_FALSE(rig.channels[2].digital());
   EXPECT_EQ(rig.links[0].protocol, "gpio");
   EXPECT_EQ(rig.actuators[0].device_channel, 17);
-  EXPECT_EQ(rig.actuators[1].settings.find("active_low")->as_bool("active_low"), true);
+  EXPECT_EQ(rig.actuators[1].options_as<rig::GpioOutputOptions>().active_low, true);
   EXPECT_EQ(rig.actuators[1].failsafe, rig::Failsafe::hold);
   EXPECT_EQ(rig.actuators[0].calibration.to_device(1.0), 1.0);
 

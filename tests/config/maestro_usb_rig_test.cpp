@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/input_errors.hpp"
-#include "avar/assembly/maestro_protocol.hpp"
+#include "avar/rig/link_options.hpp"
 #include "avar/config/rig_file.hpp"
 
 namespace avar::config {
@@ -27,13 +27,13 @@ actuators:
 TEST(MaestroUsbRig, LoadsWithoutAPortAndWithPortSim) {
   const rig::Rig rig = load_rig_file(testing::write_temp_file("maestro_usb_rig_good.yaml", kUsbRig));
   EXPECT_EQ(rig.links[0].port, "");
-  const assembly::MaestroOptions options = assembly::maestro_options(rig.links[0]);
+  const rig::MaestroOptions options = rig.links[0].options_as<rig::MaestroOptions>();
   EXPECT_TRUE(options.usb);
   EXPECT_EQ(options.usb_serial, "00012345");
   EXPECT_EQ(options.channel_count, 6);
   const rig::Rig any =
       load_rig_file(testing::write_temp_file("maestro_usb_rig_any.yaml", replace(kUsbRig, "usb: \"00012345\"", "usb: any")));
-  EXPECT_EQ(assembly::maestro_options(any.links[0]).usb_serial, "");  // the only one present
+  EXPECT_EQ(any.links[0].options_as<rig::MaestroOptions>().usb_serial, "");  // the only one present
   const rig::Rig sim = load_rig_file(
       testing::write_temp_file("maestro_usb_rig_sim.yaml", replace(kUsbRig, "head: {maestro", "head: {port: sim, maestro")));
   EXPECT_TRUE(sim.links[0].simulated());

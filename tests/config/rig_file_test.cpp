@@ -1,7 +1,6 @@
 #include "avar/config/rig_file.hpp"
 
-#include "avar/assembly/feetech_protocol.hpp"
-#include "avar/assembly/maestro_protocol.hpp"
+#include "avar/rig/link_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +13,6 @@ namespace {
 
 std::string rig_error(const std::string& text) { return avar::testing::load_error(load_rig_file, text, "rig_under_test.yaml"); }
 using avar::testing::replace;
-
 
 std::string write_temp(const std::string& name, const std::string& text) { return testing::write_temp_file(name, text); }
 
@@ -40,7 +38,7 @@ TEST(RigFile, LoadsChannelsLinksAndActuatorsResolvedToIndices) {
   EXPECT_DOUBLE_EQ(rig.channels[0].ramp_velocity, 15);  // default: half a range per second
   ASSERT_EQ(rig.links.size(), 1u);
   EXPECT_TRUE(rig.links[0].simulated());
-  EXPECT_EQ(assembly::maestro_options(rig.links[0]).channel_count, 12);
+  EXPECT_EQ(rig.links[0].options_as<rig::MaestroOptions>().channel_count, 12);
   ASSERT_EQ(rig.actuators.size(), 2u);
   EXPECT_EQ(rig.actuators[1].channel, rig::ChannelIndex{1});
   EXPECT_EQ(rig.actuators[1].device_channel, 3);
@@ -137,12 +135,12 @@ TEST(RigFile, EveryProtocolLoadsWithItsAddressingAndSettings) {
   const rig::Rig rig = load_rig_file(write_temp("bus.yaml", kBusRig));
   ASSERT_EQ(rig.links.size(), 4u);
   EXPECT_EQ(rig.links[0].protocol, "dynamixel");
-  const assembly::ServoBusOptions bus = assembly::servo_bus_options(rig.links[0]);
-  EXPECT_EQ(bus.readback, assembly::Readback::position);
+  const rig::ServoBusOptions bus = rig.links[0].options_as<rig::DynamixelOptions>().bus;
+  EXPECT_EQ(bus.readback, rig::Readback::position);
   EXPECT_EQ(bus.reply_timeout_ms, 5);
   EXPECT_EQ(bus.retries, 2);
   EXPECT_EQ(rig.links[1].protocol, "feetech");
-  EXPECT_EQ(assembly::feetech_series(rig.links[1]), firmware_iface::feetech::Series::scs);
+  EXPECT_EQ(rig.links[1].options_as<rig::FeetechOptions>().series, rig::FeetechSeries::scs);
   EXPECT_EQ(rig.links[1].baud, 1000000);  // Feetech's factory rate
   EXPECT_EQ(rig.links[2].protocol, "ssc32");
   EXPECT_EQ(rig.links[3].protocol, "dmx");

@@ -22,6 +22,21 @@ SimulatedDevice simulated_dmx(const rig::Rig& rig, std::size_t link) {
           [d, &rig](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->fixture_level(index_on_link(rig, a))); }};
 }
 
+/// `avar sim dmx`: a DMX USB Pro widget with one universe.
+ServedDevice standalone_dmx(const SimValues&) {
+  auto device = std::make_unique<sim::SimDmx>(sim::SimDmxConfig{});
+  const sim::SimDmx* d = device.get();
+  ServedDevice out;
+  out.description = "simulated DMX USB Pro (one universe)";
+  out.state = [d] {
+    std::string line = std::to_string(d->frames_received()) + " frames; slots:";
+    for (int address = 1; address <= 16; ++address) line += " " + std::to_string(d->slot(address));
+    return line;
+  };
+  out.device = std::move(device);
+  return out;
+}
+
 }  // namespace
 
 std::vector<firmware_iface::DmxActuator> dmx_actuators(const rig::Rig& rig, std::size_t link) {
@@ -45,23 +60,29 @@ firmware_iface::DmxLinkConfig dmx_config(const rig::Rig& rig, std::size_t link) 
 
 const Protocol& dmx_protocol() {
   static const Protocol p{
-      "dmx",
-      "DMX widget",
-      57600,
-      "any (the widget is a USB device)",
-      [](int) { return true; },
-      [](const rig::LinkSpec& link) { link.settings.expect_only_keys({}); },
-      [](const rig::LinkSpec&, bool fine) -> AddressRule {
-        return {"address", 1, fine ? 511 : 512, "min_level", "max_level", "trim", 0, fine ? 65535.0 : 255.0, "DMX level"};
-      },
-      true,
-      false,
-      [](const rig::LinkSpec&) { return false; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-         const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
-      },
-      simulated_dmx,
+      .name = "dmx",
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     return std::make_unique<firmware_iface::DmxLink>(transport, dmx_config(rig, link));
+                                   });
+          },
+      .make_simulated = simulated_dmx,
+      .sim =
+          {
+              .name = "dmx",
+              .alias = nullptr,
+              .summary = "A simulated ENTTEC DMX USB Pro widget (one DMX universe)",
+              .description = "An ENTTEC DMX USB Pro widget: it takes Output Only Send DMX messages and holds the "
+                             "universe's 512 slots, as servo decoders and dimmers on the DMX line would see them.",
+              .transport = SimTransport::pty,
+              .example = "  avar sim dmx                          # prints /dev/pts/N\n"
+                         "  avar play RIG.yaml SHOW.yaml --port /dev/pts/N    # a rig whose link says dmx: {}",
+              .options = {},
+              .make = standalone_dmx,
+          },
   };
   return p;
 }

@@ -4,15 +4,17 @@
 #include <cmath>
 
 #include "avar/sim/sim_dynamixel.hpp"
+#include "../sim_option_checks.hpp"
+#include "avar/firmware_iface/dynamixel_codec.hpp"
 
 namespace avar::assembly {
 namespace {
 
-firmware_iface::DynamixelReadback dynamixel_readback(Readback r) {
+firmware_iface::DynamixelReadback dynamixel_readback(rig::Readback r) {
   switch (r) {
-    case Readback::none: return firmware_iface::DynamixelReadback::none;
-    case Readback::position: return firmware_iface::DynamixelReadback::position;
-    case Readback::full: break;
+    case rig::Readback::none: return firmware_iface::DynamixelReadback::none;
+    case rig::Readback::position: return firmware_iface::DynamixelReadback::position;
+    case rig::Readback::full: break;
   }
   return firmware_iface::DynamixelReadback::full;
 }
@@ -32,10 +34,32 @@ SimulatedDevice simulated_dynamixel(const rig::Rig& rig, std::size_t link) {
           [d, &rig](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->position(index_on_link(rig, a))); }};
 }
 
+/// `avar sim dynamixel`: X-series servos with the given IDs on one bus.
+ServedDevice standalone_dynamixel(const SimValues& values) {
+  const std::vector<std::uint8_t> ids = checked_ids(values, firmware_iface::dynamixel::kMaxId, "a Dynamixel ID");
+  sim::SimDynamixelConfig config;
+  for (std::uint8_t id : ids) {
+    sim::SimDynamixelServo servo;
+    servo.id = id;
+    config.servos.push_back(servo);
+  }
+  auto device = std::make_unique<sim::SimDynamixel>(config);
+  const sim::SimDynamixel* d = device.get();
+  ServedDevice out;
+  out.description = "simulated Dynamixel bus (IDs " + id_list(ids) + ")";
+  out.state = [d, count = ids.size()] {
+    std::string line = "positions:";
+    for (std::size_t i = 0; i < count && i < 8; ++i) line += " " + std::to_string(static_cast<long>(d->position(i)));
+    return line;
+  };
+  out.device = std::move(device);
+  return out;
+}
+
 }  // namespace
 
 firmware_iface::DynamixelLinkConfig dynamixel_config(const rig::Rig& rig, std::size_t link) {
-  const ServoBusOptions bus = servo_bus_options(rig.links[link]);
+  const rig::ServoBusOptions& bus = rig.links[link].options_as<rig::DynamixelOptions>().bus;
   firmware_iface::DynamixelLinkConfig config;
   config.readback = dynamixel_readback(bus.readback);
   config.reply_timeout = std::chrono::milliseconds(bus.reply_timeout_ms);
@@ -56,29 +80,32 @@ firmware_iface::DynamixelLinkConfig dynamixel_config(const rig::Rig& rig, std::s
 
 const Protocol& dynamixel_protocol() {
   static const Protocol p{
-      "dynamixel",
-      "DYNAMIXEL",
-      57600,
-      "9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000",
-      [](int baud) {
-        for (int b : {9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000})
-          if (baud == b) return true;
-        return false;
-      },
-      [](const rig::LinkSpec& link) { (void)servo_bus_options(link); },
-      [](const rig::LinkSpec&, bool) -> AddressRule {
-        return {"id", 0, 252, "min_position", "max_position", "trim", 0, 4095, "position pulses"};
-      },
-      false,
-      true,
-      [](const rig::LinkSpec& link) { return servo_bus_options(link).readback != Readback::none; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-         const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
-        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
-        return std::make_unique<firmware_iface::DynamixelLink>(transport, config);
-      },
-      simulated_dynamixel,
+      .name = "dynamixel",
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     firmware_iface::DynamixelLinkConfig config = dynamixel_config(rig, link);
+                                     config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
+                                     return std::make_unique<firmware_iface::DynamixelLink>(transport, config);
+                                   });
+          },
+      .make_simulated = simulated_dynamixel,
+      .sim =
+          {
+              .name = "dynamixel",
+              .alias = nullptr,
+              .summary = "Simulated DYNAMIXEL X-series servos on one Protocol 2.0 bus",
+              .description = "ROBOTIS DYNAMIXEL X-series servos sharing one half-duplex Protocol 2.0 bus: ping, read, "
+                             "write, sync read and sync write, with torque, goal position, profile velocity and "
+                             "acceleration; each reports position, load and temperature.",
+              .transport = SimTransport::pty,
+              .example = "  avar sim dynamixel --ids 1,2,3        # prints /dev/pts/N\n"
+                         "  avar play examples/rigs/dynamixel-arm.yaml examples/shows/arm-wave.yaml --port /dev/pts/N",
+              .options = {{"ids", "1", "Servo IDs on the bus, comma-separated"}},
+              .make = standalone_dynamixel,
+          },
   };
   return p;
 }

@@ -4,17 +4,17 @@
 #include <cmath>
 
 #include "avar/sim/sim_feetech.hpp"
+#include "../sim_option_checks.hpp"
+#include "avar/firmware_iface/feetech_codec.hpp"
 
 namespace avar::assembly {
 namespace {
 
-ServoBusOptions feetech_bus(const rig::LinkSpec& link) { return servo_bus_options(link, {"series"}); }
-
-firmware_iface::FeetechReadback feetech_readback(Readback r) {
+firmware_iface::FeetechReadback feetech_readback(rig::Readback r) {
   switch (r) {
-    case Readback::none: return firmware_iface::FeetechReadback::none;
-    case Readback::position: return firmware_iface::FeetechReadback::position;
-    case Readback::full: break;
+    case rig::Readback::none: return firmware_iface::FeetechReadback::none;
+    case rig::Readback::position: return firmware_iface::FeetechReadback::position;
+    case rig::Readback::full: break;
   }
   return firmware_iface::FeetechReadback::full;
 }
@@ -36,20 +36,48 @@ SimulatedDevice simulated_feetech(const rig::Rig& rig, std::size_t link) {
           [d, &rig](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->position(index_on_link(rig, a))); }};
 }
 
+/// `avar sim feetech`: STS or SCS servos with the given IDs on one bus.
+ServedDevice standalone_feetech(const SimValues& values) {
+  const std::vector<std::uint8_t> ids = checked_ids(values, firmware_iface::feetech::kMaxId, "a Feetech ID");
+  sim::SimFeetechConfig config;
+  const std::string& series = values.text("series");
+  if (series != "sts" && series != "scs")
+    throw SimOptionError("--series: '" + series + "' is not a Feetech series; expected sts or scs");
+  config.series = series == "sts" ? firmware_iface::feetech::Series::sts : firmware_iface::feetech::Series::scs;
+  const long long baud = values.integer("baud");
+  if (baud <= 0 || baud > 1'000'000 || sim::SimFeetech::baud_code(static_cast<int>(baud)) < 0)
+    throw SimOptionError("--baud: a Feetech servo cannot run at " + values.text("baud") +
+                         "; expected 1000000, 500000, 250000, 128000, 115200, 76800, 57600, 38400, 19200, 14400, 9600 or 4800");
+  config.baud = static_cast<int>(baud);
+  for (std::uint8_t id : ids) {
+    sim::SimFeetechServo servo;
+    servo.id = id;
+    config.servos.push_back(servo);
+  }
+  auto device = std::make_unique<sim::SimFeetech>(config);
+  const sim::SimFeetech* d = device.get();
+  ServedDevice out;
+  out.description = "simulated Feetech " + std::string(series == "sts" ? "STS" : "SCS") + " bus (IDs " + id_list(ids) + ", " +
+                    std::to_string(baud) + " baud)";
+  out.state = [d, count = ids.size()] {
+    std::string line = "positions:";
+    for (std::size_t i = 0; i < count && i < 8; ++i) line += " " + std::to_string(std::lround(d->position(i)));
+    return line;
+  };
+  out.device = std::move(device);
+  return out;
+}
+
 }  // namespace
 
 firmware_iface::feetech::Series feetech_series(const rig::LinkSpec& link) {
-  const ScalarValue* series = link.settings.find("series");
-  if (!series) return firmware_iface::feetech::Series::sts;
-  const std::string name = series->as_string("the Feetech series");
-  if (name == "scs") return firmware_iface::feetech::Series::scs;
-  if (name != "sts") series->fail("unknown Feetech series " + series->describe() + "; expected one of: sts, scs");
-  return firmware_iface::feetech::Series::sts;
+  return link.options_as<rig::FeetechOptions>().series == rig::FeetechSeries::scs ? firmware_iface::feetech::Series::scs
+                                                                                  : firmware_iface::feetech::Series::sts;
 }
 
 firmware_iface::FeetechLinkConfig feetech_config(const rig::Rig& rig, std::size_t link) {
   const rig::LinkSpec& spec = rig.links[link];
-  const ServoBusOptions bus = feetech_bus(spec);
+  const rig::ServoBusOptions& bus = spec.options_as<rig::FeetechOptions>().bus;
   firmware_iface::FeetechLinkConfig config;
   config.series = feetech_series(spec);
   config.baud = spec.baud;
@@ -70,33 +98,34 @@ firmware_iface::FeetechLinkConfig feetech_config(const rig::Rig& rig, std::size_
 
 const Protocol& feetech_protocol() {
   static const Protocol p{
-      "feetech",
-      "Feetech",
-      1000000,
-      "38400, 57600, 115200, 500000, 1000000",
-      [](int baud) {
-        for (int b : {38400, 57600, 115200, 500000, 1000000})
-          if (baud == b) return true;
-        return false;
-      },
-      [](const rig::LinkSpec& link) {
-        (void)feetech_bus(link);
-        (void)feetech_series(link);
-      },
-      [](const rig::LinkSpec& link, bool) -> AddressRule {
-        const bool scs = feetech_series(link) == firmware_iface::feetech::Series::scs;
-        return {"id", 0, 253, "min_position", "max_position", "trim", 0, scs ? 1023.0 : 4095.0, "position steps"};
-      },
-      false,
-      true,
-      [](const rig::LinkSpec& link) { return feetech_bus(link).readback != Readback::none; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-         const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
-        config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
-        return std::make_unique<firmware_iface::FeetechLink>(transport, config);
-      },
-      simulated_feetech,
+      .name = "feetech",
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     firmware_iface::FeetechLinkConfig config = feetech_config(rig, link);
+                                     config.reply_timeout = tuning.reply_timeout(config.reply_timeout);
+                                     return std::make_unique<firmware_iface::FeetechLink>(transport, config);
+                                   });
+          },
+      .make_simulated = simulated_feetech,
+      .sim =
+          {
+              .name = "feetech",
+              .alias = nullptr,
+              .summary = "Simulated Feetech STS or SCS servos on one bus",
+              .description = "Feetech serial bus servos: STS (12-bit, little-endian) or SCS (10-bit, big-endian) sharing "
+                             "one half-duplex bus: ping, read, write, sync write, with goal position, speed and "
+                             "acceleration; each reports position, load and temperature.",
+              .transport = SimTransport::pty,
+              .example = "  avar sim feetech --ids 1,2 --series sts   # prints /dev/pts/N\n"
+                         "  avar play examples/rigs/feetech-arm.yaml examples/shows/arm-wave.yaml --port /dev/pts/N",
+              .options = {{"ids", "1", "Servo IDs on the bus, comma-separated"},
+                          {"series", "sts", "sts (little-endian) or scs (big-endian)"},
+                          {"baud", "1000000", "Bus rate the servos are set to"}},
+              .make = standalone_feetech,
+          },
   };
   return p;
 }

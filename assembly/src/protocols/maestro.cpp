@@ -7,6 +7,9 @@
 #include "avar/firmware_iface/libusb_control_transport.hpp"
 #include "avar/sim/sim_maestro.hpp"
 #include "avar/sim/sim_maestro_usb.hpp"
+#include <cstdio>
+
+#include "../sim_option_checks.hpp"
 
 namespace avar::assembly {
 namespace {
@@ -22,40 +25,10 @@ const char* model_name(int channel_count) {
   }
 }
 
-int maestro_channels_for_model(const ScalarValue& model_value) {
-  const std::string model = model_value.as_string("the Maestro model");
-  if (model == "micro6") return 6;
-  if (model == "mini12") return 12;
-  if (model == "mini18") return 18;
-  if (model == "mini24") return 24;
-  model_value.fail("unknown Maestro model " + model_value.describe() + "; expected one of: micro6, mini12, mini18, mini24");
-}
-
-void validate_maestro(const rig::LinkSpec& link) { (void)maestro_options(link); }
-
-AddressRule maestro_address(const rig::LinkSpec& link, bool) {
-  return {"device_channel", 0, maestro_options(link).channel_count - 1, "min_us", "max_us", "trim_us", 64, 4000, "µs"};
-}
-
-/// The serial number string a usb setting names: letters and digits, as a Maestro's are.
-std::string usb_serial(const ScalarValue& v) {
-  std::string text = v.as_string("usb");
-  if (text == "any") return {};
-  const bool plain = text.size() <= 32 && std::all_of(text.begin(), text.end(), [](char c) {
-                       return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-                     });
-  if (!plain)
-    v.fail(
-        "expected usb: any (the only Maestro present) or the Maestro's serial number, letters and digits as lsusb -v "
-        "shows it (such as \"00012345\"); found " +
-        v.describe());
-  return text;
-}
-
 /// The settings of a simulated Maestro set up as its owner would have set up the real one: the
 /// rig's channel count, framing and CRC, each used channel's pulse range opened to the actuator's
 /// window, and every servo parked at its rest pose (where the last soft stop left it).
-sim::SimMaestroConfig simulated_maestro_config(const rig::Rig& rig, std::size_t link, const MaestroOptions& options) {
+sim::SimMaestroConfig simulated_maestro_config(const rig::Rig& rig, std::size_t link, const rig::MaestroOptions& options) {
   sim::SimMaestroConfig config;
   config.channel_count = options.channel_count;
   config.device_number = options.device_number;
@@ -72,7 +45,7 @@ sim::SimMaestroConfig simulated_maestro_config(const rig::Rig& rig, std::size_t 
 
 /// The link's Maestro, simulated: on a serial port, or on USB when the link says usb.
 SimulatedDevice simulated_maestro(const rig::Rig& rig, std::size_t link) {
-  const MaestroOptions options = maestro_options(rig.links[link]);
+  const rig::MaestroOptions& options = rig.links[link].options_as<rig::MaestroOptions>();
   const sim::SimMaestroConfig config = simulated_maestro_config(rig, link, options);
   SimulatedDevice out;
   if (options.usb) {
@@ -94,38 +67,41 @@ SimulatedDevice simulated_maestro(const rig::Rig& rig, std::size_t link) {
   return out;
 }
 
-}  // namespace
-
-MaestroOptions maestro_options(const rig::LinkSpec& link) {
-  const rig::LinkSettings& s = link.settings;
-  s.expect_only_keys({"model", "device_number", "crc", "baud_detect", "usb"});
-  MaestroOptions options;
-  if (const ScalarValue* model = s.find("model")) options.channel_count = maestro_channels_for_model(*model);
-  if (const ScalarValue* dev = s.find("device_number")) {
-    const long long d = dev->as_integer("the device number");
-    if (d < 0 || d > 127) dev->fail("expected a device number from 0 to 127, found " + dev->describe());
-    options.pololu_form = true;
-    options.device_number = static_cast<std::uint8_t>(d);
-  }
-  if (const ScalarValue* crc = s.find("crc")) options.crc = crc->as_bool("crc");
-  if (const ScalarValue* bd = s.find("baud_detect")) options.baud_detect = bd->as_bool("baud_detect");
-  if (const ScalarValue* usb = s.find("usb")) {
-    options.usb = true;
-    options.usb_serial = usb_serial(*usb);
-    for (const char* serial_only : {"device_number", "crc", "baud_detect"})
-      if (const ScalarValue* v = s.find(serial_only))
-        v->fail(std::string(serial_only) + " is a setting of the Maestro's serial port; link '" + link.name +
-                "' reaches its Maestro on USB (usb: " + usb->text + "), where it does not apply: remove it, or remove usb");
-    if (!link.port.empty() && !link.simulated())
-      usb->fail("link '" + link.name + "' names both a port (" + link.port + ") and usb: " + usb->text +
-                "; expected one of them: usb finds the Maestro by its serial number (leave out the port, or write port: "
-                "sim), a port opens its virtual serial port");
-  }
-  return options;
+/// `avar sim maestro`: a Maestro on a pseudo-terminal, as set up from the options.
+ServedDevice standalone_maestro(const SimValues& values) {
+  const long long channels = values.integer("channels");
+  if (channels != 6 && channels != 12 && channels != 18 && channels != 24)
+    throw SimOptionError("--channels: " + values.text("channels") +
+                         " is not a Maestro's channel count; expected 6, 12, 18 or 24");
+  const long long device_number = values.integer("device-number");
+  if (device_number < 0 || device_number > 127)
+    throw SimOptionError("--device-number: " + values.text("device-number") + " is outside 0 to 127");
+  sim::SimMaestroConfig config;
+  config.channel_count = static_cast<int>(channels);
+  config.device_number = static_cast<std::uint8_t>(device_number);
+  config.crc = values.flag("crc");
+  auto device = std::make_unique<sim::SimMaestro>(config);
+  const sim::SimMaestro* d = device.get();
+  ServedDevice out;
+  out.description = "simulated Maestro (" + std::to_string(channels) + " channels, device number " +
+                    std::to_string(device_number) + (config.crc ? ", CRC on" : "") + ")";
+  out.state = [d, channels] {
+    std::string line = "outputs (µs):";
+    char value[16];
+    for (int ch = 0; ch < channels && ch < 12; ++ch) {
+      std::snprintf(value, sizeof value, " %.0f", d->output_pulse(ch) / 4.0);
+      line += value;
+    }
+    return line;
+  };
+  out.device = std::move(device);
+  return out;
 }
 
+}  // namespace
+
 firmware_iface::MaestroLinkConfig maestro_config(const rig::Rig& rig, std::size_t link) {
-  const MaestroOptions options = maestro_options(rig.links[link]);
+  const rig::MaestroOptions& options = rig.links[link].options_as<rig::MaestroOptions>();
   firmware_iface::MaestroLinkConfig config;
   config.framing.pololu = options.pololu_form;
   config.framing.device_number = options.device_number;
@@ -155,8 +131,8 @@ firmware_iface::MaestroUsbLinkConfig maestro_usb_config(const rig::Rig& rig, std
 
 std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& rig, std::size_t link) {
   const rig::LinkSpec& spec = rig.links[link];
-  const MaestroOptions options = maestro_options(spec);
-  const ScalarValue& usb_setting = *spec.settings.find("usb");
+  const rig::MaestroOptions& options = spec.options_as<rig::MaestroOptions>();
+  const auto fail_at_usb = [&](const std::string& problem) { throw InputError(options.usb_where, problem); };
   namespace usb = firmware_iface::maestro_usb;
   firmware_iface::UsbDeviceQuery query{
       usb::kVendorId, {usb::kProductIds.begin(), usb::kProductIds.end()}, options.usb_serial, "Maestro"};
@@ -164,48 +140,66 @@ std::unique_ptr<firmware_iface::ActuatorLink> open_maestro_usb(const rig::Rig& r
   try {
     transport = std::make_unique<firmware_iface::LibusbControlTransport>(std::move(query));
   } catch (const std::runtime_error& e) {
-    usb_setting.fail("link '" + spec.name + "': " + e.what());
+    fail_at_usb("link '" + spec.name + "': " + e.what());
   }
   const int found = usb::channels_for_product_id(transport->product_id());
   if (found != options.channel_count)
-    usb_setting.fail("link '" + spec.name + "': the Maestro with serial " + transport->serial() + " is a " + model_name(found) +
-                     ", but the link says model: " + model_name(options.channel_count));
+    fail_at_usb("link '" + spec.name + "': the Maestro with serial " + transport->serial() + " is a " + model_name(found) +
+                ", but the link says model: " + model_name(options.channel_count));
   return std::make_unique<firmware_iface::MaestroUsbLink>(std::move(transport), maestro_usb_config(rig, link, DriverTuning{}));
 }
 
+bool maestro_port_is_serial(const rig::LinkSpec& link, const std::string& port) {
+  return !link.options_as<rig::MaestroOptions>().usb || !port.empty();
+}
+
+namespace {
+
+std::unique_ptr<firmware_iface::ActuatorLink> serial_maestro(const rig::Rig& rig, std::size_t link,
+                                                             firmware_iface::ByteTransport& transport, const DriverTuning&) {
+  return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
+}
+
+/// On USB (a simulated device's, or found by its serial number), else on its virtual serial port:
+/// a port given on the command line (--port /dev/ttyACM0) opens that even when the rig says usb.
+OpenedLink open_maestro(const rig::Rig& rig, std::size_t link, LinkEndpoint at) {
+  if (at.usb) {
+    OpenedLink opened;
+    opened.driver = std::make_unique<firmware_iface::MaestroUsbLink>(std::move(at.usb), maestro_usb_config(rig, link, at.tuning));
+    return opened;
+  }
+  if (at.bytes || at.simulated || maestro_port_is_serial(rig.links[link], at.port))
+    return open_over_bytes(rig, link, at, serial_maestro);
+  OpenedLink opened;
+  opened.driver = open_maestro_usb(rig, link);
+  return opened;
+}
+
+}  // namespace
+
 const Protocol& maestro_protocol() {
-  static const Protocol p = [] {
-    Protocol m{
-        "maestro",
-        "Maestro",
-        115200,
-        "300 to 200000",
-        [](int baud) { return baud >= 300 && baud <= 200000; },
-        validate_maestro,
-        maestro_address,
-        false,
-        true,
-        // On USB the Maestro tells where each channel's pulse is, every tick.
-        [](const rig::LinkSpec& link) { return maestro_options(link).usb; },
-        [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-           const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-          return std::make_unique<firmware_iface::MaestroLink>(transport, maestro_config(rig, link));
-        },
-        simulated_maestro,
-    };
-    m.port_optional = [](const rig::LinkSpec& link) { return link.settings.find("usb") != nullptr; };
-    // A port given on the command line (--port /dev/ttyACM0) opens the Maestro's virtual serial
-    // port even when the rig finds it on USB.
-    m.port_is_serial = [](const rig::LinkSpec& link, const std::string& port) {
-      return !maestro_options(link).usb || !port.empty();
-    };
-    m.open_link = [](const rig::Rig& rig, std::size_t link, const std::string&) { return open_maestro_usb(rig, link); };
-    m.make_usb_link = [](const rig::Rig& rig, std::size_t link, std::unique_ptr<firmware_iface::UsbControlTransport> transport,
-                         const DriverTuning& tuning) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-      return std::make_unique<firmware_iface::MaestroUsbLink>(std::move(transport), maestro_usb_config(rig, link, tuning));
-    };
-    return m;
-  }();
+  static const Protocol p{
+      .name = "maestro",
+      .open = open_maestro,
+      .make_simulated = simulated_maestro,
+      .sim =
+          {
+              .name = "maestro",
+              .alias = nullptr,
+              .summary = "A simulated Pololu Maestro (hobby servo controller) on a serial port",
+              .description = "A Pololu Maestro servo controller (Micro 6 or Mini 12, 18, 24 channels) as its virtual serial port "
+                             "answers: the compact and Pololu protocols, Set Target, speed and acceleration, Get Position, and "
+                             "optionally CRC-7. Its servos move to their targets as the real ones do. A Maestro on native USB "
+                             "(`usb:` in a rig) is simulated inside the avar that drives it: `avar play RIG SHOW --sim`.",
+              .transport = SimTransport::pty,
+              .example = "  avar sim maestro --channels 12        # prints /dev/pts/N\n"
+                         "  avar play examples/rigs/hello-head.yaml examples/shows/hello-head.yaml --port /dev/pts/N",
+              .options = {{"channels", "24", "Channel count: 6, 12, 18 or 24"},
+                          {"device-number", "12", "Device number for the Pololu protocol, 0 to 127"},
+                          {"crc", "", "Expect a CRC-7 byte after every command", true}},
+              .make = standalone_maestro,
+          },
+  };
   return p;
 }
 

@@ -17,6 +17,21 @@ SimulatedDevice simulated_ssc32(const rig::Rig& rig, std::size_t link) {
           [d](const rig::ActuatorSpec& a) { return a.calibration.to_channel(d->servo_position_us(a.device_channel)); }};
 }
 
+/// `avar sim ssc32`: an SSC-32U with its 32 channels.
+ServedDevice standalone_ssc32(const SimValues&) {
+  auto device = std::make_unique<sim::SimSsc32>(sim::SimSsc32Config{});
+  const sim::SimSsc32* d = device.get();
+  ServedDevice out;
+  out.description = "simulated SSC-32U (32 channels)";
+  out.state = [d] {
+    std::string line = "outputs (µs):";
+    for (int ch = 0; ch < 12; ++ch) line += " " + std::to_string(std::lround(d->output_pulse(ch)));
+    return line;
+  };
+  out.device = std::move(device);
+  return out;
+}
+
 }  // namespace
 
 firmware_iface::Ssc32LinkConfig ssc32_config(const rig::Rig& rig, std::size_t link) {
@@ -37,23 +52,29 @@ firmware_iface::Ssc32LinkConfig ssc32_config(const rig::Rig& rig, std::size_t li
 
 const Protocol& ssc32_protocol() {
   static const Protocol p{
-      "ssc32",
-      "SSC-32",
-      9600,
-      "2400, 9600, 38400, 115200",
-      [](int baud) { return baud == 2400 || baud == 9600 || baud == 38400 || baud == 115200; },
-      [](const rig::LinkSpec& link) { link.settings.expect_only_keys({}); },
-      [](const rig::LinkSpec&, bool) -> AddressRule {
-        return {"device_channel", 0, 31, "min_us", "max_us", "trim_us", 500, 2500, "µs"};
-      },
-      false,
-      true,
-      [](const rig::LinkSpec&) { return false; },
-      [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
-         const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
-        return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
-      },
-      simulated_ssc32,
+      .name = "ssc32",
+      .open =
+          [](const rig::Rig& figure, std::size_t index, LinkEndpoint at) {
+            return open_over_bytes(figure, index, at,
+                                   [](const rig::Rig& rig, std::size_t link, firmware_iface::ByteTransport& transport,
+                                      const DriverTuning&) -> std::unique_ptr<firmware_iface::ActuatorLink> {
+                                     return std::make_unique<firmware_iface::Ssc32Link>(transport, ssc32_config(rig, link));
+                                   });
+          },
+      .make_simulated = simulated_ssc32,
+      .sim =
+          {
+              .name = "ssc32",
+              .alias = nullptr,
+              .summary = "A simulated Lynxmotion SSC-32U (32 hobby servos, ASCII commands)",
+              .description = "A Lynxmotion SSC-32U servo controller: ASCII group moves (#<ch>P<µs>S<speed>T<ms>), "
+                             "query of movement status and pulse widths, 32 channels of hobby servo pulses.",
+              .transport = SimTransport::pty,
+              .example = "  avar sim ssc32                        # prints /dev/pts/N\n"
+                         "  avar play RIG.yaml SHOW.yaml --port /dev/pts/N    # a rig whose link says ssc32: {}",
+              .options = {},
+              .make = standalone_ssc32,
+          },
   };
   return p;
 }

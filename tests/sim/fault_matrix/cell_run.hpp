@@ -100,6 +100,30 @@ inline sim::FaultPlan plan_for(FaultKind kind, Carrier carrier, std::uint64_t se
   return p;
 }
 
+/// The driver of the rig's link over a byte transport of the test's, through the protocol's one way to open a link.
+inline std::unique_ptr<firmware_iface::ActuatorLink> open_over(const assembly::Protocol& protocol, const rig::Rig& rig,
+                                                               firmware_iface::ByteTransport* bytes) {
+  assembly::LinkEndpoint at;
+  at.bytes = bytes;
+  return protocol.open(rig, 0, std::move(at)).driver;
+}
+
+/// The same over a USB device.
+inline std::unique_ptr<firmware_iface::ActuatorLink> open_on_usb(const assembly::Protocol& protocol, const rig::Rig& rig,
+                                                                 std::unique_ptr<firmware_iface::UsbControlTransport> usb) {
+  assembly::LinkEndpoint at;
+  at.usb = std::move(usb);
+  return protocol.open(rig, 0, std::move(at)).driver;
+}
+
+/// The same at a network endpoint (HOST:PORT).
+inline std::unique_ptr<firmware_iface::ActuatorLink> open_at(const assembly::Protocol& protocol, const rig::Rig& rig,
+                                                             const std::string& port) {
+  assembly::LinkEndpoint at;
+  at.port = port;
+  return protocol.open(rig, 0, std::move(at)).driver;
+}
+
 /// The figure under test: the device behind its fault injector and carrier, and the link.
 class Figure final : public control::Plant, public control::TickObserver {
  public:
@@ -112,22 +136,22 @@ class Figure final : public control::Plant, public control::TickObserver {
       case Carrier::serial:
         faulty_ = std::make_unique<sim::FaultyDevice>(*device_.device, sim::FaultPlan{});
         wire_ = std::make_unique<sim::SimWire>(*faulty_, rig.links[0].baud, 0, "simulated wire");
-        link_ = protocol.make_link(rig, 0, *wire_, {});
+        link_ = open_over(protocol, rig, wire_.get());
         break;
       case Carrier::pty:
         faulty_ = std::make_unique<sim::FaultyDevice>(*device_.device, sim::FaultPlan{});
         pty_ = std::make_unique<sim::PtyDeviceHost>(*faulty_, sim::PtyDeviceHost::Clock::stepped);
         serial_ = std::make_unique<firmware_iface::SerialTransport>(pty_->slave_path(), rig.links[0].baud);
-        link_ = protocol.make_link(rig, 0, *serial_, {});
+        link_ = open_over(protocol, rig, serial_.get());
         break;
       case Carrier::usb:
         faulty_usb_ = std::make_unique<sim::FaultyUsbDevice>(*device_.usb_device, sim::FaultPlan{}, kUsbHostTimeoutS);
         usb_host_ = std::make_unique<sim::UsbDeviceHost>(*faulty_usb_, device_.usb_name);
-        link_ = protocol.make_usb_link(rig, 0, usb_host_->connect(), {});
+        link_ = open_on_usb(protocol, rig, usb_host_->connect());
         break;
       case Carrier::network:
         path_ = std::make_unique<FaultyDatagramPath>();
-        link_ = protocol.open_link(rig, 0, path_->endpoint());
+        link_ = open_at(protocol, rig, path_->endpoint());
         break;
       case Carrier::none: break;
     }
@@ -271,8 +295,8 @@ inline CellRun run_cell(const ProtocolCase& pc, FaultKind kind, std::uint64_t se
   out.show_end = controller.show_end();
   out.tick_s = options.tick_period_s;
   out.watchdog_s = rig.links[0].watchdog_s;
-  if (const ScalarValue* t = rig.links[0].settings.find("heartbeat_timeout_ms"))
-    out.watchdog_s = std::max(out.watchdog_s, static_cast<double>(t->as_integer("heartbeat_timeout_ms")) / 1000.0);
+  if (const auto* can = std::get_if<rig::CanOptions>(&rig.links[0].options); can && can->heartbeat_timeout_ms)
+    out.watchdog_s = std::max(out.watchdog_s, static_cast<double>(*can->heartbeat_timeout_ms) / 1000.0);
   out.final_command.assign(controller.commanded().begin(), controller.commanded().end());
   out.rest = rig.rest_frame();
   figure.finish(controller);

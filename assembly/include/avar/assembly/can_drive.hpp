@@ -1,9 +1,10 @@
 #pragma once
-// The registry of CAN drive protocols: everything avar knows about one kind of drive on a CAN
-// link (ODrive, CiA 402, MIT-style), in one entry. A new drive protocol joins by one entry (its
-// own file under assembly/src/can_drives/) and one line in the list of can_drive_protocols().
-// The `can` link protocol (assembly/src/protocols/can.cpp) reaches every drive through here.
-// Load-time only.
+// The registry of CAN drive protocols: how avar makes the drives of one kind on a CAN link
+// (ODrive, CiA 402, MIT-style) and simulates one, in one entry. What an actuator's drive keys are
+// and how they parse is the drive's schema in the rig (avar/rig/can_drive_schema.hpp). A new drive
+// protocol joins by a schema, one entry (its own file under assembly/src/can_drives/) and one line
+// in the list of can_drive_protocols(). The `can` link protocol (assembly/src/protocols/can.cpp)
+// reaches every drive through here. Load-time only.
 
 #include <cstdint>
 #include <functional>
@@ -13,19 +14,12 @@
 #include <vector>
 
 #include "avar/firmware_iface/can_drives.hpp"
+#include "avar/assembly/sim_offer.hpp"
+#include "avar/rig/can_drive_schema.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/sim/can_node.hpp"
 
 namespace avar::assembly {
-
-/// Identifiers a drive uses on the bus, both directions, inclusive.
-struct CanIdRange {
-  std::uint32_t first = 0;
-  std::uint32_t last = 0;
-  /// Every drive of the protocol uses it alike (MIT replies to the master id, CANopen NMT and
-  /// SYNC): no conflict between drives of the same protocol.
-  bool shared = false;
-};
 
 /// The `can` settings of a link that every drive set needs.
 struct CanBusOptions {
@@ -43,20 +37,7 @@ struct SimulatedDrive {
 };
 
 struct CanDriveProtocol {
-  const char* name;         ///< as actuators write it: `protocol: odrive`
-  const char* device_name;  ///< for messages: "ODrive"
-  long long node_low, node_high;
-  const char* device_unit;  ///< the drive's position unit: "turns", "counts", "rad"
-  const char* bitrates_text;
-  bool (*accepts_bitrate)(int bitrate);
-  /// Keys of its own an actuator may have beyond the common drive keys.
-  std::span<const std::string_view> (*keys)();
-  /// Checks those keys' values (the key set is already checked); throws InputError at the key.
-  void (*validate)(const rig::ActuatorSpec& a);
-  /// The drive's position unit per motor turn (ODrive 1, MIT 2π, CiA 402 its counts per turn).
-  double (*device_units_per_turn)(const rig::ActuatorSpec& a);
-  /// Appends the identifiers the drive of actuator `a` sends or listens on.
-  void (*can_ids)(const rig::ActuatorSpec& a, const CanBusOptions& bus, std::vector<CanIdRange>& out);
+  const char* name;  ///< its schema's name (rig::find_drive_schema): `odrive`
   /// The drive set for these actuators (all of this protocol, on one link of a validated rig).
   std::unique_ptr<firmware_iface::CanDrives> (*make_drives)(const rig::Rig& rig,
                                                             std::span<const rig::ActuatorSpec* const> actuators,
@@ -65,16 +46,19 @@ struct CanDriveProtocol {
   /// owner of actuator `a` would have set up the real one (null: factory settings, for
   /// `avar sim slcan`).
   SimulatedDrive (*make_simulated)(const rig::ActuatorSpec* a, std::uint32_t node, double position, const CanBusOptions& bus);
+  /// What `avar sim NAME` serves: drives of this protocol behind a simulated SLCAN adapter.
+  SimOffer sim;
 };
 
 const std::vector<const CanDriveProtocol*>& can_drive_protocols();
 const CanDriveProtocol* find_can_drive(std::string_view name);
 /// The drive protocol of an actuator of a validated rig (std::invalid_argument when unknown).
 const CanDriveProtocol& can_drive_of(const rig::ActuatorSpec& a);
-/// "odrive, cia402, mit" for messages.
-std::string can_drive_names();
+/// Its schema.
+const rig::CanDriveSchema& schema_of(const CanDriveProtocol& d);
 
-/// A link's `can` settings (validated at load).
+/// What the drive sets of link `link` of a parsed rig need: its `can` options with the silence
+/// budget in ticks at the rig's rate.
 CanBusOptions can_bus_options(const rig::Rig& rig, std::size_t link);
 
 }  // namespace avar::assembly

@@ -1,8 +1,8 @@
 #pragma once
 // The rig: what a figure is made of, as loaded from a rig file. Names are resolved to dense
-// indices once at load; everything downstream uses indices. This is a description only: what
-// each protocol makes of its link's settings is the protocol's own business (avar::assembly's
-// registry), so a new protocol adds nothing here.
+// indices once at load; everything downstream uses indices. Each link's protocol settings are
+// parsed once into typed options (link_options.hpp) by the protocol's schema
+// (protocol_schema.hpp); this is data only, no driver or device.
 
 #include <cstddef>
 #include <initializer_list>
@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "avar/core/index.hpp"
@@ -18,6 +19,7 @@
 #include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/kinematics/model.hpp"
+#include "avar/rig/link_options.hpp"
 
 namespace avar::rig {
 
@@ -37,7 +39,7 @@ const char* to_string(ChannelKind k) noexcept;
 /// One degree of freedom the show animates (jaw, neck_pan...), in its own unit.
 struct ChannelSpec {
   std::string name;
-  std::string unit;             ///< free text: deg, mm, % ...
+  std::string unit;  ///< free text: deg, mm, % ...
   /// digital: min 0, max 1, every command is 0 or 1 (a value at or above the middle of the range
   /// is on), so a step key switches on its tick; the motion limits below are infinite and the
   /// soft start, soft stop and fail-safe moves switch it at once.
@@ -66,8 +68,8 @@ struct LinkSetting {
   ScalarValue value;
 };
 
-/// A link's protocol settings as written, validated and interpreted by the protocol's entry in
-/// the registry (avar::assembly::Protocol).
+/// A link's protocol settings as written: what a reader hands the protocol's schema to parse
+/// (ProtocolSchema::parse); not kept in the rig.
 struct LinkSettings {
   std::vector<LinkSetting> entries;  ///< in file order
   SourceLocation where;              ///< the settings block
@@ -81,6 +83,14 @@ struct LinkSettings {
   }
 };
 
+/// The alternative T of `options`, or T's defaults while it holds none.
+template <class T, class Variant>
+const T& options_or_defaults(const Variant& options) {
+  static const T defaults{};
+  if (std::holds_alternative<std::monostate>(options)) return defaults;
+  return std::get<T>(options);
+}
+
 /// One physical connection. port "sim" means: a simulated device on a pseudo-terminal.
 struct LinkSpec {
   std::string name;
@@ -88,10 +98,16 @@ struct LinkSpec {
   std::string port;      ///< "" for a device found otherwise (a Maestro on USB by its serial number)
   int baud = 0;
   double watchdog_s = 0.25;  ///< in real time: a link that completes no send for this long faults
-  LinkSettings settings;
+  LinkOptions options;       ///< the protocol's settings, parsed (the alternative of `protocol`)
   SourceLocation where;
 
   bool simulated() const { return port == "sim"; }
+  /// The parsed settings of a link of protocol T; T's defaults for a link built without
+  /// options (not read from a file); std::bad_variant_access for another protocol's.
+  template <class T>
+  const T& options_as() const {
+    return options_or_defaults<T>(options);
+  }
 };
 
 /// What an actuator does when the controller faults.
@@ -109,17 +125,23 @@ struct ActuatorSpec {
   LinkIndex link;
   /// Where the actuator is on its link: Maestro / SSC-32 channel, servo ID, or DMX start address.
   int device_channel = 0;
-  bool fine = false;  ///< DMX: 16-bit (coarse at the address, fine at the next slot)
+  SourceLocation address_where;  ///< where the address (device_channel, id, address, node, line) stands
+  bool fine = false;             ///< DMX: 16-bit (coarse at the address, fine at the next slot)
   firmware_iface::LinearCalibration calibration;
   std::optional<double> speed_limit;         ///< enforced by the device, channel units/s
   std::optional<double> acceleration_limit;  ///< enforced by the device, channel units/s²
   Failsafe failsafe = Failsafe::rest;
-  /// On a bus of drives (a CAN link): the keys its protocol interprets (protocol, gear_ratio,
-  /// units_per_turn, ...), as written; empty elsewhere.
-  LinkSettings settings;
-  /// On a bus of drives: the drive protocol (odrive, cia402, mit), from settings; empty elsewhere.
+  /// Its own options, parsed: a drive's on a bus of drives, a GPIO line's; monostate elsewhere.
+  ActuatorOptions options;
+  /// On a bus of drives: the drive protocol (odrive, cia402, mit); empty elsewhere.
   std::string drive;
   SourceLocation where;
+
+  /// Its parsed options of kind T, as LinkSpec::options_as.
+  template <class T>
+  const T& options_as() const {
+    return options_or_defaults<T>(options);
+  }
 };
 
 /// A kinematic joint driven by a channel: joint value (rad or m) = (channel value - offset) * scale.

@@ -1,5 +1,5 @@
 #pragma once
-// Reading one number of a settings block within its range, as every protocol entry does.
+// Reading one number of a settings block within its range, as every protocol schema does.
 // Load-time only; failures are InputErrors at the value.
 
 #include <string>
@@ -7,7 +7,7 @@
 #include "avar/core/format.hpp"
 #include "avar/core/scalar_value.hpp"
 
-namespace avar::assembly {
+namespace avar::rig {
 
 /// The value as a number from low to high (`unit` for the message, may be empty).
 inline double number_in(const ScalarValue& v, const std::string& key, double low, double high, const std::string& unit = "") {
@@ -28,4 +28,4 @@ inline long long integer_in(const ScalarValue& v, const std::string& key, long l
   return x;
 }
 
-}  // namespace avar::assembly
+}  // namespace avar::rig
