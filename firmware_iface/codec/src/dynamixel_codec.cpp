@@ -74,8 +74,12 @@ std::size_t encode_write(std::span<std::uint8_t> out, std::uint8_t id, std::uint
   return encode_instruction(out, id, kWrite, std::span(p.data(), 2 + data.size()));
 }
 
-std::size_t encode_action(std::span<std::uint8_t> out, std::uint8_t id) noexcept { return encode_instruction(out, id, kAction, {}); }
-std::size_t encode_reboot(std::span<std::uint8_t> out, std::uint8_t id) noexcept { return encode_instruction(out, id, kReboot, {}); }
+std::size_t encode_action(std::span<std::uint8_t> out, std::uint8_t id) noexcept {
+  return encode_instruction(out, id, kAction, {});
+}
+std::size_t encode_reboot(std::span<std::uint8_t> out, std::uint8_t id) noexcept {
+  return encode_instruction(out, id, kReboot, {});
+}
 
 std::size_t encode_factory_reset(std::span<std::uint8_t> out, std::uint8_t id, std::uint8_t mode) noexcept {
   if (mode != 0xFF && mode != 0x01 && mode != 0x02) return 0;
@@ -155,8 +159,7 @@ DecodeResult decode_packet(std::span<const std::uint8_t> in, std::span<std::uint
   for (std::size_t i = first; i < end; ++i) {
     if (n >= scratch.size()) return DecodeResult::bad_framing;
     scratch[n++] = in[i];
-    if (in[i] == 0xFD && i + 1 < end && in[i + 1] == 0xFD && i >= kHeaderSize + 2 && in[i - 1] == 0xFF && in[i - 2] == 0xFF)
-      ++i;
+    if (in[i] == 0xFD && i + 1 < end && in[i + 1] == 0xFD && i >= kHeaderSize + 2 && in[i - 1] == 0xFF && in[i - 2] == 0xFF) ++i;
   }
   packet->id = in[4];
   packet->instruction = in[kHeaderSize];
@@ -191,9 +194,11 @@ std::string describe_processing_error(std::uint8_t error) {
 }
 
 std::string describe_hardware_error(std::uint8_t bits) {
-  static constexpr std::pair<std::uint8_t, const char*> kBits[] = {
-      {0x01, "input voltage error"}, {0x04, "overheating"}, {0x08, "motor encoder error"},
-      {0x10, "electrical shock error"}, {0x20, "overload error"}};
+  static constexpr std::pair<std::uint8_t, const char*> kBits[] = {{0x01, "input voltage error"},
+                                                                   {0x04, "overheating"},
+                                                                   {0x08, "motor encoder error"},
+                                                                   {0x10, "electrical shock error"},
+                                                                   {0x20, "overload error"}};
   std::string out;
   for (const auto& [bit, name] : kBits)
     if (bits & bit) out += (out.empty() ? "" : ", ") + std::string(name);

@@ -148,9 +148,10 @@ DecodeResult decode_packet(std::span<const std::uint8_t> in, Packet* packet, std
 
 std::string describe_error(std::uint8_t error) {
   static constexpr std::pair<std::uint8_t, const char*> kBits[] = {
-      {kErrorVoltage, "input voltage"},       {kErrorAngleSensor, "angle sensor"}, {kErrorOverheat, "overheat"},
-      {kErrorOverCurrent, "over-current or range"}, {kErrorChecksum, "checksum"},  {kErrorOverload, "overload"},
-      {kErrorInstruction, "instruction"},     {0x80, "bit 7"}};
+      {kErrorVoltage, "input voltage"},   {kErrorAngleSensor, "angle sensor"},
+      {kErrorOverheat, "overheat"},       {kErrorOverCurrent, "over-current or range"},
+      {kErrorChecksum, "checksum"},       {kErrorOverload, "overload"},
+      {kErrorInstruction, "instruction"}, {0x80, "bit 7"}};
   std::string out;
   for (const auto& [bit, name] : kBits)
     if (error & bit) out += (out.empty() ? "" : ", ") + std::string(name);

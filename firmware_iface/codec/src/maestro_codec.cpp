@@ -10,8 +10,8 @@ namespace avar::firmware_iface::maestro {
 namespace {
 
 /// Writes header + payload (+ CRC) and returns the length, or 0 if it does not fit.
-std::size_t frame(std::span<std::uint8_t> out, const Framing& f, std::uint8_t command,
-                  std::initializer_list<std::uint8_t> head, std::span<const std::uint16_t> values14 = {}) noexcept {
+std::size_t frame(std::span<std::uint8_t> out, const Framing& f, std::uint8_t command, std::initializer_list<std::uint8_t> head,
+                  std::span<const std::uint16_t> values14 = {}) noexcept {
   if (f.pololu && f.device_number > 127) return 0;
   const std::size_t size = (f.pololu ? 3u : 1u) + head.size() + 2 * values14.size() + (f.crc ? 1u : 0u);
   if (out.size() < size) return 0;
@@ -40,7 +40,8 @@ bool valid_channel(std::uint8_t channel) noexcept { return channel < kMaxChannel
 
 }  // namespace
 
-std::size_t encode_set_target(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel, std::uint16_t quarter_us) noexcept {
+std::size_t encode_set_target(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel,
+                              std::uint16_t quarter_us) noexcept {
   if (!valid_channel(channel)) return 0;
   const std::uint16_t v[1] = {quarter_us};
   return frame(out, f, kSetTarget, {channel}, v);
@@ -72,7 +73,9 @@ std::size_t encode_get_position(std::span<std::uint8_t> out, const Framing& f, s
   return frame(out, f, kGetPosition, {channel});
 }
 
-std::size_t encode_get_moving_state(std::span<std::uint8_t> out, const Framing& f) noexcept { return frame(out, f, kGetMovingState, {}); }
+std::size_t encode_get_moving_state(std::span<std::uint8_t> out, const Framing& f) noexcept {
+  return frame(out, f, kGetMovingState, {});
+}
 std::size_t encode_get_errors(std::span<std::uint8_t> out, const Framing& f) noexcept { return frame(out, f, kGetErrors, {}); }
 std::size_t encode_go_home(std::span<std::uint8_t> out, const Framing& f) noexcept { return frame(out, f, kGoHome, {}); }
 
@@ -100,9 +103,9 @@ bool decode_moving_state_reply(std::span<const std::uint8_t, 1> reply) noexcept 
 std::uint16_t decode_errors_reply(std::span<const std::uint8_t, 2> reply) noexcept { return get_u16_le(reply.data()); }
 
 std::string describe_errors(std::uint16_t errors) {
-  static constexpr const char* kNames[] = {"serial signal error",  "serial overrun error", "serial RX buffer full",
-                                           "serial CRC error",     "serial protocol error", "serial timeout",
-                                           "script stack error",   "script call stack error", "script program counter error"};
+  static constexpr const char* kNames[] = {"serial signal error", "serial overrun error",    "serial RX buffer full",
+                                           "serial CRC error",    "serial protocol error",   "serial timeout",
+                                           "script stack error",  "script call stack error", "script program counter error"};
   std::string out;
   for (unsigned bit = 0; bit < 16; ++bit) {
     if (!(errors & (1u << bit))) continue;

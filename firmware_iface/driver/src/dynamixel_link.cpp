@@ -12,8 +12,8 @@ namespace avar::firmware_iface {
 namespace dxl = dynamixel;
 namespace {
 
-constexpr std::size_t kStatusOverhead = 11;                                               // header 7, instruction, error, CRC 2
-constexpr std::uint16_t kFullFirst = dxl::kPresentLoad;                                   // 126
+constexpr std::size_t kStatusOverhead = 11;                                              // header 7, instruction, error, CRC 2
+constexpr std::uint16_t kFullFirst = dxl::kPresentLoad;                                  // 126
 constexpr std::uint16_t kFullLength = dxl::kPresentTemperature + 1 - dxl::kPresentLoad;  // 21
 constexpr double kPulsesPerRev = 4096;
 constexpr double kProfileVelocityUnitRpm = 0.229;
@@ -126,8 +126,7 @@ Status DynamixelLink::start() {
       return write_to(servo, std::span(request.data(), dxl::encode_write(request, servo.id, address, data)));
     };
     // 0 means "no limit" to the servo, which is also what an absent limit means here.
-    const std::int32_t velocity =
-        a.speed_limit ? profile_units(*a.speed_limit, pulses_per_unit, kProfileVelocityUnitRpm, 60) : 0;
+    const std::int32_t velocity = a.speed_limit ? profile_units(*a.speed_limit, pulses_per_unit, kProfileVelocityUnitRpm, 60) : 0;
     const std::int32_t acceleration =
         a.acceleration_limit ? profile_units(*a.acceleration_limit, pulses_per_unit, kProfileAccelerationUnitRpm2, 3600) : 0;
     if (const Status s = write_i32(dxl::kProfileVelocity, velocity); s != Status::ok) return s;

@@ -22,8 +22,7 @@ MaestroLink::MaestroLink(ByteTransport& transport, MaestroLinkConfig config)
     const int ch = config_.actuators[slots_[s]].device_channel;
     if (multiple && !runs_.empty() && runs_.back().first_channel + runs_.back().count == static_cast<std::size_t>(ch))
       ++runs_.back().count;
-    else
-      runs_.push_back({static_cast<std::uint8_t>(ch), s, 1});
+    else runs_.push_back({static_cast<std::uint8_t>(ch), s, 1});
   }
   targets_.resize(n);
   packet_.resize(runs_.size() * maestro::kMaxPacketSize);
@@ -96,10 +95,10 @@ Status MaestroLink::write_targets() noexcept {
   const std::span<std::uint8_t> out(packet_);
   for (const Run& run : runs_) {
     const std::span<std::uint8_t> room = out.subspan(size);
-    const std::size_t len =
-        run.count == 1 ? maestro::encode_set_target(room, config_.framing, run.first_channel, targets_[run.first_slot])
-                       : maestro::encode_set_multiple_targets(room, config_.framing, run.first_channel,
-                                                              std::span(targets_).subspan(run.first_slot, run.count));
+    const std::size_t len = run.count == 1
+                                ? maestro::encode_set_target(room, config_.framing, run.first_channel, targets_[run.first_slot])
+                                : maestro::encode_set_multiple_targets(room, config_.framing, run.first_channel,
+                                                                       std::span(targets_).subspan(run.first_slot, run.count));
     if (len == 0) return Status::out_of_range;
     size += len;
   }

@@ -34,9 +34,7 @@ constexpr std::array<std::pair<int, LibSerial::BaudRate>, 23> kBaudRates{{
     {600, LibSerial::BaudRate::BAUD_600},
 }};
 
-[[noreturn]] void port_error(const std::string& path, const std::string& problem) {
-  throw InputError({path, 0, 0}, problem);
-}
+[[noreturn]] void port_error(const std::string& path, const std::string& problem) { throw InputError({path, 0, 0}, problem); }
 
 }  // namespace
 

@@ -37,7 +37,7 @@ struct ChannelTelemetry {
 
 /// The health of a link's wire since start(); all counters only grow.
 struct LinkCounters {
-  std::uint64_t exchanges = 0;       ///< send() calls that reached the transport
+  std::uint64_t exchanges = 0;  ///< send() calls that reached the transport
   std::uint64_t bytes_sent = 0;
   std::uint64_t bytes_received = 0;
   std::uint64_t replies = 0;         ///< well-formed replies taken
@@ -45,8 +45,8 @@ struct LinkCounters {
   std::uint64_t framing_errors = 0;  ///< bytes skipped to find the next packet
   std::uint64_t timeouts = 0;        ///< replies that did not come in time
   std::uint64_t retries = 0;
-  std::uint64_t device_errors = 0;   ///< replies whose error field was set
-  std::uint64_t reconnects = 0;      ///< transport re-opened after a failure
+  std::uint64_t device_errors = 0;  ///< replies whose error field was set
+  std::uint64_t reconnects = 0;     ///< transport re-opened after a failure
 };
 
 class ActuatorLink {

@@ -31,9 +31,9 @@ enum Label : std::uint8_t {
 
 /// The widget's DMX output timing (labels 3 and 4).
 struct WidgetParameters {
-  std::uint16_t firmware = 0;  ///< reply only
-  std::uint8_t break_time = 9;  ///< units of 10.67 µs, 9..127
-  std::uint8_t mab_time = 1;    ///< units of 10.67 µs, 1..127
+  std::uint16_t firmware = 0;     ///< reply only
+  std::uint8_t break_time = 9;    ///< units of 10.67 µs, 9..127
+  std::uint8_t mab_time = 1;      ///< units of 10.67 µs, 1..127
   std::uint8_t output_rate = 40;  ///< packets per second 1..40, 0 = as fast as possible
 };
 
@@ -53,7 +53,9 @@ std::size_t encode_widget_parameters_reply(std::span<std::uint8_t> out, const Wi
                                            std::span<const std::uint8_t> user_config) noexcept;
 
 /// Bytes of a label 6 message for `slots` slots (padding included).
-constexpr std::size_t send_dmx_size(std::size_t slots) noexcept { return kOverhead + 1 + (slots < kMinSlots ? kMinSlots : slots); }
+constexpr std::size_t send_dmx_size(std::size_t slots) noexcept {
+  return kOverhead + 1 + (slots < kMinSlots ? kMinSlots : slots);
+}
 /// Seconds one DMX512 packet of `slots` slots takes on the DMX line (break 92 µs, MAB 12 µs,
 /// 44 µs per slot incl. the start code, at least 1204 µs break to break).
 constexpr double dmx_packet_seconds(std::size_t slots) noexcept {

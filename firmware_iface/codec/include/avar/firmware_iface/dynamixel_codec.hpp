@@ -78,7 +78,7 @@ std::size_t encode_sync_write_u32(std::span<std::uint8_t> out, std::uint16_t add
 /// A status packet, decoded.
 struct Status {
   std::uint8_t id = 0;
-  std::uint8_t error = 0;  ///< bit 7: alert (hardware error latched); bits 0-6: processing error
+  std::uint8_t error = 0;                ///< bit 7: alert (hardware error latched); bits 0-6: processing error
   std::span<const std::uint8_t> params;  ///< unstuffed, pointing into the caller's scratch buffer
   bool alert() const noexcept { return error & 0x80; }
   std::uint8_t processing_error() const noexcept { return error & 0x7F; }

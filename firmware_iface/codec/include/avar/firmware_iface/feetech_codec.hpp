@@ -49,25 +49,25 @@ enum Address : std::uint8_t {
   kModelNumber = 3,
   kId = 5,
   kBaudRate = 6,
-  kReturnDelay = 7,        ///< 2 µs per unit
-  kResponseLevel = 8,      ///< 0: only Read and Ping answer; 1: every non-broadcast instruction
+  kReturnDelay = 7,    ///< 2 µs per unit
+  kResponseLevel = 8,  ///< 0: only Read and Ping answer; 1: every non-broadcast instruction
   kMinPositionLimit = 9,
   kMaxPositionLimit = 11,
   kMaxTemperature = 13,
   kUnloadingCondition = 19,
   kTorqueEnable = 40,
-  kAcceleration = 41,      ///< 100 steps/s² per unit, 0 = maximum
+  kAcceleration = 41,  ///< 100 steps/s² per unit, 0 = maximum
   kGoalPosition = 42,
   kGoalTime = 44,
-  kGoalSpeed = 46,         ///< steps/s (STS3215 factory unit), 0 = maximum
+  kGoalSpeed = 46,  ///< steps/s (STS3215 factory unit), 0 = maximum
   kLockScs = 48,
   kLockSts = 55,
   kPresentPosition = 56,
   kPresentSpeed = 58,
-  kPresentLoad = 60,       ///< 0.1 % of full duty, sign bit 10
-  kPresentVoltage = 62,    ///< 0.1 V
-  kPresentTemperature = 63,///< °C
-  kStatus = 65,            ///< same bits as the status packet's error byte
+  kPresentLoad = 60,         ///< 0.1 % of full duty, sign bit 10
+  kPresentVoltage = 62,      ///< 0.1 V
+  kPresentTemperature = 63,  ///< °C
+  kStatus = 65,              ///< same bits as the status packet's error byte
   kMoving = 66,
 };
 
@@ -142,7 +142,7 @@ constexpr std::size_t status_size(std::size_t data_length) noexcept { return 6 +
 
 struct Packet {
   std::uint8_t id = 0;
-  std::uint8_t code = 0;  ///< instruction, or the error byte of a status packet
+  std::uint8_t code = 0;                 ///< instruction, or the error byte of a status packet
   std::span<const std::uint8_t> params;  ///< points into the input
 };
 

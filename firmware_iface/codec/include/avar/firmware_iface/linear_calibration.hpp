@@ -6,12 +6,12 @@
 namespace avar::firmware_iface {
 
 struct LinearCalibration {
-  double channel_min = 0;      ///< channel value mapped to device_at_min (channel units)
-  double channel_max = 1;      ///< channel value mapped to device_at_max (channel units), > channel_min
-  double device_at_min = 1000; ///< device value at channel_min before reverse and trim (device units)
-  double device_at_max = 2000; ///< device value at channel_max before reverse and trim (device units)
-  bool reverse = false;        ///< swap the two ends (actuator mounted the other way round)
-  double trim = 0;             ///< offset added to every device value (re-centring after a horn re-seat)
+  double channel_min = 0;       ///< channel value mapped to device_at_min (channel units)
+  double channel_max = 1;       ///< channel value mapped to device_at_max (channel units), > channel_min
+  double device_at_min = 1000;  ///< device value at channel_min before reverse and trim (device units)
+  double device_at_max = 2000;  ///< device value at channel_max before reverse and trim (device units)
+  bool reverse = false;         ///< swap the two ends (actuator mounted the other way round)
+  double trim = 0;              ///< offset added to every device value (re-centring after a horn re-seat)
 
   /// The hard device window: the calibrated span shifted by the trim. No command leaves it.
   double device_low() const noexcept;

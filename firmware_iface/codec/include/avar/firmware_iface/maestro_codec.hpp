@@ -72,8 +72,7 @@ std::size_t encode_set_multiple_targets(std::span<std::uint8_t> out, const Frami
                                         std::span<const std::uint16_t> quarter_us) noexcept;
 /// Set Speed: speed in units of 0.25 µs per 10 ms = 25 µs/s (0 = unlimited; saturates at
 /// 16383, and the device itself caps it at 10000).
-std::size_t encode_set_speed(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel,
-                             std::uint16_t speed) noexcept;
+std::size_t encode_set_speed(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel, std::uint16_t speed) noexcept;
 /// Set Acceleration: units of 0.25 µs per 10 ms per 80 ms = 312.5 µs/s² (0 = unlimited;
 /// saturates at 255).
 std::size_t encode_set_acceleration(std::span<std::uint8_t> out, const Framing& f, std::uint8_t channel,

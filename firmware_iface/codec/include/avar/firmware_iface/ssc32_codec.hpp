@@ -57,7 +57,7 @@ struct Command {
   std::array<ServoMove, kChannels> servos{};
   std::array<std::int16_t, kChannels> offsets{};
   std::size_t servo_count = 0;
-  std::uint32_t time_ms = 0;  ///< move: T, 0 when absent
+  std::uint32_t time_ms = 0;                    ///< move: T, 0 when absent
   std::array<std::uint8_t, kChannels> query{};  ///< query_pulse: channels asked, in order
   std::size_t query_count = 0;
 };

@@ -31,9 +31,9 @@
 namespace avar::firmware_iface {
 
 struct DynamixelActuator {
-  std::size_t channel = 0;  ///< rig channel index
-  std::uint8_t id = 1;      ///< servo ID, 0..252
-  LinearCalibration calibration;  ///< channel units -> position pulses (0.088° each, 0..4095 per turn)
+  std::size_t channel = 0;                   ///< rig channel index
+  std::uint8_t id = 1;                       ///< servo ID, 0..252
+  LinearCalibration calibration;             ///< channel units -> position pulses (0.088° each, 0..4095 per turn)
   std::optional<double> speed_limit;         ///< device profile velocity, channel units/s
   std::optional<double> acceleration_limit;  ///< device profile acceleration, channel units/s²
 };
@@ -106,11 +106,11 @@ class DynamixelLink final : public ActuatorLink {
   ActuatorTable table_;
   DynamixelBusCodec codec_;
   BusExchange bus_;
-  std::vector<Servo> servos_;                 ///< sorted by ID
-  std::vector<std::uint8_t> ids_;             ///< scratch: IDs of one instruction
-  std::vector<std::int32_t> values_;          ///< scratch: values of one Sync Write
-  std::vector<std::size_t> asked_;            ///< scratch: actuators of one Sync Read
-  std::vector<std::uint8_t> packet_;          ///< outgoing bytes
+  std::vector<Servo> servos_;         ///< sorted by ID
+  std::vector<std::uint8_t> ids_;     ///< scratch: IDs of one instruction
+  std::vector<std::int32_t> values_;  ///< scratch: values of one Sync Write
+  std::vector<std::size_t> asked_;    ///< scratch: actuators of one Sync Read
+  std::vector<std::uint8_t> packet_;  ///< outgoing bytes
   std::uint16_t read_address_ = 0, read_length_ = 0;
   std::string description_;
   std::string start_problem_;

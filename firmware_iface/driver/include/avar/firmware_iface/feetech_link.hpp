@@ -110,11 +110,11 @@ class FeetechLink final : public ActuatorLink {
   ActuatorTable table_;
   FeetechBusCodec codec_;
   BusExchange bus_;
-  std::vector<std::uint8_t> ids_;                  ///< scratch: IDs of one packet
-  std::vector<std::uint16_t> goals_;               ///< scratch: goal words of one packet
-  std::vector<std::uint8_t> torque_off_;           ///< scratch: zeros for the torque-off packet
-  std::vector<std::size_t> all_slots_;             ///< 0..n-1
-  std::vector<std::uint8_t> packet_;               ///< the whole tick's bytes
+  std::vector<std::uint8_t> ids_;         ///< scratch: IDs of one packet
+  std::vector<std::uint16_t> goals_;      ///< scratch: goal words of one packet
+  std::vector<std::uint8_t> torque_off_;  ///< scratch: zeros for the torque-off packet
+  std::vector<std::size_t> all_slots_;    ///< 0..n-1
+  std::vector<std::uint8_t> packet_;      ///< the whole tick's bytes
   std::size_t last_send_size_ = 0;
 };
 

@@ -19,8 +19,8 @@ namespace avar::firmware_iface {
 
 struct MaestroLinkConfig {
   maestro::Framing framing;
-  int channel_count = 24;      ///< 6 = Micro Maestro (no Set Multiple Targets)
-  bool baud_detect = false;    ///< send 0xAA first so a device in auto-baud mode locks on
+  int channel_count = 24;    ///< 6 = Micro Maestro (no Set Multiple Targets)
+  bool baud_detect = false;  ///< send 0xAA first so a device in auto-baud mode locks on
   std::chrono::milliseconds reply_timeout{200};
   std::vector<MaestroActuator> actuators;
 };
@@ -68,7 +68,7 @@ class MaestroLink final : public ActuatorLink {
 
   ByteTransport& transport_;
   MaestroLinkConfig config_;
-  std::vector<std::size_t> slots_;        ///< actuator indices sorted by device channel
+  std::vector<std::size_t> slots_;  ///< actuator indices sorted by device channel
   std::vector<Run> runs_;
   ActuatorTable table_;
   std::vector<std::uint16_t> targets_;  ///< quarter-µs per slot, rebuilt each send

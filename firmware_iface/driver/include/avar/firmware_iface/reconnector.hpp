@@ -53,7 +53,8 @@ class Reconnector {
   }
 
   /// One write through the reconnector, for links whose devices keep no state worth restoring
-  /// (hobby-servo boards, DMX): reopens first while lost (as ask()), and marks the link lost on an I/O error. Real-time safe but for the reopen.
+  /// (hobby-servo boards, DMX): reopens first while lost (as ask()), and marks the link lost on an I/O error. Real-time safe but
+  /// for the reopen.
   Status write(ByteTransport& transport, std::span<const std::uint8_t> bytes) noexcept {
     bool reopened = false;
     if (ask(transport, &reopened) != Status::ok) return Status::io_error;

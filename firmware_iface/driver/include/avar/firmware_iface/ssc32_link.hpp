@@ -20,9 +20,9 @@
 namespace avar::firmware_iface {
 
 struct Ssc32Actuator {
-  std::size_t channel = 0;  ///< rig channel index
-  int device_channel = 0;   ///< SSC-32 channel, 0..31
-  LinearCalibration calibration;  ///< channel units -> pulse width in µs (500..2500 on the board)
+  std::size_t channel = 0;               ///< rig channel index
+  int device_channel = 0;                ///< SSC-32 channel, 0..31
+  LinearCalibration calibration;         ///< channel units -> pulse width in µs (500..2500 on the board)
   std::optional<double> speed_us_per_s;  ///< the board's per-servo S limit, 1..65535
 };
 
