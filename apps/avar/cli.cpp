@@ -15,6 +15,7 @@
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
+#include "avar/timecode_options.hpp"
 #include "avar/visemes_command.hpp"
 
 namespace avar::app {
@@ -191,8 +192,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   SimMaestroOptions sim_maestro;
   CLI::App* sim_cmd = app.add_subcommand("sim", "Run a simulated device that other programs can talk to");
   sim_cmd->require_subcommand(1);
-  CLI::App* sim_maestro_cmd =
-      sim_cmd->add_subcommand("maestro", "A simulated Pololu Maestro on a pseudo-terminal; prints the port path, serves until Ctrl-C");
+  CLI::App* sim_maestro_cmd = sim_cmd->add_subcommand(
+      "maestro", "A simulated Pololu Maestro on a pseudo-terminal; prints the port path, serves until Ctrl-C");
   sim_maestro_cmd->add_flag("--pty", sim_maestro.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
   sim_maestro_cmd->add_option("--channels", sim_maestro.channels, "Channel count: 6, 12, 18 or 24")
       ->check(CLI::IsMember({6, 12, 18, 24}));
@@ -203,8 +204,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sim_dynamixel_cmd = sim_cmd->add_subcommand(
       "dynamixel", "Simulated DYNAMIXEL X-series servos on one Protocol 2.0 bus; prints the port path, serves until Ctrl-C");
   sim_dynamixel_cmd->add_flag("--pty", sim_dynamixel.pty, "Serve on a pseudo-terminal (the only transport so far)")->required();
-  sim_dynamixel_cmd->add_option("--ids", sim_dynamixel.ids, "Servo IDs on the bus, comma-separated (default 1)")
-      ->delimiter(',');
+  sim_dynamixel_cmd->add_option("--ids", sim_dynamixel.ids, "Servo IDs on the bus, comma-separated (default 1)")->delimiter(',');
   SimFeetechOptions sim_feetech;
   CLI::App* sim_feetech_cmd = sim_cmd->add_subcommand(
       "feetech", "Simulated Feetech STS or SCS servos on one bus; prints the port path, serves until Ctrl-C");

@@ -23,19 +23,32 @@
 #include "avar/assembly/figure_links.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
-#include "avar/fitted_track.hpp"
-#include "avar/idle_session.hpp"
-#include "avar/live_session.hpp"
-#include "avar/cue_player.hpp"
-#include "avar/mocap_bake.hpp"
-#include "avar/osc_control.hpp"
-#include "avar/play_recorder.hpp"
+#include "avar/playback/offline/track_fit.hpp"
+#include "avar/session/idle_session.hpp"
+#include "avar/session/live_session.hpp"
+#include "avar/session/cue_player.hpp"
+#include "avar/config/mocap_bake.hpp"
+#include "avar/session/osc_control.hpp"
+#include "avar/session/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
 #include "avar/svg_plot.hpp"
 #include "avar/core/format.hpp"
 
 namespace avar::app {
+
+using config::load_playable_show;
+using playback::fit_track;
+using playback::max_fit_error;
+using session::CuePlayer;
+using session::fresh_idle_seed;
+using session::IdleSession;
+using session::LiveSession;
+using session::OscControlSurface;
+using session::PhaseMark;
+using session::PlayRecorder;
+using session::TimecodeRun;
+using session::TraceColumn;
 namespace {
 
 struct Loaded {
@@ -93,7 +106,8 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
   for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
     const PhaseMark& p = recorder.phases()[i];
     if (p.phase == control::Phase::disabled) continue;
-    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << format_fixed(p.time_s, 2) << " s\n";
+    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << format_fixed(p.time_s, 2)
+        << " s\n";
   }
   out << '\n'
       << std::left << std::setw(12) << "channel" << std::setw(6) << "unit" << std::right << std::setw(11) << "max err"
@@ -116,15 +130,15 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
     const control::IkStats& k = ik->stats();
     out << "inverse kinematics: " << k.converged << " solves converged, " << k.degraded
         << " degraded (target out of reach: closest pose used), " << k.failed << " failed; worst residual "
-        << format_fixed(k.worst_position_error * 1000.0, 3) << " mm, " << format_fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3)
-        << "°\n";
+        << format_fixed(k.worst_position_error * 1000.0, 3) << " mm, "
+        << format_fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3) << "°\n";
   }
   if (realtime) {
     const auto us = [](std::int64_t ns) { return format_fixed(static_cast<double>(ns) / 1000.0, 1); };
-    out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 " << us(run.lateness.percentile_ns(0.99))
-        << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max " << us(run.lateness.max_ns()) << "; scheduling: "
-        << (run.realtime.fifo ? "SCHED_FIFO" : "normal") << (run.realtime.memory_locked ? ", memory locked" : "")
-        << (run.realtime.pinned ? ", pinned" : "") << '\n';
+    out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 "
+        << us(run.lateness.percentile_ns(0.99)) << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max "
+        << us(run.lateness.max_ns()) << "; scheduling: " << (run.realtime.fifo ? "SCHED_FIFO" : "normal")
+        << (run.realtime.memory_locked ? ", memory locked" : "") << (run.realtime.pinned ? ", pinned" : "") << '\n';
   }
   if (!realtime) return;
   out << "tick stages (µs, last / worst):";
@@ -433,8 +447,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   for (firmware_iface::ActuatorLink* link : links) {
     if (const Status s = link->start(); s != Status::ok) {
       const std::string problem = link->start_problem();
-      err << "error: " << link->describe() << " did not start: " << to_string(s)
-          << (problem.empty() ? "" : ": " + problem) << " (check power, cable, the device's serial mode and the baud rate)\n";
+      err << "error: " << link->describe() << " did not start: " << to_string(s) << (problem.empty() ? "" : ": " + problem)
+          << " (check power, cable, the device's serial mode and the baud rate)\n";
       return kExitFault;
     }
   }
