@@ -57,7 +57,7 @@ demo-talking: configure $(TALKING_VOICE)
 # caller's thread only, and its property family is the suite's longest test). `make test-fast` runs every test on the
 # optimised build instead. The sanitizer builds use -O1, as the sanitizers' authors advise: at
 # -O0 the Eigen-heavy tests ran 5x slower.
-TSAN_SUITES = control sim firmware_iface inputs assembly
+TSAN_SUITES = control sim firmware_iface inputs assembly session
 TSAN_EXCLUDE = ^Limiter\.
 test: lint test-sanitize test-docs test-tsan
 

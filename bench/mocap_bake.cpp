@@ -17,7 +17,7 @@
 #include "avar/config/retarget_map.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/mocap/bvh_reader.hpp"
-#include "avar/mocap_bake.hpp"
+#include "avar/config/mocap_bake.hpp"
 
 namespace {
 
@@ -120,7 +120,8 @@ void BM_Bake(benchmark::State& state) {
   const avar::mocap::SkeletonAnimation animation = avar::mocap::load_bvh(bake_bench_file());
   std::size_t keys = 0;
   for (auto _ : state) {
-    const avar::app::Baked baked = avar::app::bake_show(animation, map, rig, avar::app::BakeSettings{}, "bench", nullptr);
+    const avar::config::Baked baked =
+        avar::config::bake_show(animation, map, rig, avar::config::BakeSettings{}, "bench", nullptr);
     keys = 0;
     for (const auto& t : baked.show.tracks) keys += t.raw.keys.size();
   }
@@ -132,7 +133,7 @@ void BM_LoadAndBake(benchmark::State& state) {
   const avar::mocap::RetargetMap map = avar::config::load_retarget_map(bake_bench_map(), rig);
   for (auto _ : state) {
     const avar::mocap::SkeletonAnimation animation = avar::mocap::load_bvh(bake_bench_file());
-    benchmark::DoNotOptimize(avar::app::bake_show(animation, map, rig, avar::app::BakeSettings{}, "bench", nullptr));
+    benchmark::DoNotOptimize(avar::config::bake_show(animation, map, rig, avar::config::BakeSettings{}, "bench", nullptr));
   }
 }
 

@@ -7,13 +7,13 @@
 
 #include "avar/core/input_error.hpp"
 #include "avar/playback/offline/curve_fit.hpp"
-#include "avar/recording_csv.hpp"
+#include "avar/config/recording_csv.hpp"
 #include "fuzz_bytes.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream text(avar::fuzz::as_text(data, size));
   try {
-    const avar::app::Recording recording = avar::app::read_recording(text, "fuzz.csv");
+    const avar::config::Recording recording = avar::config::read_recording(text, "fuzz.csv");
     if (recording.times.size() > 64) return 0;
     avar::playback::CurveFitOptions options;
     options.tolerance = 0.01;

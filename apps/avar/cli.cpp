@@ -15,6 +15,7 @@
 #include "avar/play_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
+#include "avar/timecode_options.hpp"
 #include "avar/visemes_command.hpp"
 
 namespace avar::app {
@@ -28,7 +29,7 @@ struct RunCli {
   std::uint64_t loops = 0;
   double duration = 0;
   std::string port, trace, plot, record_out;
-  bool realtime_flag = false, no_progress = false, no_lock = false;
+  bool no_progress = false, no_lock = false;
   CLI::Option *port_opt = nullptr, *rate_opt = nullptr, *loops_opt = nullptr, *trace_opt = nullptr, *plot_opt = nullptr,
               *duration_opt = nullptr;
 
@@ -59,10 +60,9 @@ void declare_run_options(CLI::App* cmd, RunCli& r, bool plays_show) {
                   "with NAME.");
   cmd->add_option("--inputs", o.inputs_path, "Inputs file (YAML with an inputs: section; default: the rig's own inputs:)");
   if (plays_show) {
-    CLI::Option* rt_opt = cmd->add_flag("--realtime", r.realtime_flag, "Run on the wall clock (the default)");
-    CLI::Option* fast_opt =
-        cmd->add_flag("--fast", o.fast, "Run on a simulated clock as fast as possible (simulator only, deterministic)");
-    rt_opt->excludes(fast_opt);
+    // The wall clock is the default and has no flag; --fast asks for the simulated one.
+    cmd->add_flag("--fast", o.fast,
+                  "Run on a simulated clock as fast as possible (simulator only, deterministic; default: the wall clock)");
     r.loops_opt = cmd->add_option("--loops", r.loops, "Passes of a looping show (0 = until Ctrl-C; default 0, or 1 with --fast)");
     declare_show_control_options(cmd, o.timecode);
   } else {

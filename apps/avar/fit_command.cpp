@@ -13,11 +13,16 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/fitted_track.hpp"
+#include "avar/playback/offline/track_fit.hpp"
 #include "avar/playback/offline/smoothing.hpp"
-#include "avar/recording_csv.hpp"
+#include "avar/config/recording_csv.hpp"
 
 namespace avar::app {
+
+using config::read_recording;
+using config::Recording;
+using playback::fit_track;
+using playback::max_fit_error;
 namespace {
 
 /// A bad command-line value, reported like a file problem with the option as its place.
@@ -31,7 +36,8 @@ double even_sample_rate(const Recording& r, const std::string& path) {
     const double dt = r.times[i] - r.times[i - 1];
     if (std::abs(dt - step) > 0.01 * step)
       throw InputError({path, r.lines[i], 1}, "samples " + format_number(dt) + " s apart where the mean spacing is " +
-                                                  format_number(step) + " s; expected evenly spaced samples (within 1%) for --smooth");
+                                                  format_number(step) +
+                                                  " s; expected evenly spaced samples (within 1%) for --smooth");
   }
   return 1 / step;
 }
@@ -40,7 +46,8 @@ double even_sample_rate(const Recording& r, const std::string& path) {
 
 CLI::App* add_fit_subcommand(CLI::App& app, FitOptions& o) {
   CLI::App* cmd = app.add_subcommand("fit", "Turn recorded samples (CSV) into a show of few Bezier keys within a tolerance");
-  cmd->add_option("csv", o.csv_path, "CSV file: a 'seconds' column, then one column per channel (as `avar sample` writes)")->required();
+  cmd->add_option("csv", o.csv_path, "CSV file: a 'seconds' column, then one column per channel (as `avar sample` writes)")
+      ->required();
   cmd->add_option("--tolerance", o.tolerance, "Largest allowed difference from the samples, in channel units (> 0)")
       ->required()
       ->check(CLI::PositiveNumber);
@@ -49,7 +56,8 @@ CLI::App* add_fit_subcommand(CLI::App& app, FitOptions& o) {
       ->check(CLI::IsMember({"none", "moving_average", "gaussian", "bspline", "butterworth"}));
   cmd->add_option("--cutoff", o.cutoff_hz, "Smoothing cutoff frequency in Hz (needed with --smooth; below half the sample rate)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--corner-angle", o.corner_angle_deg, "Turn (degrees) above which a sample is kept as a sharp corner (default 60)")
+  cmd->add_option("--corner-angle", o.corner_angle_deg,
+                  "Turn (degrees) above which a sample is kept as a sharp corner (default 60)")
       ->check(CLI::Range(0.0, 180.0));
   cmd->footer(
       "Every channel becomes a track of Bezier keys with free handles: split at the worst sample until\n"
@@ -69,7 +77,9 @@ CLI::App* add_fit_subcommand(CLI::App& app, FitOptions& o) {
 int run_fit(const FitOptions& options, std::ostream& out, std::ostream& err) {
   try {
     const auto method = playback::smoothing_method_from_name(options.smooth);
-    if (!method) throw option_error("--smooth", "found '" + options.smooth + "'; expected none, moving_average, gaussian, bspline or butterworth");
+    if (!method)
+      throw option_error("--smooth",
+                         "found '" + options.smooth + "'; expected none, moving_average, gaussian, bspline or butterworth");
     if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
       throw option_error("--tolerance", "expected above 0, found " + format_number(options.tolerance));
     if (*method != playback::SmoothingMethod::none && !options.cutoff_hz)
@@ -104,7 +114,8 @@ int run_fit(const FitOptions& options, std::ostream& out, std::ostream& err) {
             << format_number(max_fit_error(track.curve, recording.times, recording.values[c])) << " against the input";
       out << " (tolerance " << format_number(options.tolerance) << ")\n";
     }
-    out << "wrote " << options.out_path << " (" << written.tracks.size() << " tracks, " << format_number(written.duration) << " s)\n";
+    out << "wrote " << options.out_path << " (" << written.tracks.size() << " tracks, " << format_number(written.duration)
+        << " s)\n";
     return kExitOk;
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';

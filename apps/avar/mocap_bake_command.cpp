@@ -13,9 +13,17 @@
 #include "avar/config/show_writer.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
-#include "avar/mocap_bake.hpp"
+#include "avar/config/mocap_bake.hpp"
 
 namespace avar::app {
+
+using config::bake_show;
+using config::Baked;
+using config::BakeReport;
+using config::BakeSettings;
+using config::is_mocap_file;
+using config::load_motion_file;
+using config::measure_fit;
 
 CLI::App* add_mocap_bake_subcommand(CLI::App& mocap, MocapBakeOptions& o) {
   CLI::App* cmd =

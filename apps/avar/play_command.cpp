@@ -21,21 +21,35 @@
 #include "avar/control/runner.hpp"
 #include "avar/assembly/digital_inputs.hpp"
 #include "avar/assembly/figure_links.hpp"
+#include "avar/session/show_session.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
-#include "avar/fitted_track.hpp"
-#include "avar/idle_session.hpp"
-#include "avar/live_session.hpp"
-#include "avar/cue_player.hpp"
-#include "avar/mocap_bake.hpp"
-#include "avar/osc_control.hpp"
-#include "avar/play_recorder.hpp"
+#include "avar/playback/offline/track_fit.hpp"
+#include "avar/session/idle_session.hpp"
+#include "avar/session/live_session.hpp"
+#include "avar/session/cue_player.hpp"
+#include "avar/config/mocap_bake.hpp"
+#include "avar/session/osc_control.hpp"
+#include "avar/session/play_recorder.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_writer.hpp"
 #include "avar/svg_plot.hpp"
 #include "avar/core/format.hpp"
 
 namespace avar::app {
+
+using config::load_playable_show;
+using playback::fit_track;
+using playback::max_fit_error;
+using session::CuePlayer;
+using session::fresh_idle_seed;
+using session::IdleSession;
+using session::LiveSession;
+using session::OscControlSurface;
+using session::PhaseMark;
+using session::PlayRecorder;
+using session::TimecodeRun;
+using session::TraceColumn;
 namespace {
 
 struct Loaded {
@@ -93,7 +107,8 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
   for (std::size_t i = 0; i < recorder.phases().size(); ++i) {
     const PhaseMark& p = recorder.phases()[i];
     if (p.phase == control::Phase::disabled) continue;
-    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << format_fixed(p.time_s, 2) << " s\n";
+    out << "  " << std::left << std::setw(9) << control::to_string(p.phase) << std::right << "from " << format_fixed(p.time_s, 2)
+        << " s\n";
   }
   out << '\n'
       << std::left << std::setw(12) << "channel" << std::setw(6) << "unit" << std::right << std::setw(11) << "max err"
@@ -116,15 +131,15 @@ void print_summary(std::ostream& out, const Loaded& loaded, const assembly::Figu
     const control::IkStats& k = ik->stats();
     out << "inverse kinematics: " << k.converged << " solves converged, " << k.degraded
         << " degraded (target out of reach: closest pose used), " << k.failed << " failed; worst residual "
-        << format_fixed(k.worst_position_error * 1000.0, 3) << " mm, " << format_fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3)
-        << "°\n";
+        << format_fixed(k.worst_position_error * 1000.0, 3) << " mm, "
+        << format_fixed(k.worst_orientation_error * 180.0 / 3.141592653589793, 3) << "°\n";
   }
   if (realtime) {
     const auto us = [](std::int64_t ns) { return format_fixed(static_cast<double>(ns) / 1000.0, 1); };
-    out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 " << us(run.lateness.percentile_ns(0.99))
-        << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max " << us(run.lateness.max_ns()) << "; scheduling: "
-        << (run.realtime.fifo ? "SCHED_FIFO" : "normal") << (run.realtime.memory_locked ? ", memory locked" : "")
-        << (run.realtime.pinned ? ", pinned" : "") << '\n';
+    out << "wake-up lateness (µs): p50 " << us(run.lateness.percentile_ns(0.5)) << ", p99 "
+        << us(run.lateness.percentile_ns(0.99)) << ", p99.9 " << us(run.lateness.percentile_ns(0.999)) << ", max "
+        << us(run.lateness.max_ns()) << "; scheduling: " << (run.realtime.fifo ? "SCHED_FIFO" : "normal")
+        << (run.realtime.memory_locked ? ", memory locked" : "") << (run.realtime.pinned ? ", pinned" : "") << '\n';
   }
   if (!realtime) return;
   out << "tick stages (µs, last / worst):";
@@ -357,22 +372,18 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
 
-  std::unique_ptr<assembly::FigureLinks> figure;
-  // GPIO chips are shared by the gpio links and the digital inputs (the e-stop).
+  // The session opens the links. GPIO chips are shared by the gpio links and the digital inputs
+  // (the e-stop).
+  session::SessionConfig config;
+  config.rate_hz = rate;
+  config.stepped = options.fast;
   const auto gpio_chips = std::make_shared<assembly::GpioChips>(options.simulate);
+  config.links = assembly::LinkSelection{options.port, options.simulate, 0.0, {}, gpio_chips};
+  config.loops = options.loops.value_or(options.fast ? 1 : 0);
+  config.realtime = options.realtime;
+  config.deadline_miss_budget = options.deadline_miss_budget;
+  std::unique_ptr<session::ShowSession> session;
   std::unique_ptr<inputs::GpioInputs> digital_inputs;
-  try {
-    figure = std::make_unique<assembly::FigureLinks>(
-        rig, assembly::LinkSelection{options.port, options.simulate, options.fast ? 0.0 : rate, {}, gpio_chips});
-    digital_inputs = assembly::open_digital_inputs(rig, *gpio_chips);
-  } catch (const InputError& e) {
-    err << "error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
-  if (options.fast && !figure->all_simulated()) {
-    err << "error: --fast runs on a simulated clock and needs every link simulated; drop --port or add --sim\n";
-    return kExitBadInput;
-  }
 
   // The input devices open before anything moves: a missing one stops the run here. Digital
   // inputs of the rig with the control role feed the mappings too.
@@ -414,6 +425,25 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     }
   }
 
+  if (live) config.live = &live->inputs();
+  if (idle) {
+    config.live = idle->layers(config.live);
+    config.lead_in_s = options.idle_before_s;
+    config.lead_out_s = options.idle_after_s;
+  }
+  if (chase) config.external_clock = &chase->clock();
+  if (surface) config.external_clock = surface.get();
+  try {
+    session = std::make_unique<session::ShowSession>(rig, loaded->show, config);
+    digital_inputs = assembly::open_digital_inputs(rig, *gpio_chips);
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::invalid_argument&) {
+    err << "error: --fast runs on a simulated clock and needs every link simulated; drop --port or add --sim\n";
+    return kExitBadInput;
+  }
+
   // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
   // live mixer, start buttons for --wait-start.
   if (digital_inputs) {
@@ -429,49 +459,25 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     if (const int code = wait_for_start_button(rig, digital_inputs.get(), err); code != kExitOk) return code;
   }
 
-  const std::vector<firmware_iface::ActuatorLink*> links = figure->links();
-  for (firmware_iface::ActuatorLink* link : links) {
-    if (const Status s = link->start(); s != Status::ok) {
-      const std::string problem = link->start_problem();
-      err << "error: " << link->describe() << " did not start: " << to_string(s)
-          << (problem.empty() ? "" : ": " + problem) << " (check power, cable, the device's serial mode and the baud rate)\n";
-      return kExitFault;
-    }
+  if (const std::optional<session::LinkProblem> p = session->start_links()) {
+    err << "error: " << session->figure().links()[p->link]->describe() << " did not start: " << to_string(p->status)
+        << (p->problem.empty() ? "" : ": " + p->problem) << " (check power, cable, the device's serial mode and the baud rate)\n";
+    return kExitFault;
   }
-  // Start pose: what the devices report, the rest pose for the rest.
-  std::vector<double> start_pose = rig.rest_frame();
-  std::unique_ptr<bool[]> known(new bool[rig.channels.size()]());
-  for (firmware_iface::ActuatorLink* link : links)
-    (void)link->read_positions(start_pose, std::span<bool>(known.get(), rig.channels.size()));
-
-  control::ControllerOptions controller_options;
-  controller_options.tick_period_s = 1.0 / rate;
-  // On the simulated clock a run is deterministic, trace included: stages are not timed.
-  if (options.fast) controller_options.stage_clock = nullptr;
-  if (loaded->show.loop) controller_options.loops = options.loops.value_or(options.fast ? 1 : 0);
-  controller_options.positions = figure.get();  // the simulator's ground truth, for simulated links
-  if (live) controller_options.live = &live->inputs();
-  if (idle) {
-    controller_options.live = idle->layers(controller_options.live);
-    controller_options.lead_in_s = options.idle_before_s;
-    controller_options.lead_out_s = options.idle_after_s;
-  }
-  if (chase) controller_options.show_clock = &chase->clock();
-  if (surface) controller_options.show_clock = surface.get();
-  control::Controller controller(rig, loaded->show, links, controller_options);
+  session->begin();
+  const control::Controller& controller = session->controller();
+  const assembly::FigureLinks& figure = session->figure();
   if (idle) idle->watch(controller);
-  controller.begin(0.0, start_pose);
 
   const bool keep = options.trace_path || options.plot_path || options.record_path;
-  const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(controller_options.loops, 1)) : 1.0;
+  const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(config.loops, 1)) : 1.0;
   // A live run without an end reserves a minute; longer ones grow as they go.
-  const double planned_s = std::isfinite(loaded->show.duration)
-                               ? passes * loaded->show.duration + controller_options.lead_in_s + controller_options.lead_out_s
-                               : 60.0;
+  const double planned_s =
+      std::isfinite(loaded->show.duration) ? passes * loaded->show.duration + config.lead_in_s + config.lead_out_s : 60.0;
   const auto expected_ticks = static_cast<std::size_t>((planned_s + 10.0) * rate);
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
-  PlayRecorder recorder(*figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
+  PlayRecorder recorder(figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
                         ::isatty(STDERR_FILENO) == 1, &err);
   if (live) recorder.watch(&live->inputs());
 
@@ -486,21 +492,19 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
         << ") on '" << rig.name << "'" << (options.record_path ? ", recording" : "")
         << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "") << std::endl;
-  control::RunOptions run_options{rate, realtime ? control::ClockMode::realtime : control::ClockMode::stepped, options.realtime};
-  run_options.deadline_miss_budget = options.deadline_miss_budget;
-  run_options.estop = &interrupts.estop();
-  if (digital_inputs) run_options.estop_input = &digital_inputs->estop();
-  run_options.plant = figure.get();
+  session->add_estop_input(interrupts.estop());
+  if (digital_inputs) session->add_estop_input(digital_inputs->estop());
   CuePlayer cues(loaded->show, recorder);  // OSC cues go out from their own thread
   control::TickObserver* observer = &cues;
   if (chase) chase->forward_to(cues), observer = chase.get();
   if (surface) {
     surface->forward_to(cues), observer = surface.get();
-    run_options.estop_remote = &surface->estop();
+    session->add_estop_input(surface->estop());
     err << "OSC control on udp " << surface->where() << ": waiting for /avar/show/play '" << loaded->show.name << "'"
         << std::endl;
   }
-  const control::RunResult run = control::run_loop(controller, run_options, *observer, interrupts.count());
+  session->set_loop_observer(observer);
+  const control::RunResult run = session->run(interrupts.count());
   cues.flush();
   recorder.finish();
   if (chase) chase->stop();
@@ -509,7 +513,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   if (live) live->stop();
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
-  print_summary(out, *loaded, *figure, controller, recorder, run, realtime, rate, live.get());
+  print_summary(out, *loaded, figure, controller, recorder, run, realtime, rate, live.get());
   if (idle) idle->describe(out);
   if (chase) chase->summarize(out);
   if (surface) surface->summarize(out);
@@ -519,7 +523,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
         return code;
     }
     if (options.trace_path) {
-      write_trace(*options.trace_path, rig, *figure, recorder, live.get(),
+      write_trace(*options.trace_path, rig, figure, recorder, live.get(),
                   chase ? chase->trace_columns() : std::vector<TraceColumn>{});
       out << "trace: " << *options.trace_path << '\n';
     }
@@ -544,7 +548,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     if (about_link) err << " on link " << rig.links[fault.index].name << " (" << to_string(fault.status) << ")";
     if (about_channel) err << " on channel " << rig.channels[fault.index].name;
     if (about_channel)
-      if (const std::string problem = figure->channel_problem(fault.index); !problem.empty()) err << " (" << problem << ")";
+      if (const std::string problem = figure.channel_problem(fault.index); !problem.empty()) err << " (" << problem << ")";
     if (fault.cause == control::FaultCause::tracking_error) err << " (error " << format_fixed(fault.value, 3) << ")";
     if (fault.cause == control::FaultCause::deadline_budget) err << " (" << fault.value << " misses)";
     err << "; actuators took their fail-safe actions (hold, rest or release, from the rig)\n";

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "avar/control/realtime_setup.hpp"
-#include "avar/timecode_options.hpp"
+#include "avar/session/timecode_run.hpp"
 
 namespace avar::app {
 
@@ -18,14 +18,14 @@ struct PlayOptions {
   std::string show_path;
   std::optional<std::string> map_path;  ///< --map: show_path is a motion-capture file baked through this map
   std::string rig_path;
-  std::optional<std::string> port;   ///< override the rig's single link's port
-  bool simulate = false;             ///< --sim: simulate every link
-  std::optional<double> rate_hz;     ///< default: the rig's rate_hz
-  bool fast = false;                 ///< stepped simulated clock (simulator only)
-  std::optional<std::uint64_t> loops;///< passes of a looping show; 0 = until Ctrl-C
+  std::optional<std::string> port;     ///< override the rig's single link's port
+  bool simulate = false;               ///< --sim: simulate every link
+  std::optional<double> rate_hz;       ///< default: the rig's rate_hz
+  bool fast = false;                   ///< stepped simulated clock (simulator only)
+  std::optional<std::uint64_t> loops;  ///< passes of a looping show; 0 = until Ctrl-C
   std::optional<std::string> trace_path;
   std::optional<std::string> plot_path;
-  bool progress = true;              ///< progress line on the error stream while playing
+  bool progress = true;  ///< progress line on the error stream while playing
   /// Loop-thread scheduling in real time: SCHED_FIFO 50 and locked memory unless told otherwise.
   control::RealtimeRequest realtime{50, true, -1};
   /// More deadline misses than this in one run is a fault.
@@ -44,10 +44,10 @@ struct PlayOptions {
 
   // Idle life (the rig's idle: section) below the show: --idle, `avar idle`.
   bool idle = false;
-  std::optional<std::uint64_t> seed;  ///< default: a fresh one, printed in the summary
-  double idle_before_s = 0;           ///< idle alone this long before the show plays
-  double idle_after_s = 0;            ///< and after it ends
-  ShowControlOptions timecode;        ///< --timecode (show time chases a timecode source), --osc-control
+  std::optional<std::uint64_t> seed;     ///< default: a fresh one, printed in the summary
+  double idle_before_s = 0;              ///< idle alone this long before the show plays
+  double idle_after_s = 0;               ///< and after it ends
+  session::ShowControlOptions timecode;  ///< --timecode (show time chases a timecode source), --osc-control
 };
 
 /// Runs the play command; returns the process exit code (see exit_codes.hpp). Messages go to

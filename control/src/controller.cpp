@@ -63,6 +63,7 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       heading_(rig.channels.size()),
       measured_(rig.channels.size()),
       measured_known_(rig.channels.size(), 0),
+      feedback_(rig.channels.size(), std::numeric_limits<double>::quiet_NaN()),
       telemetry_seen_(rig.channels.size(), 0),
       telemetry_(rig.channels.size()),
       link_telemetry_seen_(rig.channels.size(), 0),
@@ -130,9 +131,7 @@ void Controller::ease_to(std::span<const double> goal, double now_s) noexcept {
   phase_start_ = now_s;
 }
 
-bool Controller::ramp_done(double now_s) const noexcept {
-  return now_s - phase_start_ >= ramp_.duration() && limiter_.settled();
-}
+bool Controller::ramp_done(double now_s) const noexcept { return now_s - phase_start_ >= ramp_.duration() && limiter_.settled(); }
 
 void Controller::request_stop(double now_s) noexcept {
   stop_requested_ = true;
@@ -218,6 +217,8 @@ void Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
   // Before the clock moves on: what the devices reported came with the last tick's exchange.
   read_feedback();
+  for (std::size_t c = 0; c < feedback_.size(); ++c)
+    feedback_[c] = measured_known_[c] ? measured_[c] : std::numeric_limits<double>::quiet_NaN();
   last_now_ = now_s;
   if (!supervisor_.drives()) return;
 

@@ -67,6 +67,7 @@ RunResult run_loop(Controller& controller, const RunOptions& options, TickObserv
     if (result.deadline_misses > options.deadline_miss_budget)
       controller.fault(FaultCause::deadline_budget, 0, static_cast<double>(result.deadline_misses), now);
 
+    observer.before_tick(k, now, controller);
     controller.tick(now);
     ++result.ticks;
     if (options.plant) options.plant->advance(dt);

@@ -6,4 +6,7 @@
 
 namespace avar::testing {
 inline std::atomic<long> allocations{0};
-}
+/// The same count, of the calling thread's allocations only (a simulated device serving on its
+/// own thread does not count against the loop's).
+inline thread_local long thread_allocations = 0;
+}  // namespace avar::testing

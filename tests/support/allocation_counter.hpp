@@ -14,6 +14,7 @@
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {
   avar::testing::allocations.fetch_add(1, std::memory_order_relaxed);
+  ++avar::testing::thread_allocations;
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
@@ -21,6 +22,7 @@ void* operator new(std::size_t size) {
 // nothrow new would be paired with the free() below (alloc-dealloc-mismatch).
 void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
   avar::testing::allocations.fetch_add(1, std::memory_order_relaxed);
+  ++avar::testing::thread_allocations;
   return std::malloc(size == 0 ? 1 : size);
 }
 void operator delete(void* p) noexcept { std::free(p); }

@@ -146,6 +146,12 @@ class Controller {
   std::span<const double> commanded() const noexcept { return commanded_; }
   /// Each channel's newest device report, as the last tick read it from the links.
   std::span<const firmware_iface::ChannelTelemetry> telemetry() const noexcept { return telemetry_; }
+  /// The position feedback the last tick read (ControllerOptions::positions, overridden where a
+  /// device reported one since the tick before), indexed by channel, channel units; NaN where
+  /// none came. What the tracking check compared with the previous command.
+  std::span<const double> measured() const noexcept { return feedback_; }
+  /// Whether the show starts over at its end (Show::loop).
+  bool show_loops() const noexcept { return show_.loop; }
   /// The frame that the last tick asked for before limits.
   std::span<const double> target() const noexcept { return target_; }
   const Limiter& limiter() const noexcept { return limiter_; }
@@ -184,7 +190,8 @@ class Controller {
   std::vector<double> heading_;
   std::vector<double> measured_;
   std::vector<char> measured_known_;
-  std::vector<std::uint64_t> telemetry_seen_;  ///< per channel: `updates` at the last feed_telemetry
+  std::vector<double> feedback_;                             ///< per channel: measured_ as the last tick read it, NaN: none
+  std::vector<std::uint64_t> telemetry_seen_;                ///< per channel: `updates` at the last feed_telemetry
   std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< per channel: the links' newest reports
   std::vector<std::uint64_t> link_telemetry_seen_;           ///< per channel: `updates` the tick took
   std::unique_ptr<bool[]> source_known_;                     ///< per channel: options.positions knew it

@@ -36,13 +36,20 @@ struct RunOptions {
 };
 
 /// Called after every tick (and the plant's step), on the loop thread: statistics, traces,
-/// progress. An observer only watches: nothing in the loop depends on it. Implementations on a
-/// real-time loop must be quick.
+/// progress. after_tick only watches: nothing in the loop depends on it; before_tick is where
+/// an owner of the loop (a show session) hands the controller its commands. Implementations on
+/// a real-time loop must be quick.
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
   /// lateness_s: how late this tick's wake-up came after its deadline (0 on the stepped clock).
   virtual void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, Controller& controller) = 0;
+  /// Called before every tick, after the runner's own interrupt and e-stop checks, on the loop
+  /// thread: the place to hand the controller commands taken from other threads (a show
+  /// session's queue). Must be real-time safe. Does nothing unless overridden.
+  virtual void before_tick(std::uint64_t tick, double now_s, Controller& controller) noexcept {
+    (void)tick, (void)now_s, (void)controller;
+  }
 };
 
 struct [[nodiscard]] RunResult {
@@ -58,7 +65,6 @@ struct [[nodiscard]] RunResult {
 /// std::invalid_argument otherwise) while it is active: to the end of the show and the soft
 /// stop, or through the fail-safe actions of a fault. `interrupts`
 /// counts Ctrl-C / SIGTERM: the first asks for a soft stop to rest, the second releases at once.
-RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer,
-                   const std::atomic<int>& interrupts);
+RunResult run_loop(Controller& controller, const RunOptions& options, TickObserver& observer, const std::atomic<int>& interrupts);
 
 }  // namespace avar::control

@@ -1,10 +1,10 @@
-#include "avar/live_session.hpp"
+#include "avar/session/live_session.hpp"
 
 #include <ostream>
 
 #include "avar/inputs/input_source_factory.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 LiveSession::LiveSession(const rig::Rig& rig, const config::InputMap& map, const std::vector<std::string>& uris)
     : inputs_(config::live_channels(rig), map.mappings) {
@@ -32,4 +32,4 @@ void LiveSession::describe(std::ostream& out) const {
     out << "  " << unknown << " messages for controls no mapping uses (see `avar inputs monitor`)\n";
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

@@ -1,4 +1,4 @@
-#include "avar/recording_csv.hpp"
+#include "avar/config/recording_csv.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 
-namespace avar::app {
+namespace avar::config {
 namespace {
 
 struct Cell {
@@ -109,4 +109,4 @@ Recording read_recording(const std::string& path) {
   return read_recording(file, path);
 }
 
-}  // namespace avar::app
+}  // namespace avar::config

@@ -13,7 +13,7 @@
 #include "avar/playback/runtime/show.hpp"
 #include "avar/rig/rig.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 class IdleSession {
  public:
@@ -40,4 +40,4 @@ class IdleSession {
 /// A seed for a run given none (from the system's entropy); printed so a run can be repeated.
 std::uint64_t fresh_idle_seed();
 
-}  // namespace avar::app
+}  // namespace avar::session

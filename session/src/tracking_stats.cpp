@@ -1,9 +1,9 @@
-#include "avar/tracking_stats.hpp"
+#include "avar/session/tracking_stats.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace avar::app {
+namespace avar::session {
 
 TrackingStats::TrackingStats(std::size_t channels) : max_abs_(channels, 0.0), sum_sq_(channels, 0.0), count_(channels, 0) {}
 
@@ -22,4 +22,4 @@ double TrackingStats::rms_error(std::size_t channel) const noexcept {
   return count_[channel] ? std::sqrt(sum_sq_[channel] / static_cast<double>(count_[channel])) : 0.0;
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

@@ -24,7 +24,7 @@
 #include "avar/control/show_clock.hpp"
 #include "avar/inputs/udp_listener.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 /// "9000", "127.0.0.1:9000", "0.0.0.0:9000" -> host and port; std::invalid_argument otherwise.
 std::pair<std::string, std::uint16_t> parse_osc_control_address(const std::string& text);
@@ -80,4 +80,4 @@ class OscControlSurface final : public control::ShowClock, public control::TickO
   std::atomic<std::uint64_t> ignored_{0};
 };
 
-}  // namespace avar::app
+}  // namespace avar::session

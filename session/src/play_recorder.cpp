@@ -1,4 +1,4 @@
-#include "avar/play_recorder.hpp"
+#include "avar/session/play_recorder.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <ostream>
 #include <span>
 
-namespace avar::app {
+namespace avar::session {
 
 PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples,
                            std::size_t expected_ticks, std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
@@ -101,14 +101,12 @@ void PlayRecorder::draw_progress(double now_s, const control::Controller& contro
   else  // live only: no show to measure against
     std::snprintf(line, sizeof line, "%-8s live %8.2f s  loop time %7.2f s", control::to_string(controller.phase()), show_t,
                   now_s);
-  if (terminal_)
-    *progress_ << '\r' << line << "\033[K" << std::flush;
-  else
-    *progress_ << line << '\n' << std::flush;
+  if (terminal_) *progress_ << '\r' << line << "\033[K" << std::flush;
+  else *progress_ << line << '\n' << std::flush;
 }
 
 void PlayRecorder::finish() {
   if (progress_ && terminal_) *progress_ << '\n' << std::flush;
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

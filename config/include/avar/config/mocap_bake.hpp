@@ -16,7 +16,7 @@
 #include "avar/playback/runtime/show.hpp"
 #include "avar/rig/rig.hpp"
 
-namespace avar::app {
+namespace avar::config {
 
 struct BakeSettings {
   double tolerance = 0.25;           ///< channel units: keys stay this close to every sample
@@ -70,4 +70,4 @@ void measure_fit(const playback::Show& show, const mocap::RetargetedMotion& samp
 /// a map and a map with a show file (InputError naming the path).
 playback::Show load_playable_show(const std::string& path, const std::optional<std::string>& map_path, const rig::Rig& rig);
 
-}  // namespace avar::app
+}  // namespace avar::config

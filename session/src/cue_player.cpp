@@ -1,8 +1,8 @@
-#include "avar/cue_player.hpp"
+#include "avar/session/cue_player.hpp"
 
 #include "avar/control/controller.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 CuePlayer::CuePlayer(const playback::Show& show, control::TickObserver& next) : show_(show), next_(next) {
   std::vector<firmware_iface::OscCueMessage> messages;
@@ -43,4 +43,4 @@ void CuePlayer::flush() {
   if (sender_) sender_->flush();
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

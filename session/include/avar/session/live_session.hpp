@@ -12,7 +12,7 @@
 #include "avar/inputs/input_source.hpp"
 #include "avar/rig/rig.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 class LiveSession {
  public:
@@ -36,4 +36,4 @@ class LiveSession {
   std::vector<std::unique_ptr<inputs::InputSource>> sources_;
 };
 
-}  // namespace avar::app
+}  // namespace avar::session

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace avar::app {
+namespace avar::config {
 
 /// The samples of a CSV: one time column, one value column per channel.
 struct Recording {
@@ -26,4 +26,4 @@ Recording read_recording(const std::string& path);
 /// The same from a stream; `path` names it in errors.
 Recording read_recording(std::istream& in, const std::string& path);
 
-}  // namespace avar::app
+}  // namespace avar::config

@@ -1,11 +1,11 @@
-#include "avar/idle_session.hpp"
+#include "avar/session/idle_session.hpp"
 
 #include <ostream>
 #include <random>
 
 #include "avar/config/idle_section.hpp"
 
-namespace avar::app {
+namespace avar::session {
 namespace {
 
 playback::IdleSpec idle_spec_of(const rig::Rig& rig) {
@@ -41,4 +41,4 @@ std::uint64_t fresh_idle_seed() {
   return (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

@@ -1,4 +1,4 @@
-#include "avar/mocap_bake.hpp"
+#include "avar/config/mocap_bake.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +9,14 @@
 #include "avar/config/retarget_map.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
-#include "avar/fitted_track.hpp"
+#include "avar/playback/offline/track_fit.hpp"
 #include "avar/mocap/mocap_file.hpp"
 
-namespace avar::app {
+namespace avar::config {
 namespace {
+
+using playback::fit_track;
+using playback::max_fit_error;
 
 /// Samples outside [min, max]: refused at the binding, or clamped (counted) with `clamp`.
 std::size_t bake_keep_in_limits(const mocap::RetargetedMotion& motion, mocap::RetargetedMotion::Channel& channel,
@@ -131,4 +134,4 @@ playback::Show load_playable_show(const std::string& path, const std::optional<s
   return bake_show(animation, map, rig, BakeSettings{}, std::filesystem::path(path).stem().string(), nullptr).show;
 }
 
-}  // namespace avar::app
+}  // namespace avar::config

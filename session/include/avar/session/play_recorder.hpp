@@ -12,9 +12,9 @@
 #include "avar/control/live_inputs.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/assembly/figure_links.hpp"
-#include "avar/tracking_stats.hpp"
+#include "avar/session/tracking_stats.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 struct PhaseMark {
   double time_s;
@@ -85,4 +85,4 @@ class PlayRecorder final : public control::TickObserver {
   std::vector<double> control_rows_;
 };
 
-}  // namespace avar::app
+}  // namespace avar::session

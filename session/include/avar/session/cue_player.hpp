@@ -12,7 +12,7 @@
 #include "avar/firmware_iface/osc_cue_sender.hpp"
 #include "avar/playback/runtime/show.hpp"
 
-namespace avar::app {
+namespace avar::session {
 
 class CuePlayer final : public control::TickObserver {
  public:
@@ -40,4 +40,4 @@ class CuePlayer final : public control::TickObserver {
   std::uint64_t fired_ = 0;
 };
 
-}  // namespace avar::app
+}  // namespace avar::session

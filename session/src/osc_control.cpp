@@ -1,4 +1,4 @@
-#include "avar/osc_control.hpp"
+#include "avar/session/osc_control.hpp"
 
 #include <lo/lo.h>
 
@@ -11,7 +11,7 @@
 
 #include "avar/control/controller.hpp"
 
-namespace avar::app {
+namespace avar::session {
 namespace {
 
 constexpr int kOscWaiting = -1;  // phase_ while running but not yet told to play
@@ -157,4 +157,4 @@ void OscControlSurface::summarize(std::ostream& out) const {
       << " ignored\n";
 }
 
-}  // namespace avar::app
+}  // namespace avar::session

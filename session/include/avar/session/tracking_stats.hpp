@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-namespace avar::app {
+namespace avar::session {
 
 class TrackingStats {
  public:
@@ -26,4 +26,4 @@ class TrackingStats {
   std::vector<std::uint64_t> count_;
 };
 
-}  // namespace avar::app
+}  // namespace avar::session

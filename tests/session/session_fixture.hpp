@@ -1,0 +1,60 @@
+#pragma once
+// A show session on the simulated hello-head figure, and an observer that keeps every record
+// (copied: the ring's slots are reused).
+
+#include <cmath>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/session/show_session.hpp"
+
+namespace avar::session::test_support {
+
+inline std::string example(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
+
+/// What one record said, kept past the record's life.
+struct Kept {
+  std::uint64_t tick = 0;
+  double now_s = 0;
+  control::Phase phase = control::Phase::disabled;
+  double show_time_s = 0;
+  bool paused = false;
+  bool estop = false;
+  control::FaultCause fault = control::FaultCause::none;
+  std::vector<CommandRecord> commands;
+  std::vector<ChannelRecord> channels;
+  std::vector<firmware_iface::LinkCounters> links;
+};
+
+class KeepAll final : public SessionObserver {
+ public:
+  void on_tick(const TickRecord& r) override {
+    Kept k{r.tick, r.now_s, r.phase, r.show_time_s, r.paused, r.estop, r.fault.cause, {}, {}, {}};
+    k.commands.assign(r.commands.begin(), r.commands.begin() + static_cast<std::ptrdiff_t>(r.command_count));
+    k.channels.assign(r.channels.begin(), r.channels.end());
+    k.links.assign(r.links.begin(), r.links.end());
+    const std::lock_guard lock(mutex_);
+    kept_.push_back(std::move(k));
+  }
+  std::vector<Kept> kept() const {
+    const std::lock_guard lock(mutex_);
+    return kept_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<Kept> kept_;
+};
+
+/// The largest command step per channel between consecutive records, over [from, to) ticks.
+inline double largest_step(const std::vector<Kept>& kept, std::size_t channel) {
+  double worst = 0;
+  for (std::size_t k = 1; k < kept.size(); ++k)
+    worst = std::max(worst, std::abs(kept[k].channels[channel].command - kept[k - 1].channels[channel].command));
+  return worst;
+}
+
+}  // namespace avar::session::test_support
