@@ -62,7 +62,7 @@ const CanDriveProtocol& odrive_drive() {
       [] {
         SimOffer offer = drive_sim_offer("odrive", "Simulated ODrive axes (CAN Simple) behind a simulated SLCAN adapter",
                                          "  avar sim odrive --ids 1,2,3               # prints /dev/pts/N\n  avar play "
-                                         "examples/rigs/odrive-arm.yaml examples/shows/odrive-arm.yaml --port /dev/pts/N");
+                                         "examples/shows/odrive-arm.yaml --rig examples/rigs/odrive-arm.yaml --port /dev/pts/N");
         offer.make = [](const SimValues& values) { return standalone_slcan(odrive_drive(), values); };
         return offer;
       }(),

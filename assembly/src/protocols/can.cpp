@@ -200,7 +200,7 @@ const Protocol& can_protocol() {
               .description = kSlcanHelp,
               .transport = SimTransport::pty,
               .example = "  avar sim can --drive odrive --ids 1,2,3   # prints /dev/pts/N (also: avar sim slcan)\n"
-                         "  avar play examples/rigs/odrive-arm.yaml examples/shows/odrive-arm.yaml --port /dev/pts/N",
+                         "  avar play examples/shows/odrive-arm.yaml --rig examples/rigs/odrive-arm.yaml --port /dev/pts/N",
               .options = {{"drive", "odrive", "The drives on the bus: odrive (CAN Simple), cia402 (CANopen) or mit"},
                           {"ids", "1", "Node ids of the drives, comma-separated"},
                           {"bitrate", "1000000", "Bus bitrate in bit/s; open the adapter at the same rate"}},

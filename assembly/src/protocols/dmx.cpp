@@ -79,7 +79,7 @@ const Protocol& dmx_protocol() {
                              "universe's 512 slots, as servo decoders and dimmers on the DMX line would see them.",
               .transport = SimTransport::pty,
               .example = "  avar sim dmx                          # prints /dev/pts/N\n"
-                         "  avar play RIG.yaml SHOW.yaml --port /dev/pts/N    # a rig whose link says dmx: {}",
+                         "  avar play SHOW.yaml --rig RIG.yaml --port /dev/pts/N    # a rig whose link says dmx: {}",
               .options = {},
               .make = standalone_dmx,
           },

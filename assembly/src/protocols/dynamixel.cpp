@@ -102,7 +102,7 @@ const Protocol& dynamixel_protocol() {
                              "acceleration; each reports position, load and temperature.",
               .transport = SimTransport::pty,
               .example = "  avar sim dynamixel --ids 1,2,3        # prints /dev/pts/N\n"
-                         "  avar play examples/rigs/dynamixel-arm.yaml examples/shows/arm-wave.yaml --port /dev/pts/N",
+                         "  avar play examples/shows/arm-wave.yaml --rig examples/rigs/dynamixel-arm.yaml --port /dev/pts/N",
               .options = {{"ids", "1", "Servo IDs on the bus, comma-separated"}},
               .make = standalone_dynamixel,
           },

@@ -120,7 +120,7 @@ const Protocol& feetech_protocol() {
                              "acceleration; each reports position, load and temperature.",
               .transport = SimTransport::pty,
               .example = "  avar sim feetech --ids 1,2 --series sts   # prints /dev/pts/N\n"
-                         "  avar play examples/rigs/feetech-arm.yaml examples/shows/arm-wave.yaml --port /dev/pts/N",
+                         "  avar play examples/shows/arm-wave.yaml --rig examples/rigs/feetech-arm.yaml --port /dev/pts/N",
               .options = {{"ids", "1", "Servo IDs on the bus, comma-separated"},
                           {"series", "sts", "sts (little-endian) or scs (big-endian)"},
                           {"baud", "1000000", "Bus rate the servos are set to"}},

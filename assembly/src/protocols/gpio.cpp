@@ -42,7 +42,7 @@ const Protocol& gpio_protocol() {
                   "lines are buttons and e-stops. A simulated chip has no device node another program could open: it "
                   "lives inside the avar process that drives it. Give the link port: sim in the rig, or run with --sim.",
               .transport = SimTransport::in_process,
-              .example = "  avar play examples/rigs/haunt-prop.yaml examples/shows/haunt-prop.yaml --sim",
+              .example = "  avar play examples/shows/haunt-prop.yaml --rig examples/rigs/haunt-prop.yaml --sim",
               .options = {},
           },
   };

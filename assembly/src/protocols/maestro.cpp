@@ -190,10 +190,10 @@ const Protocol& maestro_protocol() {
               .description = "A Pololu Maestro servo controller (Micro 6 or Mini 12, 18, 24 channels) as its virtual serial port "
                              "answers: the compact and Pololu protocols, Set Target, speed and acceleration, Get Position, and "
                              "optionally CRC-7. Its servos move to their targets as the real ones do. A Maestro on native USB "
-                             "(`usb:` in a rig) is simulated inside the avar that drives it: `avar play RIG SHOW --sim`.",
+                             "(`usb:` in a rig) is simulated inside the avar that drives it: `avar play SHOW --rig RIG --sim`.",
               .transport = SimTransport::pty,
               .example = "  avar sim maestro --channels 12        # prints /dev/pts/N\n"
-                         "  avar play examples/rigs/hello-head.yaml examples/shows/hello-head.yaml --port /dev/pts/N",
+                         "  avar play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --port /dev/pts/N",
               .options = {{"channels", "24", "Channel count: 6, 12, 18 or 24"},
                           {"device-number", "12", "Device number for the Pololu protocol, 0 to 127"},
                           {"crc", "", "Expect a CRC-7 byte after every command", true}},

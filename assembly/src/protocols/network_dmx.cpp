@@ -164,7 +164,7 @@ const Protocol& artnet_protocol() {
                          "127.0.0.1, on --udp-port or any free port.",
           .transport = SimTransport::udp_loopback,
           .example = "  avar sim artnet --universe 1 --udp-port 6454      # prints 127.0.0.1:6454\n"
-                     "  avar play RIG.yaml SHOW.yaml --port 127.0.0.1:6454  # a one-link rig: artnet: {to: ..., universe: 1}",
+                     "  avar play SHOW.yaml --rig RIG.yaml --port 127.0.0.1:6454  # a one-link rig: artnet: {to: ..., universe: 1}",
           .options = {{"net", "0", "Art-Net net, 0 to 127"},
                       {"subnet", "0", "Art-Net subnet, 0 to 15"},
                       {"universe", "0", "Art-Net universe, 0 to 15"},
@@ -192,7 +192,7 @@ const Protocol& sacn_protocol() {
                          "universe's 512 slots. It listens on 127.0.0.1 (unicast), on --udp-port or any free port.",
           .transport = SimTransport::udp_loopback,
           .example = "  avar sim sacn --universe 1 --udp-port 5568         # prints 127.0.0.1:5568\n"
-                     "  avar play RIG.yaml SHOW.yaml --port 127.0.0.1:5568   # a one-link rig: sacn: {universe: 1}",
+                     "  avar play SHOW.yaml --rig RIG.yaml --port 127.0.0.1:5568   # a one-link rig: sacn: {universe: 1}",
           .options = {{"universe", "1", "sACN universe, 1 to 63999"},
                       {"udp-port", "0", "UDP port on 127.0.0.1 (0: any free one)"}},
           .make = standalone_sacn,

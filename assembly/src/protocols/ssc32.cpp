@@ -71,7 +71,7 @@ const Protocol& ssc32_protocol() {
                              "query of movement status and pulse widths, 32 channels of hobby servo pulses.",
               .transport = SimTransport::pty,
               .example = "  avar sim ssc32                        # prints /dev/pts/N\n"
-                         "  avar play RIG.yaml SHOW.yaml --port /dev/pts/N    # a rig whose link says ssc32: {}",
+                         "  avar play SHOW.yaml --rig RIG.yaml --port /dev/pts/N    # a rig whose link says ssc32: {}",
               .options = {},
               .make = standalone_ssc32,
           },
