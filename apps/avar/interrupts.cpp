@@ -42,4 +42,18 @@ InterruptCounter::~InterruptCounter() {
 const std::atomic<int>& InterruptCounter::count() const noexcept { return g_interrupts; }
 const std::atomic<bool>& InterruptCounter::estop() const noexcept { return g_estop; }
 
+StopSignals::StopSignals() {
+  sigemptyset(&stop_);
+  sigaddset(&stop_, SIGINT);
+  sigaddset(&stop_, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_, &previous_);
+}
+
+StopSignals::~StopSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
+bool StopSignals::wait(long timeout_ms) const {
+  const timespec timeout{timeout_ms / 1000, (timeout_ms % 1000) * 1'000'000};
+  return sigtimedwait(&stop_, nullptr, &timeout) >= 0;
+}
+
 }  // namespace avar::app

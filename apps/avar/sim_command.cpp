@@ -13,6 +13,7 @@
 
 #include "avar/assembly/sim_offer.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/interrupts.hpp"
 #include "avar/sim/pty_device_host.hpp"
 
 namespace avar::app {
@@ -22,23 +23,16 @@ namespace {
 /// for the status line (called with the device locked).
 int serve_on_pty(sim::ByteDevice& device, const std::string& description, const std::function<std::string()>& state,
                  std::ostream& out, std::ostream& err) {
-  // SIGINT and SIGTERM are blocked here (and so in the host thread, which inherits the mask)
-  // and taken synchronously below: the report loop waits on them instead of sleeping.
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  sigaddset(&stop_signals, SIGINT);
-  sigaddset(&stop_signals, SIGTERM);
-  sigset_t previous;
-  pthread_sigmask(SIG_BLOCK, &stop_signals, &previous);
+  // Blocked before the host thread starts, so that it inherits the mask.
+  const StopSignals stop;
   sim::PtyDeviceHost host(device, sim::PtyDeviceHost::Clock::wall);
   out << host.slave_path() << std::endl;
   err << description << " on " << host.slave_path() << "; Ctrl-C to stop\n";
 
   const bool terminal = ::isatty(STDERR_FILENO) == 1;
   std::uint64_t last_bytes = 0;
-  const timespec half_second{0, 500'000'000};
   // The host serves on its own thread; this loop only reports, twice a second, until a signal.
-  while (sigtimedwait(&stop_signals, nullptr, &half_second) < 0) {
+  while (!stop.wait(500)) {
     const std::uint64_t bytes = host.with_device([&](sim::ByteDevice& d) { return d.bytes_received(); });
     if (terminal && bytes != last_bytes) {
       const std::string line = host.with_device([&](sim::ByteDevice&) { return state(); });
@@ -49,26 +43,19 @@ int serve_on_pty(sim::ByteDevice& device, const std::string& description, const 
   if (terminal) err << '\n';
   const std::uint64_t total = host.with_device([&](sim::ByteDevice& d) { return d.bytes_received(); });
   err << description << " stopped after " << total << " bytes\n";
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   return kExitOk;
 }
 
 /// Serves a node on loopback until SIGINT or SIGTERM, taking its datagrams as they come.
 int serve_on_udp(sim::SimDmxNode& node, const std::string& description, const std::function<std::string()>& state,
                  std::ostream& out, std::ostream& err) {
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  sigaddset(&stop_signals, SIGINT);
-  sigaddset(&stop_signals, SIGTERM);
-  sigset_t previous;
-  pthread_sigmask(SIG_BLOCK, &stop_signals, &previous);
+  const StopSignals stop;
   out << node.endpoint() << std::endl;
   err << description << " on " << node.endpoint() << "; Ctrl-C to stop\n";
   const bool terminal = ::isatty(STDERR_FILENO) == 1;
-  const timespec none{0, 0};
   std::uint64_t last = 0;
   // Each pass waits up to half a second for datagrams, then looks for a signal without waiting.
-  while (sigtimedwait(&stop_signals, nullptr, &none) < 0) {
+  while (!stop.wait(0)) {
     node.receive_until(node.counters().bytes + 1, std::chrono::milliseconds(500));
     if (terminal && node.counters().bytes != last)
       err << '\r' << node.counters().bytes << " bytes received; " << state() << "\033[K" << std::flush;
@@ -76,19 +63,18 @@ int serve_on_udp(sim::SimDmxNode& node, const std::string& description, const st
   }
   if (terminal) err << '\n';
   err << description << " stopped after " << node.counters().bytes << " bytes\n";
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   return kExitOk;
 }
 
 /// The text after `avar sim`'s own options.
 std::string sim_footer() {
   return "A simulated device speaks its protocol byte for byte, as the hardware does, so any program can drive it: avar "
-         "itself (avar play RIG SHOW --port PATH), a vendor's tool, a script. Serial devices are served on a "
+         "itself (avar play SHOW --rig RIG --port PATH), a vendor's tool, a script. Serial devices are served on a "
          "pseudo-terminal, network ones on UDP at 127.0.0.1; the first line on stdout is where (a path or HOST:PORT), "
          "status goes to stderr, Ctrl-C stops it. `avar sim NAME --help` tells what each device is, its options and an "
          "example.\n"
          "\nExample:\n  avar sim maestro --channels 12        # prints /dev/pts/N\n"
-         "  avar play examples/rigs/hello-head.yaml examples/shows/hello-head.yaml --port /dev/pts/N\n";
+         "  avar play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --port /dev/pts/N\n";
 }
 
 }  // namespace
