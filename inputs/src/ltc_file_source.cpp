@@ -1,8 +1,7 @@
 #include "avar/inputs/ltc_file_source.hpp"
 
-#include <time.h>
-
 #include <algorithm>
+#include <ctime>
 #include <cerrno>
 #include <cmath>
 

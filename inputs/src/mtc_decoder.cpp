@@ -53,7 +53,7 @@ MtcVerdict MtcDecoder::decode(std::span<const std::uint8_t> message, TimecodeFix
 }
 
 MtcVerdict MtcDecoder::quarter_frame(std::uint8_t data, TimecodeFix& fix) noexcept {
-  const int piece = (data >> 4U) & 7U;
+  const auto piece = static_cast<int>((data >> 4U) & 7U);
   const auto nibble = static_cast<std::uint8_t>(data & 0xFU);
   const bool forward_next = last_piece_ >= 0 && piece == (last_piece_ + 1) % 8;
   const bool reverse_next = last_piece_ >= 0 && piece == (last_piece_ + 7) % 8;

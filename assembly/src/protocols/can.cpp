@@ -121,8 +121,8 @@ ServedDevice standalone_slcan(const CanDriveProtocol& drive, const SimValues& va
   /// The adapter, owning the drives on its bus (declared first: the adapter borrows them).
   class AdapterWithDrives final : public sim::ByteDevice {
    public:
-    AdapterWithDrives(std::shared_ptr<std::vector<SimulatedDrive>> drives, int bitrate, std::vector<sim::CanNode*> nodes)
-        : drives_(std::move(drives)), adapter_(sim::SimSlcanConfig{.bus_bitrate = bitrate}, std::move(nodes)) {}
+    AdapterWithDrives(std::shared_ptr<std::vector<SimulatedDrive>> drives, int bitrate, const std::vector<sim::CanNode*>& nodes)
+        : drives_(std::move(drives)), adapter_(sim::SimSlcanConfig{.bus_bitrate = bitrate}, nodes) {}
     void receive(std::span<const std::uint8_t> bytes) override { adapter_.receive(bytes); }
     std::size_t take_replies(std::span<std::uint8_t> out) override { return adapter_.take_replies(out); }
     void advance(double dt_s) override { adapter_.advance(dt_s); }

@@ -98,7 +98,7 @@ std::size_t encode_sync_write(std::span<std::uint8_t> out, std::uint8_t address,
 
 std::size_t encode_sync_write_words(std::span<std::uint8_t> out, Series series, std::uint8_t address,
                                     std::span<const std::uint8_t> ids, std::span<const std::uint16_t> values) noexcept {
-  std::array<std::uint8_t, 2 * 84> data{};  // 84 servos fill the largest packet
+  std::array<std::uint8_t, std::size_t{2} * 84> data{};  // 84 servos fill the largest packet
   if (ids.size() != values.size() || 2 * values.size() > data.size()) return 0;
   for (std::size_t i = 0; i < values.size(); ++i) put_word(series, std::span<std::uint8_t, 2>(&data[2 * i], 2), values[i]);
   return encode_sync_write(out, address, 2, ids, std::span(data.data(), 2 * values.size()));

@@ -82,13 +82,17 @@ void finish_can_actuator(const Rig& rig, ActuatorSpec& a, const LinkSettings& s)
   const double gear =
       s.find("gear_ratio") ? number_in(*s.find("gear_ratio"), "gear_ratio (motor turns per output turn)", 1e-3, 1e4) : 1.0;
   double per_turn = 0;
-  if (const ScalarValue* u = s.find("units_per_turn"))
+  if (const ScalarValue* u = s.find("units_per_turn")) {
     per_turn = number_in(*u, "units_per_turn (" + ch.unit + " per output turn)", 1e-9, 1e9);
-  else if (auto known = units_per_turn_of(ch.unit)) per_turn = *known;
-  else
-    ScalarValue{"", false, "nothing", a.where}.fail("channel '" + ch.name + "' is in '" + ch.unit +
-                                                    "', which does not say how far one output turn goes: give units_per_turn (" +
-                                                    ch.unit + " per output turn; deg, rad and turn channels need none)");
+  } else {
+    const std::optional<double> known = units_per_turn_of(ch.unit);
+    if (!known)
+      ScalarValue{"", false, "nothing", a.where}.fail(
+          "channel '" + ch.name + "' is in '" + ch.unit +
+          "', which does not say how far one output turn goes: give units_per_turn (" + ch.unit +
+          " per output turn; deg, rad and turn channels need none)");
+    per_turn = *known;
+  }
   const double zero = s.find("zero") ? s.find("zero")->as_double("zero (the channel value at the motor's zero)") : 0.0;
   const bool reverse = s.find("reverse") && s.find("reverse")->as_bool("reverse");
   a.options = drive->parse(s, a.device_channel, a.where);

@@ -96,7 +96,7 @@ std::size_t encode_data(std::span<std::uint8_t> out, const Source& source, const
 /// flags or length at any layer, a length disagreeing with the datagram, a source name without
 /// NUL, a priority above 200, a universe outside 1..63999, a DMP layer other than 0xA1 from
 /// address 0 by 1, a property count of 0 or above 513.
-std::optional<DataPacket> decode_data(std::span<const std::uint8_t> datagram) noexcept;
+std::optional<DataPacket> decode_data(std::span<const std::uint8_t> in) noexcept;
 
 /// Writes one page of universe discovery; 0 when `out` is too small, more than 512 universes, a
 /// list not strictly ascending, or page after last_page.
@@ -105,7 +105,6 @@ std::size_t encode_discovery(std::span<std::uint8_t> out, const Source& source, 
 /// Reads a universe discovery packet, copying its universes into `universes` (at most its size);
 /// nullopt for anything malformed (as decode_data, plus an odd list length, page after last
 /// page, more than 512 universes).
-std::optional<DiscoveryPacket> decode_discovery(std::span<const std::uint8_t> datagram,
-                                                std::span<std::uint16_t> universes) noexcept;
+std::optional<DiscoveryPacket> decode_discovery(std::span<const std::uint8_t> in, std::span<std::uint16_t> universes) noexcept;
 
 }  // namespace avar::firmware_iface::sacn
