@@ -21,7 +21,6 @@ using config::bake_show;
 using config::Baked;
 using config::BakeReport;
 using config::BakeSettings;
-using config::is_mocap_file;
 using config::load_motion_file;
 using config::measure_fit;
 

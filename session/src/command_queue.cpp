@@ -31,7 +31,7 @@ const char* to_string(CommandOutcome outcome) noexcept {
 
 CommandQueue::CommandQueue(std::size_t capacity) {
   const std::size_t size = std::bit_ceil(capacity < 2 ? std::size_t{2} : capacity);
-  cells_.reset(new Cell[size]);
+  cells_ = std::make_unique<Cell[]>(size);
   for (std::size_t i = 0; i < size; ++i) cells_[i].sequence.store(i, std::memory_order_relaxed);
   mask_ = size - 1;
 }

@@ -91,7 +91,7 @@ void PlayRecorder::draw_progress(double now_s, const control::Controller& contro
                               ? 1.0
                               : (duration > 0 ? within / duration : 0.0);
   constexpr int kWidth = 24;
-  const int filled = static_cast<int>(fraction * kWidth + 0.5);
+  const auto filled = static_cast<int>(std::lround(fraction * kWidth));
   char line[160];
   if (std::isfinite(duration))
     std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",

@@ -24,6 +24,6 @@ struct Recording {
 Recording read_recording(const std::string& path);
 
 /// The same from a stream; `path` names it in errors.
-Recording read_recording(std::istream& in, const std::string& path);
+Recording read_recording(std::istream& file, const std::string& path);
 
 }  // namespace avar::config
