@@ -36,7 +36,8 @@ def subcommands(help_text):
             in_group = True
             continue
         if in_group:
-            m = re.match(r"^  (\S+)(?:\s+(.*))?$", line)
+            # "  can, slcan   A simulated ...": the first name of an entry with aliases
+            m = re.match(r"^  ([^\s,]+)(?:,\s*[^\s,]+)*(?:\s+(.*))?$", line)
             if m:
                 found.append((m.group(1), (m.group(2) or "").strip()))
             elif line.strip() == "" or not line.startswith(" "):
@@ -51,6 +52,8 @@ def code_block(text):
 def walk(binary, path, depth, out):
     """Appends the sections of `avar PATH` and of every subcommand under it."""
     text = run_help(binary, path)
+    if ("Usage: avar " + " ".join(path)) not in text:
+        sys.exit("gen-cli-reference: `avar %s --help` is not that command's help" % " ".join(path))
     out.append("%s avar %s\n\n%s\n" % ("#" * depth, " ".join(path), code_block(text)))
     for name, _ in subcommands(text):
         walk(binary, [*path, name], min(depth + 1, 6), out)

@@ -21,7 +21,8 @@ std::string help_of(const std::vector<std::string>& path) {
   return r.out;
 }
 
-// The names listed under the help's "Subcommands:" heading, in order.
+// The names listed under the help's "Subcommands:" heading, in order; of an entry with aliases
+// ("can, slcan") the first name.
 std::vector<std::string> subcommands_in(const std::string& help) {
   std::vector<std::string> names;
   std::istringstream in(help);
@@ -31,7 +32,7 @@ std::vector<std::string> subcommands_in(const std::string& help) {
     if (line == "Subcommands:" || line == "SUBCOMMANDS:") {
       listing = true;
     } else if (listing) {
-      static const std::regex entry(R"(^  (\S+).*$)");
+      static const std::regex entry(R"(^  ([^\s,]+).*$)");
       std::smatch m;
       if (!std::regex_match(line, m, entry)) break;
       names.push_back(m[1]);
@@ -40,20 +41,27 @@ std::vector<std::string> subcommands_in(const std::string& help) {
   return names;
 }
 
-// Every command path from the top, depth first: {}, {"play"}, ..., {"sim", "maestro"}, ...
-void collect(const std::vector<std::string>& path, std::vector<std::vector<std::string>>& all) {
-  all.push_back(path);
-  for (const std::string& name : subcommands_in(help_of(path))) {
-    std::vector<std::string> sub = path;
-    sub.push_back(name);
-    collect(sub, all);
-  }
-}
-
 std::string joined(const std::vector<std::string>& path) {
   std::string s = "avar";
   for (const auto& p : path) s += " " + p;
   return s;
+}
+
+// Every command path from the top, depth first: {}, {"play"}, ..., {"sim", "maestro"}, ...
+// A listed name whose help is not its own (CLI11 answers an unknown name with the parent's help)
+// fails here instead of being walked again.
+void collect(const std::vector<std::string>& path, std::vector<std::vector<std::string>>& all) {
+  all.push_back(path);
+  const std::string help = help_of(path);
+  if (help.find("Usage: " + joined(path)) == std::string::npos) {
+    ADD_FAILURE() << joined(path) << " --help is not that command's help:\n" << help;
+    return;
+  }
+  for (const std::string& name : subcommands_in(help)) {
+    std::vector<std::string> sub = path;
+    sub.push_back(name);
+    collect(sub, all);
+  }
 }
 
 TEST(HelpText, EveryCommandAndSubcommandHasHelpAndNamesOnlyExampleFilesThatExist) {
