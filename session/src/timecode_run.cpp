@@ -50,11 +50,9 @@ std::unique_ptr<inputs::TimecodeSource> open_timecode_source(const std::string& 
   if (kind == "artnet") {
     if (rest.empty()) return std::make_unique<inputs::ArtnetTimecodeInput>();
     const auto second = rest.find(':');
-    if (second == std::string::npos)
-      return std::make_unique<inputs::ArtnetTimecodeInput>("127.0.0.1", timecode_port(rest, spec));
+    if (second == std::string::npos) return std::make_unique<inputs::ArtnetTimecodeInput>("127.0.0.1", timecode_port(rest, spec));
     try {
-      return std::make_unique<inputs::ArtnetTimecodeInput>(rest.substr(0, second),
-                                                                   timecode_port(rest.substr(second + 1), spec));
+      return std::make_unique<inputs::ArtnetTimecodeInput>(rest.substr(0, second), timecode_port(rest.substr(second + 1), spec));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--timecode " + spec + ": " + e.what());
     }

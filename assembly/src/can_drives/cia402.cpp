@@ -36,10 +36,10 @@ const CanDriveProtocol& cia402_drive() {
         return {std::move(drive), [raw] { return raw->position_counts(); }};
       },
       [] {
-        SimOffer offer =
-            drive_sim_offer("cia402", "Simulated CANopen CiA 402 servo drives behind a simulated SLCAN adapter",
-                            "  avar sim cia402 --ids 5                   # prints /dev/pts/N\n  avar play SHOW.yaml --rig RIG.yaml "
-                            "--port /dev/pts/N   # a one-link rig: can: {...}, actuators with protocol: cia402, node: 5");
+        SimOffer offer = drive_sim_offer(
+            "cia402", "Simulated CANopen CiA 402 servo drives behind a simulated SLCAN adapter",
+            "  avar sim cia402 --ids 5                   # prints /dev/pts/N\n  avar play SHOW.yaml --rig RIG.yaml "
+            "--port /dev/pts/N   # a one-link rig: can: {...}, actuators with protocol: cia402, node: 5");
         offer.make = [](const SimValues& values) { return standalone_slcan(cia402_drive(), values); };
         return offer;
       }(),

@@ -41,10 +41,10 @@ const CanDriveProtocol& mit_drive() {
         return {std::move(motor), [raw] { return raw->position(); }};
       },
       [] {
-        SimOffer offer =
-            drive_sim_offer("mit", "Simulated MIT-style (mini cheetah) motors behind a simulated SLCAN adapter",
-                            "  avar sim mit --ids 16                     # prints /dev/pts/N\n  avar play SHOW.yaml --rig RIG.yaml "
-                            "--port /dev/pts/N   # a one-link rig: can: {...}, actuators with protocol: mit, node: 16");
+        SimOffer offer = drive_sim_offer(
+            "mit", "Simulated MIT-style (mini cheetah) motors behind a simulated SLCAN adapter",
+            "  avar sim mit --ids 16                     # prints /dev/pts/N\n  avar play SHOW.yaml --rig RIG.yaml "
+            "--port /dev/pts/N   # a one-link rig: can: {...}, actuators with protocol: mit, node: 16");
         offer.make = [](const SimValues& values) { return standalone_slcan(mit_drive(), values); };
         return offer;
       }(),

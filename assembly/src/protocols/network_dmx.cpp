@@ -163,8 +163,9 @@ const Protocol& artnet_protocol() {
                          "packets in sequence, answers ArtPoll, and holds the universe's 512 slots. It listens on "
                          "127.0.0.1, on --udp-port or any free port.",
           .transport = SimTransport::udp_loopback,
-          .example = "  avar sim artnet --universe 1 --udp-port 6454      # prints 127.0.0.1:6454\n"
-                     "  avar play SHOW.yaml --rig RIG.yaml --port 127.0.0.1:6454  # a one-link rig: artnet: {to: ..., universe: 1}",
+          .example =
+              "  avar sim artnet --universe 1 --udp-port 6454      # prints 127.0.0.1:6454\n"
+              "  avar play SHOW.yaml --rig RIG.yaml --port 127.0.0.1:6454  # a one-link rig: artnet: {to: ..., universe: 1}",
           .options = {{"net", "0", "Art-Net net, 0 to 127"},
                       {"subnet", "0", "Art-Net subnet, 0 to 15"},
                       {"universe", "0", "Art-Net universe, 0 to 15"},
