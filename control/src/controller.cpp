@@ -180,6 +180,11 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
 }
 
 void Controller::read_feedback() noexcept {
+  // The devices' reports first, then the position source over them: where both know a channel,
+  // the source (the simulator's ground truth, an encoder on the joint) has the last word, as it
+  // has over feed_telemetry()'s reports made between ticks.
+  for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
+  take_telemetry(telemetry_, link_telemetry_seen_);
   if (options_.positions) {
     // The source writes straight into measured_, and only where it knows.
     const std::span<bool> known(source_known_.get(), measured_.size());
@@ -188,8 +193,6 @@ void Controller::read_feedback() noexcept {
     for (std::size_t c = 0; c < known.size(); ++c)
       if (known[c]) measured_known_[c] = 1;
   }
-  for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
-  take_telemetry(telemetry_, link_telemetry_seen_);
 }
 
 bool Controller::active() const noexcept {

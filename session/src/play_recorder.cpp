@@ -12,17 +12,14 @@ namespace avar::session {
 PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples,
                            std::size_t expected_ticks, std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
     : figure_(figure),
-      links_(figure.links()),
       channels_(channels),
       keep_samples_(keep_samples),
       progress_(progress),
       terminal_(progress_is_terminal),
       notices_(notices),
       stats_(channels),
-      measured_(channels, std::numeric_limits<double>::quiet_NaN()),
       known_(new bool[channels]()),
-      telemetry_(channels),
-      telemetry_seen_(channels, 0) {
+      previous_command_(channels, 0.0) {
   if (keep_samples_) {
     seconds_.reserve(expected_ticks);
     lateness_rows_.reserve(expected_ticks);
@@ -37,22 +34,11 @@ PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t chan
 }
 
 void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double lateness_s, control::Controller& controller) {
-  const std::span<bool> known(known_.get(), channels_);
-  std::fill(known.begin(), known.end(), false);
-  figure_.measure(measured_, known);
-  // Positions the devices themselves reported stand in where no simulator knows the truth.
-  for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
-  for (std::size_t c = 0; c < channels_; ++c) {
-    const firmware_iface::ChannelTelemetry& t = telemetry_[c];
-    if (t.updates == telemetry_seen_[c]) continue;
-    telemetry_seen_[c] = t.updates;
-    if (!known[c] && std::isfinite(t.position)) {
-      measured_[c] = t.position;
-      known[c] = true;
-    }
-  }
-  for (bool k : known) has_measurements_ = has_measurements_ || k;
-  stats_.add(controller.commanded(), measured_, known);
+  // What the controller read at this tick's start is where the figure stood after the previous
+  // tick's command: it answers the row before this one.
+  if (previous_ready_) take_answer(controller);
+  previous_command_.assign(controller.commanded().begin(), controller.commanded().end());
+  previous_ready_ = true;
 
   if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
   if (controller.stop_requested() && !stop_announced_) {
@@ -71,9 +57,9 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double latene
     const auto command = controller.commanded();
     targets_.insert(targets_.end(), target.begin(), target.end());
     commands_.insert(commands_.end(), command.begin(), command.end());
-    for (std::size_t i = 0; i < channels_; ++i)
-      measured_rows_.push_back(known[i] ? measured_[i] : std::numeric_limits<double>::quiet_NaN());
-    telemetry_rows_.insert(telemetry_rows_.end(), telemetry_.begin(), telemetry_.end());
+    // Until the next tick answers: no position, and the reports as this tick read them.
+    measured_rows_.insert(measured_rows_.end(), channels_, std::numeric_limits<double>::quiet_NaN());
+    telemetry_rows_.insert(telemetry_rows_.end(), controller.telemetry().begin(), controller.telemetry().end());
     for (std::size_t l = 0; l < figure_.link_count(); ++l) counter_rows_.push_back(figure_.counters(l));
     if (live_) control_rows_.insert(control_rows_.end(), live_->control_values().begin(), live_->control_values().end());
   }
@@ -81,6 +67,21 @@ void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double latene
     draw_progress(now_s, controller);
     next_progress_s_ = now_s + (terminal_ ? 0.2 : 2.0);
   }
+}
+
+void PlayRecorder::take_answer(const control::Controller& controller) {
+  const std::span<const double> measured = controller.measured();
+  const std::span<bool> known(known_.get(), channels_);
+  for (std::size_t c = 0; c < channels_; ++c) {
+    known[c] = !std::isnan(measured[c]);
+    has_measurements_ = has_measurements_ || known[c];
+  }
+  stats_.add(previous_command_, measured, known);
+  if (!keep_samples_ || seconds_.empty()) return;
+  const std::size_t row = (seconds_.size() - 1) * channels_;
+  std::copy(measured.begin(), measured.end(), measured_rows_.begin() + static_cast<std::ptrdiff_t>(row));
+  std::copy(controller.telemetry().begin(), controller.telemetry().end(),
+            telemetry_rows_.begin() + static_cast<std::ptrdiff_t>(row));
 }
 
 void PlayRecorder::draw_progress(double now_s, const control::Controller& controller) {

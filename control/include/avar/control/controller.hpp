@@ -102,9 +102,10 @@ class Controller {
   /// actions. Works from every state, disabled included (an e-stop while idle still latches).
   void fault(FaultCause cause, std::size_t index, double value, double now_s, Status status = Status::ok) noexcept;
 
-  /// Every tick reads its own feedback (ControllerOptions::positions, then each link's
-  /// telemetry, which overrides a position where a device reported one since the last tick).
-  /// The two calls below add feedback from elsewhere, for the next tick to check.
+  /// Every tick reads its own feedback: each link's telemetry (a position where a device
+  /// reported one since the last tick), then ControllerOptions::positions, which has the last
+  /// word where it knows a channel. The two calls below add feedback from elsewhere, for the
+  /// next tick to check (the position source still wins over them where it knows).
   ///
   /// Position feedback for the tracking check: measured[channel] where known[channel].
   /// Checked against the last command on the next tick. Real-time safe.
@@ -146,9 +147,10 @@ class Controller {
   std::span<const double> commanded() const noexcept { return commanded_; }
   /// Each channel's newest device report, as the last tick read it from the links.
   std::span<const firmware_iface::ChannelTelemetry> telemetry() const noexcept { return telemetry_; }
-  /// The position feedback the last tick read (ControllerOptions::positions, overridden where a
-  /// device reported one since the tick before), indexed by channel, channel units; NaN where
-  /// none came. What the tracking check compared with the previous command.
+  /// The position feedback the last tick read (ControllerOptions::positions where it knows, a
+  /// device's report since the tick before elsewhere), indexed by channel, channel units; NaN
+  /// where none came: where the figure stood after the previous tick's command. What the
+  /// tracking check compared with that command.
   std::span<const double> measured() const noexcept { return feedback_; }
   /// Whether the show starts over at its end (Show::loop).
   bool show_loops() const noexcept { return show_.loop; }

@@ -1,7 +1,10 @@
 #pragma once
-// Watches a play run tick by tick, and only watches: accumulates tracking statistics (against
-// the simulator's ground truth where there is one, the devices' reports elsewhere), keeps the
+// Watches a play run tick by tick, and only watches: accumulates tracking statistics, keeps the
 // samples a trace or plot needs, and draws the progress line. Nothing in the loop depends on it.
+// Positions and device reports are the controller's own (Controller::measured() and
+// telemetry(): the simulator's ground truth where there is one, the devices' reports
+// elsewhere). What a tick reads answers the tick before, so each row's measured position and
+// reports are those the next tick read; the last row's position stays unknown (NaN).
 
 #include <cstdint>
 #include <iosfwd>
@@ -59,9 +62,10 @@ class PlayRecorder final : public control::TickObserver {
 
  private:
   void draw_progress(double now_s, const control::Controller& controller);
+  /// Pairs what this tick read with the previous tick's command: statistics and the last row.
+  void take_answer(const control::Controller& controller);
 
   const assembly::FigureLinks& figure_;
-  std::vector<firmware_iface::ActuatorLink*> links_;
   std::size_t channels_;
   bool keep_samples_;
   std::ostream* progress_;
@@ -69,10 +73,9 @@ class PlayRecorder final : public control::TickObserver {
   std::ostream* notices_;
   bool stop_announced_ = false;
   TrackingStats stats_;
-  std::vector<double> measured_;
   std::unique_ptr<bool[]> known_;
-  std::vector<firmware_iface::ChannelTelemetry> telemetry_;  ///< the devices' newest reports
-  std::vector<std::uint64_t> telemetry_seen_;                ///< per channel: updates already used
+  std::vector<double> previous_command_;  ///< the last tick's command, for the next tick's answer
+  bool previous_ready_ = false;
   bool has_measurements_ = false;
   std::vector<PhaseMark> phases_;
   double next_progress_s_ = 0;
