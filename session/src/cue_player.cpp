@@ -2,6 +2,9 @@
 
 #include "avar/control/controller.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace avar::session {
 
 CuePlayer::CuePlayer(const playback::Show& show, control::TickObserver& next) : show_(show), next_(next) {
@@ -29,13 +32,25 @@ void CuePlayer::fire_until(double t) noexcept {
 void CuePlayer::after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& c) {
   next_.after_tick(tick, now_s, dt_s, lateness_s, c);
   if (!sender_ || c.phase() != control::Phase::running) return;
-  const double t = show_.local_time(now_s - c.show_start_time());
-  if (t < last_time_) {
+  const double show_t = c.show_time();  // grows across passes; negative in the lead-in
+  if (show_t < 0) return;
+  const double duration = show_.duration;
+  const auto pass = show_.loop && duration > 0 ? static_cast<std::int64_t>(std::floor(show_t / duration)) : 0;
+  const double t = show_.local_time(show_t);
+  const double step = started_ ? show_t - last_show_time_ : show_t;
+  started_ = true;
+  last_show_time_ = show_t;
+  if (step < -kJumpS || step > dt_s + kJumpS || pass < pass_) {
+    // A jump lands as a tick would: what it skipped does not fire, the cues within a tick
+    // before where it landed do (a loop starting over lands just past 0), the later ones wait.
+    pass_ = pass;
+    next_cue_ = static_cast<std::size_t>(std::lower_bound(times_.begin(), times_.end(), t - dt_s) - times_.begin());
+  } else if (pass > pass_) {
     // A looping show wrapped: the rest of the last pass, then a new pass.
-    fire_until(show_.duration);
+    fire_until(duration);
     next_cue_ = 0;
+    pass_ = pass;
   }
-  last_time_ = t;
   fire_until(t);
 }
 

@@ -43,13 +43,14 @@ using test_support::Kept;
 constexpr double kRate = 50;
 constexpr double kDt = 1.0 / kRate;
 
-/// A show that keys only neck_pan (0 to 40 degrees over 10 s), with two OSC cues to `cue_port`:
-/// the jaw is left to the puppeteer, the eyes, lids and neck roll to idle life.
+/// A show that keys only neck_pan (0 to 40 degrees over 10 s), with two OSC cues to `cue_port` at
+/// show times 3 and 3.5 s (the timecode starts the show at 2 s): the jaw is left to the
+/// puppeteer, the eyes, lids and neck roll to idle life.
 std::string show_text(int cue_port) {
   const std::string to = "127.0.0.1:" + std::to_string(cue_port);
   return "name: end-to-end\nduration: 10\nloop: false\ntracks:\n  neck_pan:\n    - {time: 0, value: 0}\n"
-         "    - {time: 10, value: 40}\ncues:\n  - {time: 0.5, osc: {to: " +
-         to + ", address: /e2e/cue, args: [1]}}\n  - {time: 1.0, osc: {to: " + to + ", address: /e2e/cue, args: [2]}}\n";
+         "    - {time: 10, value: 40}\ncues:\n  - {time: 3.0, osc: {to: " +
+         to + ", address: /e2e/cue, args: [1]}}\n  - {time: 3.5, osc: {to: " + to + ", address: /e2e/cue, args: [2]}}\n";
 }
 
 /// Calls `act` with every record (on the stepped loop's thread, between ticks).
@@ -159,7 +160,9 @@ TEST(FigureEndToEnd, TimecodeIdleOscCuesHoldAndStopThenAScrubbedSession) {
   ASSERT_LT(jaw_slot, live.inputs().mailbox().size());
   std::uint64_t t0 = 0;
   bool osc_arrived = false;
+  std::vector<double> cue_show_times;  // the show time of the tick that fired each cue
   Script script([&](const TickRecord& r) {
+    while (cue_show_times.size() < cues.fired()) cue_show_times.push_back(r.show_time_s);
     if (t0 == 0 && r.phase == control::Phase::running) t0 = r.tick;
     if (t0 == 0) return;
     if (r.tick == t0 + kOsc) {
@@ -245,8 +248,14 @@ TEST(FigureEndToEnd, TimecodeIdleOscCuesHoldAndStopThenAScrubbedSession) {
   EXPECT_EQ(kept.back().phase, control::Phase::disabled);
   EXPECT_LT(kept.size(), start + kStop + 5 * static_cast<std::size_t>(kRate));
 
-  // Both cues went out to the desk's port (their times passed while the show ran).
-  EXPECT_GT(kept[start + kStop].show_time_s, 1.0);
+  // Both cues went out to the desk's port, each on the tick whose show time (timecode's, not
+  // the loop's) reached it.
+  EXPECT_GT(kept[start + kStop].show_time_s, 3.5);
+  ASSERT_EQ(cue_show_times.size(), 2u);
+  EXPECT_GE(cue_show_times[0], 3.0);
+  EXPECT_LT(cue_show_times[0], 3.1);
+  EXPECT_GE(cue_show_times[1], 3.5);
+  EXPECT_LT(cue_show_times[1], 3.6);
   EXPECT_EQ(cues.osc_cues(), 2u);
   EXPECT_EQ(cues.fired(), 2u);
   EXPECT_EQ(cues.sent(), 2u);
