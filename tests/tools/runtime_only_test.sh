@@ -5,7 +5,18 @@
 # Usage: runtime_only_test.sh PROGRAM
 set -eu
 program=$1
-needed=$(readelf -d "$program" | sed -n 's/.*(NEEDED).*\[\(.*\)\].*/\1/p')
+if ! dynamic=$(readelf -d "$program"); then
+  echo "cannot read the dynamic section of $program (not built?)"
+  exit 1
+fi
+needed=$(printf '%s\n' "$dynamic" | sed -n 's/.*(NEEDED).*\[\(.*\)\].*/\1/p' | tr '\n' ' ')
+case " $needed " in
+  *" libc.so."*) ;;
+  *)
+    echo "$program names no libc among its shared libraries: not a dynamically linked program?"
+    exit 1
+    ;;
+esac
 echo "$program needs:" $needed
 status=0
 for library in $needed; do
