@@ -15,6 +15,7 @@
 
 #include "avar/core/input_error.hpp"
 #include "avar/core/monotonic_clock.hpp"
+#include "avar/core/serial_rates.hpp"
 
 namespace avar::firmware_iface {
 namespace {
@@ -34,15 +35,24 @@ constexpr std::array<std::pair<int, LibSerial::BaudRate>, 23> kBaudRates{{
     {600, LibSerial::BaudRate::BAUD_600},
 }};
 
+constexpr bool maps_exactly_the_standard_rates() {
+  if (kBaudRates.size() != kStandardBauds.size()) return false;
+  for (const auto& [rate, code] : kBaudRates)
+    if (!is_standard_baud(rate)) return false;
+  for (const int rate : kStandardBauds) {
+    bool mapped = false;
+    for (const auto& entry : kBaudRates) mapped = mapped || entry.first == rate;
+    if (!mapped) return false;
+  }
+  return true;
+}
+static_assert(maps_exactly_the_standard_rates(), "every standard baud rate needs its libserial code, and only those");
+
 [[noreturn]] void port_error(const std::string& path, const std::string& problem) { throw InputError({path, 0, 0}, problem); }
 
 }  // namespace
 
-bool SerialTransport::is_supported_baud(int baud) noexcept {
-  for (const auto& [rate, code] : kBaudRates)
-    if (rate == baud) return true;
-  return false;
-}
+bool SerialTransport::is_supported_baud(int baud) noexcept { return is_standard_baud(baud); }
 
 SerialTransport::SerialTransport(const std::string& path, int baud)
     : path_(path), baud_(baud), port_(std::make_unique<LibSerial::SerialPort>()) {

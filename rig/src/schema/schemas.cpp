@@ -2,17 +2,10 @@
 #include <array>
 #include <stdexcept>
 
+#include "avar/core/serial_rates.hpp"
 #include "schema_entries.hpp"
 
 namespace avar::rig {
-namespace {
-
-/// The serial rates a POSIX port (and libserial) sets by name.
-constexpr std::array<int, 23> kStandardBauds{300,     600,     1200,    2400,    4800,    9600,    19200,  38400,
-                                             57600,   115200,  230400,  460800,  500000,  576000,  921600, 1000000,
-                                             1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
-
-}  // namespace
 
 std::span<const ProtocolSchema* const> schemas() {
   static const std::array<const ProtocolSchema*, 9> all{&maestro_schema(), &dynamixel_schema(), &feetech_schema(),
@@ -40,8 +33,7 @@ std::string protocol_names() {
 
 int checked_baud(const ProtocolSchema& p, const ScalarValue& written, std::string_view what) {
   const long long b = written.as_integer(what);
-  const bool standard = std::find(kStandardBauds.begin(), kStandardBauds.end(), b) != kStandardBauds.end();
-  if (!standard)
+  if (!is_standard_baud(b))
     written.fail("expected a standard serial baud rate (9600, 19200, 38400, 57600, 115200, 230400, 1000000...), found " +
                  written.describe());
   if (!p.device_accepts_baud(static_cast<int>(b)))
