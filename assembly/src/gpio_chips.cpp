@@ -1,5 +1,7 @@
 #include "avar/assembly/gpio_chips.hpp"
 
+#include "avar/firmware_iface/libgpiod_chip.hpp"
+
 namespace avar::assembly {
 
 sim::SimGpioChip& GpioChips::simulated(const std::string& name) {

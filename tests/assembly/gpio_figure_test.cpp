@@ -17,6 +17,7 @@
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
+#include "avar/firmware_iface/libgpiod_chip.hpp"
 #include "../support/temp_file.hpp"
 
 namespace avar {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "avar/firmware_iface/libgpiod_chip.hpp"
 #include "avar/sim/sim_gpio_chip.hpp"
 
 namespace avar::firmware_iface {

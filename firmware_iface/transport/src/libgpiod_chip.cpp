@@ -1,7 +1,7 @@
 // The GPIO seam over libgpiod's v1 API (Debian 12 ships 1.6): one gpiod_chip, its lines
 // requested one by one with the consumer name "avar"; edges are read from the lines' event file
 // descriptors with poll().
-#include "avar/firmware_iface/gpio_chip.hpp"
+#include "avar/firmware_iface/libgpiod_chip.hpp"
 
 #include <gpiod.h>
 #include <poll.h>

@@ -2,8 +2,8 @@
 // The GPIO seam: one chip of lines (gpiochip0 on a Raspberry Pi header), whose lines are
 // requested as inputs (with active-low and bias, optionally with edge events) or as outputs
 // (with an initial value), then read, set and waited on. Values are logical: with active_low a
-// line reads 1 while it is low, and setting 1 drives it low. open_gpio_chip() opens a real chip
-// through libgpiod (v1.6 API); avar::sim::SimGpioChip is the simulated one.
+// line reads 1 while it is low, and setting 1 drives it low. open_gpio_chip() (libgpiod_chip.hpp,
+// avar::transport_gpio) opens a real chip; avar::sim::SimGpioChip is the simulated one.
 //
 // Threads: request and release lines on one thread before others use them. Afterwards get() and
 // set() on output lines (the loop, or a link's I/O thread) and wait_edges() with get() on input
@@ -15,7 +15,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <vector>
 
 #include "avar/core/status.hpp"
 
@@ -77,14 +76,5 @@ class GpioChip {
   /// Status::io_error when waiting or reading fails. Blocks: call from an input thread.
   virtual Status wait_edges(std::chrono::nanoseconds timeout, std::span<GpioEdge> out, std::size_t& count) noexcept = 0;
 };
-
-/// Opens a GPIO chip through libgpiod by name (gpiochip0), number (0), label (pinctrl-bcm2711)
-/// or path (/dev/gpiochip0). Throws std::runtime_error naming the chip and what is missing:
-/// "no GPIO chip 'gpiochip0' (this machine has none: /dev/gpiochip* absent)", or the chips there
-/// are. Not real-time.
-std::unique_ptr<GpioChip> open_gpio_chip(const std::string& name);
-
-/// The GPIO chips this machine has (/dev/gpiochip*), by name, sorted; empty when none.
-std::vector<std::string> gpio_chip_names();
 
 }  // namespace avar::firmware_iface
