@@ -426,6 +426,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   }
 
   if (live) config.live = &live->inputs();
+  if (live) config.recorded_controls = &live->inputs();
   if (idle) {
     config.live = idle->layers(config.live);
     config.lead_in_s = options.idle_before_s;
@@ -477,9 +478,18 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const auto expected_ticks = static_cast<std::size_t>((planned_s + 10.0) * rate);
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
-  PlayRecorder recorder(figure, rig.channels.size(), keep, expected_ticks, show_progress ? &err : nullptr,
-                        ::isatty(STDERR_FILENO) == 1, &err);
-  if (live) recorder.watch(&live->inputs());
+  session::RecorderOptions recording;
+  recording.channels = rig.channels.size();
+  recording.links = rig.links.size();
+  recording.controls = live ? live->inputs().control_values().size() : 0;
+  recording.show_duration_s = loaded->show.duration;
+  recording.keep_samples = keep;
+  recording.expected_ticks = expected_ticks;
+  recording.progress = show_progress ? &err : nullptr;
+  recording.progress_is_terminal = ::isatty(STDERR_FILENO) == 1;
+  recording.notices = &err;
+  PlayRecorder recorder(recording);
+  session->add_observer(recorder);
 
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
@@ -494,7 +504,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
         << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "") << std::endl;
   session->add_estop_input(interrupts.estop());
   if (digital_inputs) session->add_estop_input(digital_inputs->estop());
-  CuePlayer cues(loaded->show, recorder);  // OSC cues go out from their own thread
+  CuePlayer cues(loaded->show);  // OSC cues go out from their own thread
   control::TickObserver* observer = &cues;
   if (chase) chase->forward_to(cues), observer = chase.get();
   if (surface) {
@@ -506,7 +516,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   session->set_loop_observer(observer);
   const control::RunResult run = session->run(interrupts.count());
   cues.flush();
-  recorder.finish();
+  recorder.finish(controller);
   if (chase) chase->stop();
   if (surface) surface->stop();
   if (cues.osc_cues() > 0) err << "cues: " << cues.sent() << " OSC message(s) sent, " << cues.failed() << " failed\n";

@@ -156,21 +156,22 @@ void Controller::feed_back(std::span<const double> measured, std::span<const boo
 }
 
 void Controller::feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept {
-  take_telemetry(telemetry, telemetry_seen_);
+  take_telemetry(telemetry, telemetry_seen_, true);
 }
 
 void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry,
-                                std::vector<std::uint64_t>& seen) noexcept {
+                                std::vector<std::uint64_t>& seen, bool latch) noexcept {
   for (std::size_t c = 0; c < seen.size() && c < telemetry.size(); ++c) {
     const firmware_iface::ChannelTelemetry& t = telemetry[c];
     // A device that stopped answering sends nothing fresh: its silence is judged on every tick.
-    if (t.faults & firmware_iface::kDeviceLost) fault(FaultCause::device_lost, c, 0, last_now_);
+    if (latch && (t.faults & firmware_iface::kDeviceLost)) fault(FaultCause::device_lost, c, 0, last_now_);
     if (t.updates == seen[c]) continue;
     seen[c] = t.updates;
     if (std::isfinite(t.position)) {
       measured_[c] = t.position;
       measured_known_[c] = 1;
     }
+    if (!latch) continue;
     if (t.faults & firmware_iface::kDeviceOverheat) fault(FaultCause::device_overheat, c, t.temperature_c, last_now_);
     if (t.faults & firmware_iface::kDeviceOverload) fault(FaultCause::device_overload, c, t.load, last_now_);
     if (t.faults &
@@ -179,12 +180,12 @@ void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry
   }
 }
 
-void Controller::read_feedback() noexcept {
+void Controller::read_feedback(bool latch) noexcept {
   // The devices' reports first, then the position source over them: where both know a channel,
   // the source (the simulator's ground truth, an encoder on the joint) has the last word, as it
   // has over feed_telemetry()'s reports made between ticks.
   for (firmware_iface::ActuatorLink* link : links_) link->read_telemetry(telemetry_);
-  take_telemetry(telemetry_, link_telemetry_seen_);
+  take_telemetry(telemetry_, link_telemetry_seen_, latch);
   if (options_.positions) {
     // The source writes straight into measured_, and only where it knows.
     const std::span<bool> known(source_known_.get(), measured_.size());
@@ -193,6 +194,16 @@ void Controller::read_feedback() noexcept {
     for (std::size_t c = 0; c < known.size(); ++c)
       if (known[c]) measured_known_[c] = 1;
   }
+}
+
+void Controller::publish_feedback() noexcept {
+  for (std::size_t c = 0; c < feedback_.size(); ++c)
+    feedback_[c] = measured_known_[c] ? measured_[c] : std::numeric_limits<double>::quiet_NaN();
+}
+
+void Controller::read_final_feedback() noexcept {
+  read_feedback(false);
+  publish_feedback();
 }
 
 bool Controller::active() const noexcept {
@@ -219,9 +230,8 @@ void Controller::release_now() noexcept {
 void Controller::tick(double now_s) noexcept {
   std::int64_t mark = options_.stage_clock ? options_.stage_clock() : 0;
   // Before the clock moves on: what the devices reported came with the last tick's exchange.
-  read_feedback();
-  for (std::size_t c = 0; c < feedback_.size(); ++c)
-    feedback_[c] = measured_known_[c] ? measured_[c] : std::numeric_limits<double>::quiet_NaN();
+  read_feedback(true);
+  publish_feedback();
   last_now_ = now_s;
   if (!supervisor_.drives()) return;
 

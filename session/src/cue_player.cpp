@@ -6,8 +6,14 @@
 #include <cmath>
 
 namespace avar::session {
+namespace {
 
-CuePlayer::CuePlayer(const playback::Show& show, control::TickObserver& next) : show_(show), next_(next) {
+/// Rounding in show time's sums (a tick's 0.02 s added fifty times is not quite 1 s).
+constexpr double kTimeEpsilonS = 1e-9;
+
+}  // namespace
+
+CuePlayer::CuePlayer(const playback::Show& show, control::TickObserver* next) : show_(show), next_(next) {
   std::vector<firmware_iface::OscCueMessage> messages;
   for (const playback::Cue& cue : show.cues) {
     if (!cue.is_osc()) continue;
@@ -30,7 +36,7 @@ void CuePlayer::fire_until(double t) noexcept {
 }
 
 void CuePlayer::after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& c) {
-  next_.after_tick(tick, now_s, dt_s, lateness_s, c);
+  if (next_) next_->after_tick(tick, now_s, dt_s, lateness_s, c);
   if (!sender_ || c.phase() != control::Phase::running) return;
   const double show_t = c.show_time();  // grows across passes; negative in the lead-in
   if (show_t < 0) return;
@@ -44,7 +50,7 @@ void CuePlayer::after_tick(std::uint64_t tick, double now_s, double dt_s, double
     // A jump lands as a tick would: what it skipped does not fire, the cues within a tick
     // before where it landed do (a loop starting over lands just past 0), the later ones wait.
     pass_ = pass;
-    next_cue_ = static_cast<std::size_t>(std::lower_bound(times_.begin(), times_.end(), t - dt_s) - times_.begin());
+    next_cue_ = static_cast<std::size_t>(std::lower_bound(times_.begin(), times_.end(), t - dt_s - kTimeEpsilonS) - times_.begin());
   } else if (pass > pass_) {
     // A looping show wrapped: the rest of the last pass, then a new pass.
     fire_until(duration);

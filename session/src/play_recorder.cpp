@@ -1,113 +1,134 @@
 #include "avar/session/play_recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iomanip>
 #include <limits>
 #include <ostream>
 #include <span>
+#include <string>
 
 namespace avar::session {
 
-PlayRecorder::PlayRecorder(const assembly::FigureLinks& figure, std::size_t channels, bool keep_samples,
-                           std::size_t expected_ticks, std::ostream* progress, bool progress_is_terminal, std::ostream* notices)
-    : figure_(figure),
-      channels_(channels),
-      keep_samples_(keep_samples),
-      progress_(progress),
-      terminal_(progress_is_terminal),
-      notices_(notices),
-      stats_(channels),
-      known_(new bool[channels]()),
-      previous_command_(channels, 0.0) {
-  if (keep_samples_) {
-    seconds_.reserve(expected_ticks);
-    lateness_rows_.reserve(expected_ticks);
-    stage_rows_.reserve(expected_ticks * control::kStageCount);
-    phase_rows_.reserve(expected_ticks);
-    targets_.reserve(expected_ticks * channels);
-    commands_.reserve(expected_ticks * channels);
-    measured_rows_.reserve(expected_ticks * channels);
-    telemetry_rows_.reserve(expected_ticks * channels);
-    counter_rows_.reserve(expected_ticks * figure_.link_count());
+PlayRecorder::PlayRecorder(const RecorderOptions& options)
+    : options_(options),
+      stats_(options.channels),
+      measured_(options.channels, std::numeric_limits<double>::quiet_NaN()),
+      known_(new bool[options.channels]()),
+      previous_command_(options.channels, 0.0) {
+  if (options_.keep_samples) {
+    const std::size_t ticks = options_.expected_ticks;
+    seconds_.reserve(ticks);
+    lateness_rows_.reserve(ticks);
+    stage_rows_.reserve(ticks * control::kStageCount);
+    phase_rows_.reserve(ticks);
+    targets_.reserve(ticks * options_.channels);
+    commands_.reserve(ticks * options_.channels);
+    measured_rows_.reserve(ticks * options_.channels);
+    telemetry_rows_.reserve(ticks * options_.channels);
+    counter_rows_.reserve(ticks * options_.links);
+    control_rows_.reserve(ticks * options_.controls);
   }
 }
 
-void PlayRecorder::after_tick(std::uint64_t, double now_s, double, double lateness_s, control::Controller& controller) {
-  // What the controller read at this tick's start is where the figure stood after the previous
-  // tick's command: it answers the row before this one.
-  if (previous_ready_) take_answer(controller);
-  previous_command_.assign(controller.commanded().begin(), controller.commanded().end());
+namespace {
+
+/// A channel's device report as a record carries it (the position is the trace's measured).
+firmware_iface::ChannelTelemetry reported(const ChannelRecord& c) {
+  firmware_iface::ChannelTelemetry t;
+  t.position = c.measured;
+  t.load = c.load;
+  t.temperature_c = c.temperature_c;
+  t.faults = c.device_faults;
+  return t;
+}
+
+}  // namespace
+
+void PlayRecorder::on_tick(const TickRecord& r) {
+  const std::size_t n = options_.channels;
+  // What this tick read is where the figure stood after the previous tick's command: it answers
+  // the row before this one.
+  // (A tick whose record the ring dropped leaves its successor's reading unpaired.)
+  if (previous_ready_ && r.tick == previous_tick_ + 1) {
+    for (std::size_t c = 0; c < n; ++c) measured_[c] = r.channels[c].measured;
+    take_answer(measured_);
+    if (options_.keep_samples && !seconds_.empty())
+      for (std::size_t c = 0; c < n; ++c) telemetry_rows_[(seconds_.size() - 1) * n + c] = reported(r.channels[c]);
+  }
+  for (std::size_t c = 0; c < n; ++c) previous_command_[c] = r.channels[c].command;
   previous_ready_ = true;
+  previous_tick_ = r.tick;
 
-  if (phases_.empty() || phases_.back().phase != controller.phase()) phases_.push_back({now_s, controller.phase()});
-  if (controller.stop_requested() && !stop_announced_) {
+  if (phases_.empty() || phases_.back().phase != r.phase) phases_.push_back({r.now_s, r.phase});
+  if (r.stop_requested && !stop_announced_) {
     stop_announced_ = true;
-    if (progress_ && terminal_) *progress_ << '\n';
-    if (notices_) *notices_ << "interrupt: easing to rest; interrupt again to release every servo at once" << std::endl;
+    if (options_.progress && options_.progress_is_terminal) *options_.progress << '\n';
+    if (options_.notices)
+      *options_.notices << "interrupt: easing to rest; interrupt again to release every servo at once" << std::endl;
   }
 
-  if (keep_samples_) {
-    seconds_.push_back(now_s);
-    lateness_rows_.push_back(lateness_s);
-    for (std::size_t s = 0; s < control::kStageCount; ++s)
-      stage_rows_.push_back(controller.stage_time(static_cast<control::Stage>(s)).last_ns);
-    phase_rows_.push_back(controller.phase());
-    const auto target = controller.target();
-    const auto command = controller.commanded();
-    targets_.insert(targets_.end(), target.begin(), target.end());
-    commands_.insert(commands_.end(), command.begin(), command.end());
-    // Until the next tick answers: no position, and the reports as this tick read them.
-    measured_rows_.insert(measured_rows_.end(), channels_, std::numeric_limits<double>::quiet_NaN());
-    telemetry_rows_.insert(telemetry_rows_.end(), controller.telemetry().begin(), controller.telemetry().end());
-    for (std::size_t l = 0; l < figure_.link_count(); ++l) counter_rows_.push_back(figure_.counters(l));
-    if (live_) control_rows_.insert(control_rows_.end(), live_->control_values().begin(), live_->control_values().end());
+  if (options_.keep_samples) {
+    seconds_.push_back(r.now_s);
+    lateness_rows_.push_back(r.lateness_s);
+    stage_rows_.insert(stage_rows_.end(), r.stage_ns.begin(), r.stage_ns.end());
+    phase_rows_.push_back(r.phase);
+    for (const ChannelRecord& c : r.channels) targets_.push_back(c.target);
+    for (const ChannelRecord& c : r.channels) commands_.push_back(c.command);
+    // Until the next record answers: no position, and the reports as this tick read them.
+    measured_rows_.insert(measured_rows_.end(), n, std::numeric_limits<double>::quiet_NaN());
+    for (const ChannelRecord& c : r.channels) telemetry_rows_.push_back(reported(c));
+    counter_rows_.insert(counter_rows_.end(), r.links.begin(), r.links.end());
+    control_rows_.insert(control_rows_.end(), r.controls.begin(), r.controls.end());
   }
-  if (progress_ && now_s >= next_progress_s_) {
-    draw_progress(now_s, controller);
-    next_progress_s_ = now_s + (terminal_ ? 0.2 : 2.0);
+  if (options_.progress && r.now_s >= next_progress_s_) {
+    draw_progress(r);
+    next_progress_s_ = r.now_s + (options_.progress_is_terminal ? 0.2 : 2.0);
   }
 }
 
-void PlayRecorder::take_answer(const control::Controller& controller) {
-  const std::span<const double> measured = controller.measured();
-  const std::span<bool> known(known_.get(), channels_);
-  for (std::size_t c = 0; c < channels_; ++c) {
+void PlayRecorder::take_answer(std::span<const double> measured) {
+  const std::size_t n = options_.channels;
+  const std::span<bool> known(known_.get(), n);
+  for (std::size_t c = 0; c < n; ++c) {
     known[c] = !std::isnan(measured[c]);
     has_measurements_ = has_measurements_ || known[c];
   }
   stats_.add(previous_command_, measured, known);
-  if (!keep_samples_ || seconds_.empty()) return;
-  const std::size_t row = (seconds_.size() - 1) * channels_;
-  std::copy(measured.begin(), measured.end(), measured_rows_.begin() + static_cast<std::ptrdiff_t>(row));
-  std::copy(controller.telemetry().begin(), controller.telemetry().end(),
-            telemetry_rows_.begin() + static_cast<std::ptrdiff_t>(row));
+  if (!options_.keep_samples || seconds_.empty()) return;
+  std::copy(measured.begin(), measured.begin() + static_cast<std::ptrdiff_t>(n),
+            measured_rows_.begin() + static_cast<std::ptrdiff_t>((seconds_.size() - 1) * n));
 }
 
-void PlayRecorder::draw_progress(double now_s, const control::Controller& controller) {
-  const double duration = controller.show_duration();
-  const double show_t = controller.phase() == control::Phase::running ? controller.show_time() : 0.0;
+void PlayRecorder::draw_progress(const TickRecord& r) {
+  const double duration = options_.show_duration_s;
+  const double show_t = r.phase == control::Phase::running ? r.show_time_s : 0.0;
   const double within = duration > 0 ? std::fmod(show_t, duration) : 0.0;
-  const double fraction = controller.phase() == control::Phase::stopping || controller.phase() == control::Phase::disabled
+  const double fraction = r.phase == control::Phase::stopping || r.phase == control::Phase::disabled
                               ? 1.0
                               : (duration > 0 ? within / duration : 0.0);
   constexpr int kWidth = 24;
   const auto filled = static_cast<int>(std::lround(fraction * kWidth));
   char line[160];
   if (std::isfinite(duration))
-    std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s",
-                  control::to_string(controller.phase()), within, duration, kWidth,
-                  std::string(static_cast<std::size_t>(filled), '#').c_str(), static_cast<int>(std::lround(fraction * 100)),
-                  now_s);
+    std::snprintf(line, sizeof line, "%-8s show %6.2f / %.2f s  [%-*s] %3d%%  loop time %7.2f s", control::to_string(r.phase),
+                  within, duration, kWidth, std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                  static_cast<int>(std::lround(fraction * 100)), r.now_s);
   else  // live only: no show to measure against
-    std::snprintf(line, sizeof line, "%-8s live %8.2f s  loop time %7.2f s", control::to_string(controller.phase()), show_t,
-                  now_s);
-  if (terminal_) *progress_ << '\r' << line << "\033[K" << std::flush;
-  else *progress_ << line << '\n' << std::flush;
+    std::snprintf(line, sizeof line, "%-8s live %8.2f s  loop time %7.2f s", control::to_string(r.phase), show_t, r.now_s);
+  if (options_.progress_is_terminal) *options_.progress << '\r' << line << "\033[K" << std::flush;
+  else *options_.progress << line << '\n' << std::flush;
 }
 
-void PlayRecorder::finish() {
-  if (progress_ && terminal_) *progress_ << '\n' << std::flush;
+void PlayRecorder::finish(const control::Controller& controller) {
+  if (previous_ready_) {
+    take_answer(controller.measured());
+    if (options_.keep_samples && !seconds_.empty())
+      std::copy(controller.telemetry().begin(), controller.telemetry().end(),
+                telemetry_rows_.begin() + static_cast<std::ptrdiff_t>((seconds_.size() - 1) * options_.channels));
+    previous_ready_ = false;
+  }
+  if (options_.progress && options_.progress_is_terminal) *options_.progress << '\n' << std::flush;
 }
 
 }  // namespace avar::session

@@ -1,5 +1,6 @@
 #include "avar/session/show_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -36,7 +37,8 @@ ShowSession::ShowSession(const rig::Rig& rig, const playback::Show& show, Sessio
       clock_(config_.lead_in_s, config_.external_clock, config_.start_paused),
       holds_(rig, config_.live),
       queue_(config_.command_capacity),
-      ring_(config_.record_capacity, rig.channels.size(), rig.links.size()) {
+      ring_(config_.record_capacity, rig.channels.size(), rig.links.size(),
+            config_.recorded_controls ? config_.recorded_controls->control_values().size() : 0) {
   if (config_.stepped && !figure_->all_simulated())
     throw std::invalid_argument("a stepped session runs on a simulated clock and needs every link simulated");
 }
@@ -132,6 +134,7 @@ control::RunResult ShowSession::run(const std::atomic<int>& interrupts) {
     }
   }
   drain();
+  controller_->read_final_feedback();
   running_.store(false);
   return result;
 }
@@ -188,6 +191,7 @@ void ShowSession::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
     r->show_time_s = controller.show_time();
     r->paused = clock_.paused();
     r->estop = estop_seen_;
+    r->stop_requested = controller.stop_requested();
     r->fault = controller.latched_fault();
     r->faults_seen = controller.faults_seen();
     r->command_count = taken_count_;
@@ -207,6 +211,13 @@ void ShowSession::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
       ch.held = holds_.held(c);
     }
     for (std::size_t l = 0; l < r->links.size(); ++l) r->links[l] = links_[l]->counters();
+    for (std::size_t s = 0; s < control::kStageCount; ++s)
+      r->stage_ns[s] = controller.stage_time(static_cast<control::Stage>(s)).last_ns;
+    if (config_.recorded_controls) {
+      const auto values = config_.recorded_controls->control_values();
+      const std::size_t n = std::min(values.size(), r->controls.size());
+      std::copy(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(n), r->controls.begin());
+    }
     ring_.publish();
   }
   taken_count_ = 0;

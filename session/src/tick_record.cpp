@@ -2,11 +2,15 @@
 
 namespace avar::session {
 
-TickRing::TickRing(std::size_t capacity, std::size_t channels, std::size_t links)
-    : slots_(capacity < 2 ? 2 : capacity), channel_rows_(slots_.size() * channels), link_rows_(slots_.size() * links) {
+TickRing::TickRing(std::size_t capacity, std::size_t channels, std::size_t links, std::size_t controls)
+    : slots_(capacity < 2 ? 2 : capacity),
+      channel_rows_(slots_.size() * channels),
+      link_rows_(slots_.size() * links),
+      control_rows_(slots_.size() * controls) {
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     slots_[i].channels = std::span<ChannelRecord>(channel_rows_.data() + i * channels, channels);
     slots_[i].links = std::span<firmware_iface::LinkCounters>(link_rows_.data() + i * links, links);
+    slots_[i].controls = std::span<double>(control_rows_.data() + i * controls, controls);
   }
 }
 

@@ -60,9 +60,6 @@ class Script final : public SessionObserver {
   std::function<void(const TickRecord&)> act_;
 };
 
-class NoTickObserver final : public control::TickObserver {
-  void after_tick(std::uint64_t, double, double, double, control::Controller&) override {}
-};
 
 std::atomic<int> no_interrupts{0};
 
@@ -83,8 +80,7 @@ CueRun run_cues(const std::string& show_text, double lead_in_s, int fd,
   config.links.simulate_all = true;
   config.lead_in_s = lead_in_s;
   ShowSession session(rig, show, config);
-  NoTickObserver end;
-  CuePlayer cues(show, end);
+  CuePlayer cues(show);
   session.set_loop_observer(&cues);
   CueRun run;
   Script script([&](const TickRecord& r) {

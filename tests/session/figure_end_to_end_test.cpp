@@ -63,10 +63,6 @@ class Script final : public SessionObserver {
   std::function<void(const TickRecord&)> act_;
 };
 
-/// The end of the loop observers' chain (the cue player forwards every tick to one).
-class NoTickObserver final : public control::TickObserver {
-  void after_tick(std::uint64_t, double, double, double, control::Controller&) override {}
-};
 
 std::size_t channel_of(const rig::Rig& rig, const std::string& name) {
   for (std::size_t c = 0; c < rig.channels.size(); ++c)
@@ -144,8 +140,7 @@ TEST(FigureEndToEnd, TimecodeIdleOscCuesHoldAndStopThenAScrubbedSession) {
   config.external_clock = &chase.clock();
   ShowSession session(rig, show, config);
 
-  NoTickObserver end_of_chain;
-  CuePlayer cues(show, end_of_chain);
+  CuePlayer cues(show);
   chase.forward_to(cues);
   session.set_loop_observer(&chase);
 

@@ -118,6 +118,11 @@ class Controller {
   /// (the exchange that brought the report). Real-time safe.
   void feed_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry) noexcept;
 
+  /// After the run: reads the feedback a next tick would read first (where the figure stood
+  /// after the last tick's command) into measured() and telemetry(), latching no fault. Not
+  /// while ticks run.
+  void read_final_feedback() noexcept;
+
   /// faulted -> disabled, clearing the latched fault, once the fail-safe motions are over.
   /// Returns false (and changes nothing) otherwise.
   bool reset() noexcept;
@@ -169,8 +174,12 @@ class Controller {
   bool show_over(double show_time_s) const noexcept;
   void lap(Stage s, std::int64_t& mark) noexcept;
   /// The tick's first stage: the position source, then every link's telemetry.
-  void read_feedback() noexcept;
-  void take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry, std::vector<std::uint64_t>& seen) noexcept;
+  /// `latch`: whether the device fault bits and lost devices latch faults (not after the run).
+  void read_feedback(bool latch) noexcept;
+  /// measured() from what read_feedback() found.
+  void publish_feedback() noexcept;
+  void take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry, std::vector<std::uint64_t>& seen,
+                      bool latch) noexcept;
   /// The show's frame at a show time: tracks, then inverse kinematics for the targets.
   void sample_show(double show_time_s, std::span<double> frame) noexcept;
 

@@ -2,7 +2,7 @@
 // Fires a show's OSC cues during play: after each tick (on the loop thread) the cues whose time
 // show time passed go, by index, to an OscCueSender whose thread sends them. Digital cues are
 // step tracks of their channels (config's show reader) and need nothing here. Forwards every
-// tick to the next observer first.
+// tick to the next observer first, when it has one.
 //
 // Show time is the controller's (Controller::show_time(): the session's clock, a timecode
 // chase, a control surface), not loop time, so the rule holds under pause, seek, scrub and
@@ -30,7 +30,9 @@ class CuePlayer final : public control::TickObserver {
   static constexpr double kJumpS = 0.25;
 
   /// Prepares the show's OSC cues (none: nothing is started).
-  CuePlayer(const playback::Show& show, control::TickObserver& next);
+  explicit CuePlayer(const playback::Show& show) : CuePlayer(show, nullptr) {}
+  /// Also forwards every tick to `next` (borrowed; nullptr: none).
+  CuePlayer(const playback::Show& show, control::TickObserver* next);
   /// Real-time safe: no allocation, no lock.
   void after_tick(std::uint64_t tick, double now_s, double dt_s, double lateness_s, control::Controller& c) override;
   /// Waits until every fired cue was sent. Not real-time.
@@ -45,7 +47,7 @@ class CuePlayer final : public control::TickObserver {
   void fire_until(double t) noexcept;
 
   const playback::Show& show_;
-  control::TickObserver& next_;
+  control::TickObserver* next_;
   std::vector<double> times_;  ///< of the OSC cues, ascending; index = the sender's message
   std::unique_ptr<firmware_iface::OscCueSender> sender_;
   std::size_t next_cue_ = 0;

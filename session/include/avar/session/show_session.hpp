@@ -35,6 +35,7 @@
 
 #include "avar/assembly/figure_links.hpp"
 #include "avar/control/controller.hpp"
+#include "avar/control/live_inputs.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/playback/runtime/show.hpp"
 #include "avar/rig/rig.hpp"
@@ -57,6 +58,9 @@ struct SessionConfig {
   double lead_out_s = 0;  ///< ControllerOptions::lead_out_s (idle after it)
   /// Layers under the holds (idle life, live inputs; borrowed, loop thread). nullptr: none.
   control::LiveLayer* live = nullptr;
+  /// Live inputs whose control values every record carries (TickRecord::controls; borrowed,
+  /// read on the loop thread). nullptr: none.
+  const control::LiveInputs* recorded_controls = nullptr;
   /// Show time from elsewhere (a timecode chase, a control surface; borrowed, loop thread). The
   /// show-time commands are refused then. nullptr: the session's own clock.
   control::ShowClock* external_clock = nullptr;
@@ -119,7 +123,8 @@ class ShowSession final : private control::TickObserver {
   void begin();
   /// Runs until the controller is done (the show ended and the figure eased to rest, a stop, or
   /// a fault's fail-safe motions ended). `interrupts`: Ctrl-C count (control::run_loop). After
-  /// begin(); returns when every record reached the observers.
+  /// begin(); returns when every record reached the observers, with controller().measured()
+  /// and telemetry() read once more: where the figure stood after the last tick's command.
   control::RunResult run(const std::atomic<int>& interrupts);
 
   const rig::Rig& rig() const noexcept { return rig_; }

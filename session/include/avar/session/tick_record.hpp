@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "avar/control/controller.hpp"
 #include "avar/control/supervisor.hpp"
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/session/command_queue.hpp"
@@ -44,18 +45,26 @@ struct TickRecord {
   double show_time_s = 0;  ///< show time of the last running tick
   bool paused = false;     ///< show time stands (pause, scrub, or the session started paused)
   bool estop = false;      ///< the session's e-stop was pressed by this tick
+  bool stop_requested = false;  ///< a stop (command, Ctrl-C) asked the figure to ease to rest
   control::Fault fault;    ///< the latched fault (cause none: none)
   std::uint64_t faults_seen = 0;
   std::size_t command_count = 0;  ///< entries of `commands` used
   std::array<CommandRecord, kMaxCommandsPerTick> commands{};
+  /// What each stage of this tick cost, nanoseconds, by control::Stage (0: not timed, as on
+  /// the stepped clock).
+  std::array<std::int64_t, control::kStageCount> stage_ns{};
   std::span<ChannelRecord> channels;              ///< one per rig channel
   std::span<firmware_iface::LinkCounters> links;  ///< one per rig link, as of this tick
+  /// Each live control's raw value as the tick read it, NaN before it first moved
+  /// (SessionConfig::recorded_controls; empty without).
+  std::span<double> controls;
 };
 
 class TickRing {
  public:
-  /// `capacity` records (at least 2) of `channels` channels and `links` links. Allocates.
-  TickRing(std::size_t capacity, std::size_t channels, std::size_t links);
+  /// `capacity` records (at least 2) of `channels` channels, `links` links and `controls` live
+  /// controls. Allocates.
+  TickRing(std::size_t capacity, std::size_t channels, std::size_t links, std::size_t controls);
   TickRing(const TickRing&) = delete;
   TickRing& operator=(const TickRing&) = delete;
 
@@ -87,6 +96,7 @@ class TickRing {
   std::vector<TickRecord> slots_;
   std::vector<ChannelRecord> channel_rows_;
   std::vector<firmware_iface::LinkCounters> link_rows_;
+  std::vector<double> control_rows_;
   alignas(64) std::atomic<std::uint64_t> published_{0};  ///< records made visible, ever
   alignas(64) std::atomic<std::uint64_t> consumed_{0};   ///< records popped, ever
   std::atomic<std::uint64_t> dropped_{0};
