@@ -159,8 +159,8 @@ void Controller::feed_telemetry(std::span<const firmware_iface::ChannelTelemetry
   take_telemetry(telemetry, telemetry_seen_, true);
 }
 
-void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry,
-                                std::vector<std::uint64_t>& seen, bool latch) noexcept {
+void Controller::take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry, std::vector<std::uint64_t>& seen,
+                                bool latch) noexcept {
   for (std::size_t c = 0; c < seen.size() && c < telemetry.size(); ++c) {
     const firmware_iface::ChannelTelemetry& t = telemetry[c];
     // A device that stopped answering sends nothing fresh: its silence is judged on every tick.

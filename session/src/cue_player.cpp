@@ -50,7 +50,8 @@ void CuePlayer::after_tick(std::uint64_t tick, double now_s, double dt_s, double
     // A jump lands as a tick would: what it skipped does not fire, the cues within a tick
     // before where it landed do (a loop starting over lands just past 0), the later ones wait.
     pass_ = pass;
-    next_cue_ = static_cast<std::size_t>(std::lower_bound(times_.begin(), times_.end(), t - dt_s - kTimeEpsilonS) - times_.begin());
+    next_cue_ =
+        static_cast<std::size_t>(std::lower_bound(times_.begin(), times_.end(), t - dt_s - kTimeEpsilonS) - times_.begin());
   } else if (pass > pass_) {
     // A looping show wrapped: the rest of the last pass, then a new pass.
     fire_until(duration);

@@ -104,9 +104,8 @@ void PlayRecorder::draw_progress(const TickRecord& r) {
   const double duration = options_.show_duration_s;
   const double show_t = r.phase == control::Phase::running ? r.show_time_s : 0.0;
   const double within = duration > 0 ? std::fmod(show_t, duration) : 0.0;
-  const double fraction = r.phase == control::Phase::stopping || r.phase == control::Phase::disabled
-                              ? 1.0
-                              : (duration > 0 ? within / duration : 0.0);
+  const double fraction =
+      r.phase == control::Phase::stopping || r.phase == control::Phase::disabled ? 1.0 : (duration > 0 ? within / duration : 0.0);
   constexpr int kWidth = 24;
   const auto filled = static_cast<int>(std::lround(fraction * kWidth));
   char line[160];

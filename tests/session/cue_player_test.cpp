@@ -33,8 +33,8 @@ std::string show_with_cues(int port, double duration, bool loop, const std::vect
                   "\ntracks:\n  neck_pan:\n    - {time: 0, value: 0}\n    - {time: " + std::to_string(duration) +
                   ", value: 10}\ncues:\n";
   for (std::size_t k = 0; k < times.size(); ++k)
-    s += "  - {time: " + std::to_string(times[k]) + ", osc: {to: 127.0.0.1:" + std::to_string(port) +
-         ", address: /cue, args: [" + std::to_string(k) + "]}}\n";
+    s += "  - {time: " + std::to_string(times[k]) + ", osc: {to: 127.0.0.1:" + std::to_string(port) + ", address: /cue, args: [" +
+         std::to_string(k) + "]}}\n";
   return s;
 }
 
@@ -59,7 +59,6 @@ class Script final : public SessionObserver {
  private:
   std::function<void(const TickRecord&)> act_;
 };
-
 
 std::atomic<int> no_interrupts{0};
 
@@ -104,12 +103,11 @@ TEST(CuePlayer, FiresByShowTimeNotInTheLeadInAndSkipsWhatASeekJumpsOver) {
   // (cues 2 and 3 skipped), at 4.2 a seek back to 0.5 (cues 1 to 4 fire again as show time
   // reaches them; cue 0 lies before where it landed).
   bool forward = false, back = false;
-  const CueRun run = run_cues(show_with_cues(port, 5, false, {0, 1, 2, 3, 4}), 1.0, fd,
-                              [&](ShowSession& s, const TickRecord& r) {
-                                if (r.phase != control::Phase::running) return;
-                                if (!forward && r.show_time_s >= 1.5) forward = s.seek(3.5);
-                                if (forward && !back && r.show_time_s >= 4.2) back = s.seek(0.5);
-                              });
+  const CueRun run = run_cues(show_with_cues(port, 5, false, {0, 1, 2, 3, 4}), 1.0, fd, [&](ShowSession& s, const TickRecord& r) {
+    if (r.phase != control::Phase::running) return;
+    if (!forward && r.show_time_s >= 1.5) forward = s.seek(3.5);
+    if (forward && !back && r.show_time_s >= 4.2) back = s.seek(0.5);
+  });
   ASSERT_TRUE(forward && back);
   EXPECT_EQ(run.arrived, (std::vector<int>{0, 1, 4, 1, 2, 3, 4}));
   // Each fired on the tick whose show time reached it: cue 0 at 0 (after the lead-in, which
@@ -136,14 +134,13 @@ TEST(CuePlayer, FiresOncePerPassOfALoopingShowAndOfASessionLoop) {
   bool looped = false;
   int wraps = 0;
   double last = 0;
-  const CueRun session_loop =
-      run_cues(show_with_cues(port, 2, false, {0, 1.5}), 0, fd, [&](ShowSession& s, const TickRecord& r) {
-        if (r.phase != control::Phase::running) return;
-        if (!looped) looped = s.loop(true);
-        if (r.show_time_s < last) ++wraps;  // the session's clock started the show over
-        last = r.show_time_s;
-        if (wraps == 2 && r.show_time_s >= 1.9) (void)s.stop();
-      });
+  const CueRun session_loop = run_cues(show_with_cues(port, 2, false, {0, 1.5}), 0, fd, [&](ShowSession& s, const TickRecord& r) {
+    if (r.phase != control::Phase::running) return;
+    if (!looped) looped = s.loop(true);
+    if (r.show_time_s < last) ++wraps;  // the session's clock started the show over
+    last = r.show_time_s;
+    if (wraps == 2 && r.show_time_s >= 1.9) (void)s.stop();
+  });
   EXPECT_TRUE(looped);
   EXPECT_EQ(session_loop.arrived, (std::vector<int>{0, 1, 0, 1, 0, 1}));
   ::close(fd);

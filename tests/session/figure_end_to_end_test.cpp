@@ -63,7 +63,6 @@ class Script final : public SessionObserver {
   std::function<void(const TickRecord&)> act_;
 };
 
-
 std::size_t channel_of(const rig::Rig& rig, const std::string& name) {
   for (std::size_t c = 0; c < rig.channels.size(); ++c)
     if (rig.channels[c].name == name) return c;

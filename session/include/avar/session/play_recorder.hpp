@@ -31,12 +31,12 @@ struct PhaseMark {
 struct RecorderOptions {
   std::size_t channels = 0;
   std::size_t links = 0;
-  std::size_t controls = 0;  ///< live controls each record carries (SessionConfig::recorded_controls)
+  std::size_t controls = 0;    ///< live controls each record carries (SessionConfig::recorded_controls)
   double show_duration_s = 0;  ///< for the progress line; infinite for a live run without end
   /// Store every tick for a trace, plot or take (sized for expected_ticks up front).
   bool keep_samples = false;
   std::size_t expected_ticks = 0;
-  std::ostream* progress = nullptr;  ///< where to draw the progress line; nullptr: nowhere
+  std::ostream* progress = nullptr;   ///< where to draw the progress line; nullptr: nowhere
   bool progress_is_terminal = false;  ///< redraw one line (else a line every 2 s)
   std::ostream* notices = nullptr;    ///< where to say that a stop was requested; nullptr: nowhere
 };
