@@ -23,6 +23,7 @@ namespace avar::session::cue_player_test {
 namespace {
 
 using test_support::example;
+using test_support::Script;
 
 constexpr double kRate = 50;
 
@@ -50,15 +51,6 @@ std::vector<int> received_cues(int fd) {
   }
   return cues;
 }
-
-class Script final : public SessionObserver {
- public:
-  explicit Script(std::function<void(const TickRecord&)> act) : act_(std::move(act)) {}
-  void on_tick(const TickRecord& r) override { act_(r); }
-
- private:
-  std::function<void(const TickRecord&)> act_;
-};
 
 std::atomic<int> no_interrupts{0};
 

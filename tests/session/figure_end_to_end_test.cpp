@@ -39,6 +39,7 @@ namespace {
 using test_support::example;
 using test_support::KeepAll;
 using test_support::Kept;
+using test_support::Script;
 
 constexpr double kRate = 50;
 constexpr double kDt = 1.0 / kRate;
@@ -52,16 +53,6 @@ std::string show_text(int cue_port) {
          "    - {time: 10, value: 40}\ncues:\n  - {time: 3.0, osc: {to: " +
          to + ", address: /e2e/cue, args: [1]}}\n  - {time: 3.5, osc: {to: " + to + ", address: /e2e/cue, args: [2]}}\n";
 }
-
-/// Calls `act` with every record (on the stepped loop's thread, between ticks).
-class Script final : public SessionObserver {
- public:
-  explicit Script(std::function<void(const TickRecord&)> act) : act_(std::move(act)) {}
-  void on_tick(const TickRecord& r) override { act_(r); }
-
- private:
-  std::function<void(const TickRecord&)> act_;
-};
 
 std::size_t channel_of(const rig::Rig& rig, const std::string& name) {
   for (std::size_t c = 0; c < rig.channels.size(); ++c)

@@ -3,6 +3,7 @@
 // (copied: the ring's slots are reused).
 
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -47,6 +48,17 @@ class KeepAll final : public SessionObserver {
  private:
   mutable std::mutex mutex_;
   std::vector<Kept> kept_;
+};
+
+/// Calls `act` with every record (on the stepped loop's thread, between ticks): a script that
+/// commands the session as the run goes.
+class Script final : public SessionObserver {
+ public:
+  explicit Script(std::function<void(const TickRecord&)> act) : act_(std::move(act)) {}
+  void on_tick(const TickRecord& r) override { act_(r); }
+
+ private:
+  std::function<void(const TickRecord&)> act_;
 };
 
 /// The largest command step per channel between consecutive records, over [from, to) ticks.
