@@ -42,11 +42,11 @@ struct TickRecord {
   double now_s = 0;       ///< loop time
   double lateness_s = 0;  ///< wake-up lateness (0 on the stepped clock)
   control::Phase phase = control::Phase::disabled;
-  double show_time_s = 0;  ///< show time of the last running tick
-  bool paused = false;     ///< show time stands (pause, scrub, or the session started paused)
-  bool estop = false;      ///< the session's e-stop was pressed by this tick
+  double show_time_s = 0;       ///< show time of the last running tick
+  bool paused = false;          ///< show time stands (pause, scrub, or the session started paused)
+  bool estop = false;           ///< the session's e-stop was pressed by this tick
   bool stop_requested = false;  ///< a stop (command, Ctrl-C) asked the figure to ease to rest
-  control::Fault fault;    ///< the latched fault (cause none: none)
+  control::Fault fault;         ///< the latched fault (cause none: none)
   std::uint64_t faults_seen = 0;
   std::size_t command_count = 0;  ///< entries of `commands` used
   std::array<CommandRecord, kMaxCommandsPerTick> commands{};
