@@ -3,45 +3,31 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <thread>
-#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <limits>
-#include <sstream>
+#include <memory>
 
+#include "avar/config/input_map.hpp"
+#include "avar/config/mocap_bake.hpp"
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
-#include "avar/assembly/digital_inputs.hpp"
-#include "avar/assembly/figure_links.hpp"
-#include "avar/session/show_session.hpp"
+#include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
-#include "avar/playback/offline/track_fit.hpp"
-#include "avar/session/idle_session.hpp"
-#include "avar/session/live_session.hpp"
-#include "avar/session/cue_player.hpp"
-#include "avar/config/mocap_bake.hpp"
-#include "avar/session/osc_control.hpp"
+#include "avar/session/figure_run.hpp"
 #include "avar/session/play_recorder.hpp"
-#include "avar/config/input_map.hpp"
-#include "avar/config/show_writer.hpp"
+#include "avar/session/take.hpp"
 #include "avar/svg_plot.hpp"
-#include "avar/core/format.hpp"
 
 namespace avar::app {
 
 using config::load_playable_show;
-using playback::fit_track;
-using playback::max_fit_error;
-using session::CuePlayer;
 using session::fresh_idle_seed;
 using session::IdleSession;
 using session::LiveSession;
@@ -58,21 +44,12 @@ struct Loaded {
   config::InputMap inputs;
 };
 
-/// What `avar puppet` plays: no tracks (every channel holds its rest pose under the live
-/// layers), for `duration` seconds or until stopped.
-playback::Show live_show(std::optional<double> duration) {
-  playback::Show show;
-  show.name = "live";
-  show.duration = duration.value_or(std::numeric_limits<double>::infinity());
-  return show;
-}
-
 /// Loads and validates the files whole (rig, show, inputs). Prints every problem; returns
 /// nullopt on any error.
 std::optional<Loaded> load_and_check(const PlayOptions& o, std::ostream& err) {
   try {
     rig::Rig rig = config::load_rig_file(o.rig_path);
-    playback::Show show = o.live_only ? live_show(o.duration_s) : load_playable_show(o.show_path, o.map_path, rig);
+    playback::Show show = o.live_only ? session::live_only_show(o.duration_s) : load_playable_show(o.show_path, o.map_path, rig);
     Loaded loaded{std::move(rig), std::move(show), {}};
     loaded.inputs = o.inputs_path ? config::load_input_map(loaded.rig, *o.inputs_path, true)
                                   : config::load_input_map(loaded.rig, o.rig_path, false);
@@ -235,95 +212,6 @@ void write_plot(const std::string& path, const Loaded& loaded, const PlayRecorde
   write_svg_plot_file(path, data);
 }
 
-bool has_control_inputs(const rig::Rig& rig) {
-  return std::any_of(rig.digital_inputs.begin(), rig.digital_inputs.end(),
-                     [](const rig::DigitalInputSpec& d) { return d.role == rig::InputRole::control; });
-}
-
-/// --wait-start: blocks until a start button of the rig is pressed (or Ctrl-C). Nothing has
-/// been commanded yet; the GPIO e-stop is already watched.
-int wait_for_start_button(const rig::Rig& rig, const inputs::GpioInputs* inputs, std::ostream& err) {
-  std::string names;
-  for (const rig::DigitalInputSpec& d : rig.digital_inputs)
-    if (d.role == rig::InputRole::start) names += (names.empty() ? "'" : ", '") + d.name + "'";
-  if (!inputs || names.empty()) {
-    err << "error: --wait-start needs a digital input with role: start in the rig (digital_inputs:)\n";
-    return kExitBadInput;
-  }
-  InterruptCounter interrupts;
-  err << "waiting for start button " << names << "; Ctrl-C gives up" << std::endl;
-  while (inputs->start_presses() == 0) {
-    if (interrupts.count().load() > 0) {
-      err << "stopped before the start button was pressed; nothing moved\n";
-      return kExitInterrupted;
-    }
-    if (inputs->estop().load()) {
-      err << "e-stop is pressed; release it and reset before starting\n";
-      return kExitFault;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return kExitOk;
-}
-
-/// The take of a recording run: every channel a live control touched, as the ticks of the
-/// running phase commanded it (after mixing and limits), fitted with keys within the
-/// tolerance; alone, or (--merge) as a clip on a layer of its own over a copy of the show.
-int write_take(const PlayOptions& options, const Loaded& loaded, const control::Controller& controller, const PlayRecorder& r,
-               const control::LiveInputs& live, std::ostream& out, std::ostream& err) {
-  const std::size_t n = loaded.rig.channels.size();
-  const double start = controller.show_start_time();
-  std::vector<double> times;
-  std::vector<std::vector<double>> values(n);
-  for (std::size_t k = 0; k < r.seconds().size(); ++k) {
-    if (r.phase_per_tick()[k] != control::Phase::running) continue;
-    times.push_back(r.seconds()[k] - start);
-    for (std::size_t c = 0; c < n; ++c) values[c].push_back(r.commands()[k * n + c]);
-  }
-  std::vector<std::size_t> performed;
-  for (std::size_t c = 0; c < n; ++c)
-    if (live.touched()[c]) performed.push_back(c);
-  if (times.size() < 2 || !(times.back() > 0) || performed.empty()) {
-    err << "error: nothing to keep: "
-        << (times.size() < 2 ? "the take ended before the figure ran" : "no control moved a channel") << "; "
-        << *options.record_path << " not written\n";
-    return kExitBadInput;
-  }
-  const double duration = times.back();
-  const SourceLocation where{*options.record_path, 1, 1};
-  std::vector<playback::Track> tracks;
-  tracks.reserve(performed.size());
-  for (const std::size_t c : performed)
-    tracks.push_back(fit_track(loaded.rig.channels[c].name, times, values[c], options.record_tolerance, 60, where));
-
-  playback::Show take;
-  if (options.record_merge) {
-    take = loaded.show;
-    playback::Clip clip{"take", duration, playback::ClipMode::hold, std::move(tracks), where};
-    take.clips.push_back(std::move(clip));
-    playback::Placement placed;
-    placed.clip = take.clips.size() - 1;
-    placed.end = std::min(duration, take.duration);
-    placed.where = where;
-    take.layers.push_back({"take", playback::Blend::override, 1.0, {}, {placed}, where, std::nullopt});
-  } else {
-    take.name = std::filesystem::path(*options.record_path).stem().string();
-    take.duration = duration;
-    take.tracks = std::move(tracks);
-  }
-  config::write_show_file(*options.record_path, take, "recorded by avar record on rig '" + loaded.rig.name + "'");
-  // Read back what was written: the keys that will play, checked against every tick of the take.
-  const playback::Show written = config::load_show_file(*options.record_path);
-  const std::vector<playback::Track>& kept = options.record_merge ? written.clips.back().tracks : written.tracks;
-  out << "take: " << format_number(duration) << " s, " << times.size() << " ticks\n";
-  for (std::size_t i = 0; i < kept.size(); ++i)
-    out << "  " << kept[i].channel << ": " << kept[i].curve.key_count() << " keys, max error "
-        << format_number(max_fit_error(kept[i].curve, times, values[performed[i]])) << " (tolerance "
-        << format_number(options.record_tolerance) << ")\n";
-  out << "wrote " << *options.record_path << (options.record_merge ? " (the show with the take on layer 'take')" : "") << '\n';
-  return kExitOk;
-}
-
 }  // namespace
 
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
@@ -334,7 +222,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   const bool performs = (options.live_only && !options.idle) || options.record_path;
   std::vector<std::string> uris = options.inputs;
   if (uris.empty() && performs) uris = loaded->inputs.devices;
-  if (performs && uris.empty() && !has_control_inputs(rig)) {
+  if (performs && uris.empty() && !session::has_control_inputs(rig)) {
     err << "error: no input device: give --input (osc://127.0.0.1:9000, midi:NAME, hid:VID:PID) or list devices: in the inputs: "
            "section\n";
     return kExitBadInput;
@@ -362,126 +250,86 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
-  std::unique_ptr<IdleSession> idle;
+  session::FigureRunSetup setup;
+  setup.session.rate_hz = rate;
+  setup.session.stepped = options.fast;
+  setup.session.links.port = options.port;
+  setup.session.links.simulate_all = options.simulate;
+  setup.session.loops = options.loops.value_or(options.fast ? 1 : 0);
+  setup.session.realtime = options.realtime;
+  setup.session.deadline_miss_budget = options.deadline_miss_budget;
+  setup.input_uris = uris;
   if (options.idle) {
-    try {
-      idle = std::make_unique<IdleSession>(rig, loaded->show, options.seed.value_or(fresh_idle_seed()));
-    } catch (const InputError& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitBadInput;
-    }
+    setup.idle_seed = options.seed.value_or(fresh_idle_seed());
+    setup.session.lead_in_s = options.idle_before_s;
+    setup.session.lead_out_s = options.idle_after_s;
   }
+  setup.show_control = options.timecode;
+  const double lead_s = setup.session.lead_in_s + setup.session.lead_out_s;
+  const std::uint64_t loops = setup.session.loops;
 
-  // The session opens the links. GPIO chips are shared by the gpio links and the digital inputs
-  // (the e-stop).
-  session::SessionConfig config;
-  config.rate_hz = rate;
-  config.stepped = options.fast;
-  const auto gpio_chips = std::make_shared<assembly::GpioChips>(options.simulate);
-  config.links = assembly::LinkSelection{options.port, options.simulate, 0.0, {}, gpio_chips};
-  config.loops = options.loops.value_or(options.fast ? 1 : 0);
-  config.realtime = options.realtime;
-  config.deadline_miss_budget = options.deadline_miss_budget;
-  std::unique_ptr<session::ShowSession> session;
-  std::unique_ptr<inputs::GpioInputs> digital_inputs;
-
-  // The input devices open before anything moves: a missing one stops the run here. Digital
-  // inputs of the rig with the control role feed the mappings too.
-  std::unique_ptr<LiveSession> live;
-  const bool gpio_controls = !loaded->inputs.mappings.empty() && has_control_inputs(rig);
-  if (!uris.empty() || gpio_controls) {
-    try {
-      live = std::make_unique<LiveSession>(rig, loaded->inputs, uris);
-    } catch (const std::exception& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitBadInput;
-    }
-  }
-
-  // The timecode source opens before anything moves too: a bad spec or a busy port stops here.
-  std::unique_ptr<TimecodeRun> chase;
-  if (options.timecode.source) {
-    try {
-      chase = std::make_unique<TimecodeRun>(options.timecode, options.fast, static_cast<std::size_t>(600 * rate));
-      chase->start();
-    } catch (const std::exception& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitBadInput;
-    }
-  }
-
-  std::unique_ptr<OscControlSurface> surface;
-  if (options.timecode.osc_control) {
-    if (chase) {
-      err << "error: --osc-control and --timecode both drive show time; give one\n";
-      return kExitBadInput;
-    }
-    try {
-      surface = std::make_unique<OscControlSurface>(*options.timecode.osc_control, loaded->show.name);
-      surface->start();
-    } catch (const std::exception& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitBadInput;
-    }
-  }
-
-  if (live) config.live = &live->inputs();
-  if (live) config.recorded_controls = &live->inputs();
-  if (idle) {
-    config.live = idle->layers(config.live);
-    config.lead_in_s = options.idle_before_s;
-    config.lead_out_s = options.idle_after_s;
-  }
-  if (chase) config.external_clock = &chase->clock();
-  if (surface) config.external_clock = surface.get();
+  // Everything opens before anything moves: a missing device, a busy port or a bad spec stops
+  // the run here.
+  std::unique_ptr<session::FigureRun> figure_run;
   try {
-    session = std::make_unique<session::ShowSession>(rig, loaded->show, config);
-    digital_inputs = assembly::open_digital_inputs(rig, *gpio_chips);
-  } catch (const InputError& e) {
-    err << "error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const std::invalid_argument&) {
+    figure_run = std::make_unique<session::FigureRun>(rig, loaded->show, loaded->inputs, std::move(setup));
+  } catch (const session::NeedsSimulatedLinks&) {
     err << "error: --fast runs on a simulated clock and needs every link simulated; drop --port or add --sim\n";
     return kExitBadInput;
+  } catch (const std::exception& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
   }
+  session::FigureRun& fr = *figure_run;
 
   // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
   // live mixer, start buttons for --wait-start.
-  if (digital_inputs) {
-    try {
-      if (live) digital_inputs->start(live->inputs().sink());
-      else digital_inputs->start();
-    } catch (const std::runtime_error& e) {
-      err << "error: " << e.what() << '\n';
-      return kExitFault;
-    }
+  try {
+    fr.watch_inputs();
+  } catch (const std::runtime_error& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitFault;
   }
   if (options.wait_start) {
-    if (const int code = wait_for_start_button(rig, digital_inputs.get(), err); code != kExitOk) return code;
+    InterruptCounter waiting;
+    if (fr.start_button_names().empty()) {
+      err << "error: --wait-start needs a digital input with role: start in the rig (digital_inputs:)\n";
+      return kExitBadInput;
+    }
+    err << "waiting for start button " << fr.start_button_names() << "; Ctrl-C gives up" << std::endl;
+    switch (fr.wait_for_start_button(waiting.count())) {
+      case session::StartWait::pressed: break;
+      case session::StartWait::interrupted:
+        err << "stopped before the start button was pressed; nothing moved\n";
+        return kExitInterrupted;
+      case session::StartWait::estop: err << "e-stop is pressed; release it and reset before starting\n"; return kExitFault;
+      case session::StartWait::no_button:
+        err << "error: --wait-start needs a digital input with role: start in the rig (digital_inputs:)\n";
+        return kExitBadInput;
+    }
   }
 
-  if (const std::optional<session::LinkProblem> p = session->start_links()) {
-    err << "error: " << session->figure().links()[p->link]->describe() << " did not start: " << to_string(p->status)
+  session::ShowSession& session = fr.session();
+  if (const std::optional<session::LinkProblem> p = fr.start()) {
+    err << "error: " << session.figure().links()[p->link]->describe() << " did not start: " << to_string(p->status)
         << (p->problem.empty() ? "" : ": " + p->problem) << " (check power, cable, the device's serial mode and the baud rate)\n";
     return kExitFault;
   }
-  session->begin();
-  const control::Controller& controller = session->controller();
-  const assembly::FigureLinks& figure = session->figure();
-  if (idle) idle->watch(controller);
+  const control::Controller& controller = session.controller();
+  const assembly::FigureLinks& figure = session.figure();
+  const LiveSession* live = fr.live();
 
   const bool keep = options.trace_path || options.plot_path || options.record_path;
-  const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(config.loops, 1)) : 1.0;
+  const double passes = loaded->show.loop ? static_cast<double>(std::max<std::uint64_t>(loops, 1)) : 1.0;
   // A live run without an end reserves a minute; longer ones grow as they go.
-  const double planned_s =
-      std::isfinite(loaded->show.duration) ? passes * loaded->show.duration + config.lead_in_s + config.lead_out_s : 60.0;
+  const double planned_s = std::isfinite(loaded->show.duration) ? passes * loaded->show.duration + lead_s : 60.0;
   const auto expected_ticks = static_cast<std::size_t>((planned_s + 10.0) * rate);
   const bool realtime = !options.fast;
   const bool show_progress = options.progress && realtime;
   session::RecorderOptions recording;
   recording.channels = rig.channels.size();
   recording.links = rig.links.size();
-  recording.controls = live ? live->inputs().control_values().size() : 0;
+  recording.controls = fr.recorded_controls();
   recording.show_duration_s = loaded->show.duration;
   recording.keep_samples = keep;
   recording.expected_ticks = expected_ticks;
@@ -489,7 +337,7 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   recording.progress_is_terminal = ::isatty(STDERR_FILENO) == 1;
   recording.notices = &err;
   PlayRecorder recorder(recording);
-  session->add_observer(recorder);
+  session.add_observer(recorder);
 
   // Signals count from here on: a Ctrl-C from now eases the figure to rest.
   InterruptCounter interrupts;
@@ -502,39 +350,33 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     err << "playing '" << loaded->show.name << "' (" << loaded->show.duration << " s" << (loaded->show.loop ? ", looping" : "")
         << ") on '" << rig.name << "'" << (options.record_path ? ", recording" : "")
         << (realtime ? "; Ctrl-C eases to rest, twice releases; Ctrl-\\ is an e-stop" : "") << std::endl;
-  session->add_estop_input(interrupts.estop());
-  if (digital_inputs) session->add_estop_input(digital_inputs->estop());
-  CuePlayer cues(loaded->show);  // OSC cues go out from their own thread
-  control::TickObserver* observer = &cues;
-  if (chase) chase->forward_to(cues), observer = chase.get();
-  if (surface) {
-    surface->forward_to(cues), observer = surface.get();
-    session->add_estop_input(surface->estop());
+  if (const OscControlSurface* surface = fr.surface())
     err << "OSC control on udp " << surface->where() << ": waiting for /avar/show/play '" << loaded->show.name << "'"
         << std::endl;
-  }
-  session->set_loop_observer(observer);
-  const control::RunResult run = session->run(interrupts.count());
-  cues.flush();
+  const control::RunResult run = fr.run(interrupts.count(), &interrupts.estop());
   recorder.finish(controller);
-  if (chase) chase->stop();
-  if (surface) surface->stop();
-  if (cues.osc_cues() > 0) err << "cues: " << cues.sent() << " OSC message(s) sent, " << cues.failed() << " failed\n";
-  if (live) live->stop();
+  if (fr.cues().osc_cues() > 0)
+    err << "cues: " << fr.cues().sent() << " OSC message(s) sent, " << fr.cues().failed() << " failed\n";
   for (const std::string& w : run.realtime.warnings) err << "warning: " << w << '\n';
 
-  print_summary(out, *loaded, figure, controller, recorder, run, realtime, rate, live.get());
-  if (idle) idle->describe(out);
-  if (chase) chase->summarize(out);
-  if (surface) surface->summarize(out);
+  print_summary(out, *loaded, figure, controller, recorder, run, realtime, rate, live);
+  if (const IdleSession* idle = fr.idle()) idle->describe(out);
+  if (const TimecodeRun* chase = fr.chase()) chase->summarize(out);
+  if (const OscControlSurface* surface = fr.surface()) surface->summarize(out);
   try {
     if (options.record_path) {
-      if (const int code = write_take(options, *loaded, controller, recorder, live->inputs(), out, err); code != kExitOk)
-        return code;
+      const session::TakeReport take = session::write_take({*options.record_path, options.record_tolerance, options.record_merge},
+                                                           rig, loaded->show, controller, recorder, live->inputs());
+      out << "take: " << format_number(take.duration_s) << " s, " << take.ticks << " ticks\n";
+      for (const session::TakeTrack& t : take.tracks)
+        out << "  " << t.channel << ": " << t.keys << " keys, max error " << format_number(t.max_error) << " (tolerance "
+            << format_number(options.record_tolerance) << ")\n";
+      out << "wrote " << *options.record_path << (options.record_merge ? " (the show with the take on layer 'take')" : "")
+          << '\n';
     }
     if (options.trace_path) {
-      write_trace(*options.trace_path, rig, figure, recorder, live.get(),
-                  chase ? chase->trace_columns() : std::vector<TraceColumn>{});
+      write_trace(*options.trace_path, rig, figure, recorder, live,
+                  fr.chase() ? fr.chase()->trace_columns() : std::vector<TraceColumn>{});
       out << "trace: " << *options.trace_path << '\n';
     }
     if (options.plot_path) {

@@ -39,9 +39,11 @@ ShowSession::ShowSession(const rig::Rig& rig, const playback::Show& show, Sessio
       queue_(config_.command_capacity),
       ring_(config_.record_capacity, rig.channels.size(), rig.links.size(),
             config_.recorded_controls ? config_.recorded_controls->control_values().size() : 0) {
-  if (config_.stepped && !figure_->all_simulated())
-    throw std::invalid_argument("a stepped session runs on a simulated clock and needs every link simulated");
+  if (config_.stepped && !figure_->all_simulated()) throw NeedsSimulatedLinks();
 }
+
+NeedsSimulatedLinks::NeedsSimulatedLinks()
+    : std::invalid_argument("a stepped session runs on a simulated clock and needs every link simulated") {}
 
 ShowSession::~ShowSession() = default;
 

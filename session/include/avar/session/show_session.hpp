@@ -30,6 +30,7 @@
 #include <exception>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,12 @@ struct SessionConfig {
   std::size_t record_capacity = 256;                ///< tick records between the loop and the publisher
 };
 
+/// A stepped session (SessionConfig::stepped) asked for with a link that is not simulated.
+class NeedsSimulatedLinks : public std::invalid_argument {
+ public:
+  NeedsSimulatedLinks();
+};
+
 /// A link that did not start (start_links()).
 struct LinkProblem {
   std::size_t link = 0;
@@ -82,7 +89,8 @@ struct LinkProblem {
 class ShowSession final : private control::TickObserver {
  public:
   /// Opens the rig's links as config.links selects (InputError naming the port when one cannot
-  /// be opened; InputError too for a stepped session with a real link or a rate out of range).
+  /// be opened). NeedsSimulatedLinks for a stepped session with a real link; a rate out of
+  /// range is std::invalid_argument.
   /// `rig` and `show` are borrowed and must outlive the session.
   ShowSession(const rig::Rig& rig, const playback::Show& show, SessionConfig config);
   ~ShowSession() override;
