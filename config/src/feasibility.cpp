@@ -8,6 +8,7 @@
 
 #include "avar/core/format.hpp"
 #include "avar/config/show_behaviour.hpp"
+#include "avar/playback/runtime/curve.hpp"
 #include "avar/playback/runtime/sampler.hpp"
 #include "played_span.hpp"
 
@@ -16,6 +17,9 @@ namespace {
 
 constexpr int kSamples = 400;  // per segment, for the speed and acceleration measurements
 constexpr double kBehaviourPiece = 0.25;  // s: behaviour layers are measured in pieces this long
+// s: a time this far from a key is not that key's time for the curves (Curve::kKeySnap): the
+// probes that look just before a key, or either side of a breakpoint, stand this far off.
+constexpr double kInsideKey = 2 * playback::Curve::kKeySnap;
 
 struct Demand {
   double speed = 0;
@@ -33,8 +37,9 @@ std::vector<Demand> measure_values(std::size_t n, Fill fill, double t0, double t
   fill(t0, prev);
   for (std::size_t c = 0; c < n; ++c) d[c].low = d[c].high = prev[c];
   for (int i = 1; i <= kSamples; ++i) {
-    // Stay just inside the segment at its end: the next key may jump (step).
-    const double t = i == kSamples ? t1 - 1e-9 * (t1 - t0) : t0 + i * h;
+    // Stay just inside the segment at its end, where the next key may jump (step): further in
+    // than the curves' key snap, within which the time is the next key's.
+    const double t = i == kSamples ? t1 - std::min(0.5 * h, std::max(1e-9 * (t1 - t0), kInsideKey)) : t0 + i * h;
     fill(t, v);
     for (std::size_t c = 0; c < n; ++c) {
       const double speed = (v[c] - prev[c]) / (t - (t0 + (i - 1) * h));
@@ -184,7 +189,7 @@ std::vector<Infeasible> check_composed_feasibility(const playback::Show& given, 
   std::vector<Infeasible> found;
   std::vector<double> before(n), after(n);
   for (std::size_t i = 1; i + 1 < b.size(); ++i) {
-    constexpr double kJumpProbe = 1e-7;  // seconds either side of a breakpoint
+    constexpr double kJumpProbe = kInsideKey;  // seconds either side of a breakpoint
     fill(b[i] - kJumpProbe, before);
     fill(b[i] + kJumpProbe, after);
     for (std::size_t c = 0; c < n; ++c) {

@@ -18,6 +18,7 @@
 #include "avar/control/controller.hpp"
 #include "avar/control/runner.hpp"
 #include "avar/firmware_iface/libgpiod_chip.hpp"
+#include "avar/playback/runtime/curve.hpp"
 #include "../support/temp_file.hpp"
 
 namespace avar {
@@ -25,12 +26,16 @@ namespace {
 
 constexpr unsigned kFogLine = 17, kStrobeLine = 27, kEstopLine = 4;
 
+/// Whether show time t is at or past a key at `key` s: a tick whose show time rounds to just
+/// below the key (3.0999999999999996 for 3.1) is the key's tick (Curve::kKeySnap).
+bool at_or_past(double t, double key) { return t >= key - playback::Curve::kKeySnap; }
+
 /// The example's fog and strobe as the show keys them (step keys), at show time t.
-bool gpio_fog_keyed(double t) { return t >= 0.5 && t < 5.0; }
+bool gpio_fog_keyed(double t) { return at_or_past(t, 0.5) && !at_or_past(t, 5.0); }
 bool gpio_strobe_keyed(double t) {
   const double on[][2] = {{3.0, 3.1}, {3.3, 3.4}, {3.6, 3.7}, {6.2, 6.3}};
   for (const auto& span : on)
-    if (t >= span[0] && t < span[1]) return true;
+    if (at_or_past(t, span[0]) && !at_or_past(t, span[1])) return true;
   return false;
 }
 

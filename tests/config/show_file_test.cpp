@@ -172,6 +172,34 @@ TEST(ShowFile, ReproducesBlenderGoldenCurves) {
   }
 }
 
+// At a key's time every golden curve returns that key's value, as Blender does, whether the time
+// is the key's own double, that time on avar sample's nanosecond grid, or up to 0.9 us either side
+// (avar's key snap is 1 us; Blender's 0.0001 frame is 4 us at 24 fps): a constant segment before
+// a key at 11/6 s must not show the previous key's value there. Random access and a cursor coming
+// from a tick before agree.
+TEST(ShowFile, GoldenCurvesReturnEachKeysValueAtItsTime) {
+  const playback::Show show = load_show_file(AVAR_SOURCE_DIR "/tests/playback/golden/blender_curves.yaml");
+  ASSERT_GT(show.tracks.size(), 40u);
+  std::size_t checked = 0;
+  for (const playback::Track& track : show.tracks) {
+    for (const playback::RawKey& key : track.raw.keys) {
+      const double on_grid = std::round(key.time * 1e9) / 1e9;
+      for (const double t : {key.time, on_grid, std::nextafter(key.time, -1e9), std::nextafter(key.time, 1e9), key.time - 0.9e-6,
+                             key.time + 0.9e-6}) {
+        const double tolerance = 1e-9 * std::max(1.0, std::abs(key.value));
+        EXPECT_NEAR(track.curve.evaluate(t), key.value, tolerance)
+            << track.channel << ": key at " << key.time << " s sampled at " << t << " s";
+        playback::CurveCursor cursor;
+        track.curve.evaluate(key.time - 1.0 / 60, cursor);  // the tick before
+        EXPECT_EQ(track.curve.evaluate(t, cursor), track.curve.evaluate(t))
+            << track.channel << ": key at " << key.time << " s sampled at " << t << " s";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000u);
+}
+
 TEST(ShowFile, BundledExampleLoads) {
   const playback::Show show = load_show_file(AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml");
   EXPECT_EQ(show.tracks.size(), 8u);

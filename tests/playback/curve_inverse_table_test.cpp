@@ -62,8 +62,13 @@ TEST(CurveInverseTable, ParameterWithinItsBoundFromEndToEnd) {
       for (double t : times) {
         if (!(t >= t0 && t < t1)) continue;
         const double x = (t - t0) / d;
-        const double want = bezier_value(v, exact_parameter(s, x));
         const double got = c.evaluate(t, cursor);
+        // Within the key snap of either key, that key's value (the curve's only segment).
+        if (t - t0 <= Curve::kKeySnap || t1 - t <= Curve::kKeySnap) {
+          ASSERT_EQ(got, t - t0 <= Curve::kKeySnap ? v[0] : v[3]) << "handles " << a << ", " << b << " at x " << x;
+          continue;
+        }
+        const double want = bezier_value(v, exact_parameter(s, x));
         if (flattest >= 0.1) {
           ASSERT_NEAR(got, want, 1e-9 * steepest + 1e-12) << "handles " << a << ", " << b << " at x " << x;
         }

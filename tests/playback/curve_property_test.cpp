@@ -69,6 +69,44 @@ TEST(CurveProperty, CursorAndRandomAccessAgreeBitForBit) {
   }
 }
 
+// Keys on the frames of a scene (k / fps, as Blender's exporter writes them), with every Blender
+// interpolation: at a key's time, rounded to the nanosecond or off by up to 0.9 us either way, a
+// curve returns the key's value, by random access and from a cursor a tick before.
+TEST(CurveProperty, AtAKeysTimeOnAnyRoundingTheKeysValue) {
+  const unsigned seed = 4242;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double rates[] = {24, 25, 30, 60, 120, 24000.0 / 1001, 30000.0 / 1001};
+  for (int family = 0; family < 300; ++family) {
+    const double fps = rates[rng() % std::size(rates)];
+    std::vector<RawKey> keys;
+    long frame = static_cast<long>(rng() % 200) - 100;
+    for (int i = 0, n = 2 + static_cast<int>(rng() % 20); i < n; ++i) {
+      const double t = static_cast<double>(frame) / fps, v = -100 + 200 * u(rng);
+      const auto interp = static_cast<Interpolation>(rng() % (static_cast<unsigned>(Interpolation::elastic) + 1));
+      keys.push_back(
+          key(t, v, interp, Handle{t - 0.3 * u(rng), v - 50 + 100 * u(rng)}, Handle{t + 0.3 * u(rng), v - 50 + 100 * u(rng)}));
+      frame += 1 + static_cast<long>(rng() % 40);
+    }
+    RawCurve raw = testing::raw_curve(keys);
+    raw.extrapolation = rng() % 2 ? Extrapolation::linear : Extrapolation::constant;
+    const Curve c = Curve::build(raw);
+    for (const RawKey& k : keys) {
+      for (const double t : {k.time, std::round(k.time * 1e9) / 1e9, std::nextafter(k.time, -1e9), std::nextafter(k.time, 1e9),
+                             k.time - 0.9 * Curve::kKeySnap, k.time + 0.9 * Curve::kKeySnap}) {
+        ASSERT_NEAR(c.evaluate(t), k.value, 1e-9 * (1 + std::abs(k.value)))
+            << "family " << family << " fps " << fps << " " << to_string(k.interpolation) << " key at " << k.time
+            << " s, sampled at " << t << " s";
+        CurveCursor cursor;
+        c.evaluate(t - 1.0 / fps, cursor);
+        ASSERT_EQ(c.evaluate(t, cursor), c.evaluate(t))
+            << "family " << family << " key at " << k.time << " s, sampled at " << t << " s";
+      }
+    }
+  }
+}
+
 TEST(CurveProperty, ACursorFromAnotherCurveOrAStaleOneIsHarmless) {
   const unsigned seed = 5;
   SCOPED_TRACE("seed " + std::to_string(seed));

@@ -52,7 +52,10 @@ TEST(Curve, StepHoldsUntilTheNextKey) {
   const Curve c = build({key(0, 1, kStep), key(1, 5, kStep), key(2, 9)});
   EXPECT_EQ(c.evaluate(0), 1);
   EXPECT_EQ(c.evaluate(0.5), 1);
-  EXPECT_EQ(c.evaluate(std::nextafter(1.0, 0.0)), 1);
+  EXPECT_EQ(c.evaluate(1 - 2 * Curve::kKeySnap), 1);
+  // Within the key snap of the key, the key: a rounded key time is the key's.
+  EXPECT_EQ(c.evaluate(std::nextafter(1.0, 0.0)), 5);
+  EXPECT_EQ(c.evaluate(1 - 0.5 * Curve::kKeySnap), 5);
   EXPECT_EQ(c.evaluate(1), 5);
   EXPECT_EQ(c.evaluate(1.999), 5);
   EXPECT_EQ(c.evaluate(2), 9);

@@ -122,7 +122,14 @@ double Curve::cycle_time(double t, double& offset) const noexcept {
   return mapped;
 }
 
+double Curve::snapped_to_ends(double t) const noexcept {
+  if (std::abs(t - start_) <= kKeySnap) return start_;
+  if (std::abs(t - end_) <= kKeySnap) return end_;
+  return t;
+}
+
 double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
+  t = snapped_to_ends(t);  // a cycled time may land there
   if (!(t > start_) || t >= end_) return extrapolate(t);
   std::size_t i = cursor ? cursor->segment : segments_.size();
   if (i >= segments_.size() || t < times_[i]) {
@@ -134,6 +141,15 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
     do ++i;
     while (t >= times_[i + 1] && ++steps < 4);
     if (t >= times_[i + 1]) i = find_segment(t);
+  }
+  // Within kKeySnap of one of the segment's keys: that key's time (the nearer one, should the
+  // keys be closer than twice the snap). The key that ends the segment starts the next one.
+  const double after_start = t - times_[i], before_end = times_[i + 1] - t;
+  if (before_end <= kKeySnap && before_end < after_start) {
+    t = times_[++i];
+    if (i == segments_.size()) return extrapolate(t);  // not reached: the last key snapped above
+  } else if (after_start <= kKeySnap) {
+    t = times_[i];
   }
   if (cursor) cursor->segment = i;
   return evaluate_in(segments_[i], t);
@@ -161,6 +177,7 @@ double Curve::warm(const CurveCursor& cursor) const noexcept {
 // Key times themselves come here too: the general path decides which segment owns them.
 double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
   if (times_.empty()) return 0;
+  t = snapped_to_ends(t);
   if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, &cursor);
   double offset = 0;
   const double mapped = cycle_time(t, offset);
@@ -170,6 +187,7 @@ double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
 
 double Curve::evaluate(double t) const noexcept {
   if (times_.empty()) return 0;
+  t = snapped_to_ends(t);
   if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, nullptr);
   double offset = 0;
   const double mapped = cycle_time(t, offset);

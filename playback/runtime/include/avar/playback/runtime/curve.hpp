@@ -39,17 +39,26 @@ class Curve {
   /// layer (avar::playback links it); avar_playback_runtime alone does not provide it.
   static Curve build(const RawCurve& raw);
 
+  /// A time within this many seconds of a key's time is that key's time, as Blender treats an
+  /// evaluation time within 0.0001 frame of a key as the key: at a key the curve returns that
+  /// key, even when the time was rounded on its way (a key at 11/6 s written with 12 digits, or a
+  /// sample time on a nanosecond grid), and never the value just before it. 1 us is Blender's
+  /// threshold at 100 fps (a quarter of it at 24 fps), a thousand times the rounding of any of
+  /// those times and a thousandth of a 1 kHz tick. Snapping comes before extrapolation and
+  /// cycling, so just before a cycled curve's first key is its first key, not the end of the
+  /// cycle before (Blender's cycle map, which comes first there, gives the latter).
+  static constexpr double kKeySnap = 1e-6;
+
   /// Value at t (seconds), extrapolated or cycled outside the keys; a NaN t counts as before
-  /// the start. Sequential calls whose t moves forward by less than a few segments cost O(1)
-  /// thanks to the cursor; any other t falls back to a binary search, and the result never
-  /// depends on the cursor: it equals evaluate(t) bit for bit. Always finite. Real-time safe:
-  /// no allocation, exception or lock. The curve is immutable, so many threads may evaluate it
-  /// at once, each with its own cursor. Inline: the tick's common case (t strictly inside the
-  /// cursor's segment) is one bounds check, two compares and, for polynomial segments, a cubic.
+  /// the start. Within kKeySnap of a key, the value at that key. Sequential calls whose t moves forward by less than a few
+  /// segments cost O(1) thanks to the cursor; any other t falls back to a binary search, and the result never depends on the
+  /// cursor: it equals evaluate(t) bit for bit. Always finite. Real-time safe: no allocation, exception or lock. The curve is
+  /// immutable, so many threads may evaluate it at once, each with its own cursor. Inline: the tick's common case (t strictly
+  /// inside the cursor's segment) is one bounds check, two compares and, for polynomial segments, a cubic.
   double evaluate(double t, CurveCursor& cursor) const noexcept {
     if (cursor.segment < segment_count_) [[likely]] {
       const Segment& s = segments_[cursor.segment];
-      if (t > s.t0 && t < s.t1) [[likely]]
+      if (t > s.t0 + kKeySnap && t < s.t1 - kKeySnap) [[likely]]
         return evaluate_in(s, t);
     }
     return evaluate_moved(t, cursor);
@@ -175,6 +184,8 @@ class Curve {
   /// Blender's Cycles time map: the time inside the keys to evaluate, and the value offset.
   double cycle_time(double t, double& offset) const noexcept;
   double evaluate_keys(double t, CurveCursor* cursor) const noexcept;
+  /// t, or the first or last key's time when t is within kKeySnap of it.
+  double snapped_to_ends(double t) const noexcept;
 
   std::vector<double> times_;      ///< key times
   std::vector<Segment> segments_;  ///< times_.size() - 1 of them
