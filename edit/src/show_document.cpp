@@ -1,0 +1,143 @@
+#include "avar/edit/show_document.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
+#include "avar/core/input_error.hpp"
+
+namespace avar::edit {
+namespace {
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, "cannot read the file");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+  out.flush();
+  if (!out) throw InputError({path, 0, 0}, "cannot write the show file");
+}
+
+std::string group_label(std::span<const KeyEdit> edits) {
+  if (edits.size() == 1) return describe(edits.front());
+  return std::to_string(edits.size()) + " edits: " + describe(edits.front()) + ", ...";
+}
+
+}  // namespace
+
+ShowDocument::ShowDocument(playback::Show show) : show_(std::move(show)) {}
+
+ShowDocument ShowDocument::open(const std::string& path) {
+  std::string bytes = read_bytes(path);
+  ShowDocument document(config::load_show_text(bytes, path));
+  document.opened_bytes_ = std::move(bytes);
+  return document;
+}
+
+std::optional<std::size_t> ShowDocument::track_of(const std::string& channel) const {
+  for (std::size_t i = 0; i < show_.tracks.size(); ++i)
+    if (show_.tracks[i].channel == channel) return i;
+  return std::nullopt;
+}
+
+void ShowDocument::apply(const KeyEdit& edit) { apply(std::span<const KeyEdit>(&edit, 1)); }
+
+void ShowDocument::apply(std::span<const KeyEdit> edits) {
+  if (edits.empty()) throw EditError("no edit given");
+  // Every edit applied in order to working copies of the keys of the channels it touches.
+  struct Working {
+    std::string channel;
+    std::optional<playback::RawCurve> before;
+    std::vector<playback::RawKey> keys;
+  };
+  std::vector<Working> touched;
+  for (const KeyEdit& edit : edits) {
+    const std::string& channel = edited_channel(edit);
+    auto w = std::find_if(touched.begin(), touched.end(), [&](const Working& x) { return x.channel == channel; });
+    if (w == touched.end()) {
+      Working fresh{channel, std::nullopt, {}};
+      if (const std::optional<std::size_t> i = track_of(channel))
+        fresh.before = show_.tracks[*i].raw, fresh.keys = fresh.before->keys;
+      touched.push_back(std::move(fresh));
+      w = std::prev(touched.end());
+    }
+    w->keys = edited_keys(w->keys, edit);
+  }
+  // Each changed curve built as playback builds it, before anything changes.
+  Step step{group_label(edits), {}};
+  for (Working& w : touched) {
+    TrackChange change{w.channel, 0, w.before, std::nullopt};
+    if (!w.keys.empty()) {
+      playback::RawCurve raw = w.before ? *w.before : playback::RawCurve({}, {show_.where.file, 0, 0});
+      raw.keys = std::move(w.keys);
+      try {
+        (void)playback::Curve::build(raw);
+      } catch (const InputError& e) {
+        throw EditError(step.label + ": " + w.channel + ": " + e.problem());
+      }
+      change.after = std::move(raw);
+    }
+    step.changes.push_back(std::move(change));
+  }
+  // Commit in order; each change's position is where its track is (or goes) at its turn.
+  for (TrackChange& change : step.changes) {
+    change.position = track_of(change.channel).value_or(show_.tracks.size());
+    put(change, change.after);
+  }
+  history_.resize(position_);
+  if (saved_position_ && *saved_position_ > position_) saved_position_.reset();
+  history_.push_back(std::move(step));
+  ++position_;
+}
+
+void ShowDocument::put(const TrackChange& change, const std::optional<playback::RawCurve>& raw) {
+  const auto at = show_.tracks.begin() + static_cast<std::ptrdiff_t>(change.position);
+  const bool exists = change.position < show_.tracks.size() && show_.tracks[change.position].channel == change.channel;
+  if (!raw) {
+    if (exists) show_.tracks.erase(at);
+    return;
+  }
+  playback::Curve curve = playback::Curve::build(*raw);  // it built when the step was applied
+  if (exists) {
+    show_.tracks[change.position].raw = *raw;
+    show_.tracks[change.position].curve = std::move(curve);
+  } else {
+    show_.tracks.insert(at, playback::Track{change.channel, *raw, std::move(curve), raw->where});
+  }
+}
+
+bool ShowDocument::undo() {
+  if (position_ == 0) return false;
+  const Step& step = history_[--position_];
+  for (auto c = step.changes.rbegin(); c != step.changes.rend(); ++c) put(*c, c->before);
+  return true;
+}
+
+bool ShowDocument::redo() {
+  if (position_ == history_.size()) return false;
+  const Step& step = history_[position_++];
+  for (const TrackChange& c : step.changes) put(c, c.after);
+  return true;
+}
+
+std::string ShowDocument::undo_label() const { return position_ == 0 ? "" : history_[position_ - 1].label; }
+
+std::string ShowDocument::redo_label() const { return position_ == history_.size() ? "" : history_[position_].label; }
+
+void ShowDocument::save(const std::string& path) {
+  if (position_ == 0 && opened_bytes_) {
+    write_bytes(path, *opened_bytes_);
+  } else {
+    config::write_show_file(path, show_, "show '" + show_.name + "', saved by avar");
+  }
+  saved_position_ = position_;
+}
+
+}  // namespace avar::edit
