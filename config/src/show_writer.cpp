@@ -6,6 +6,7 @@
 #include <fstream>
 #include <vector>
 
+#include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 #include "show_behaviour.hpp"
 
@@ -206,9 +207,42 @@ void write_orientation_keys(YAML::Emitter& y, const playback::OrientationKeysSpe
   y << YAML::EndSeq << YAML::EndMap;
 }
 
+/// An OSC cue argument as the reader types it back: a whole number is an int, a float keeps a
+/// decimal point, a string is quoted.
+void write_cue_argument(YAML::Emitter& y, const playback::CueArgument& a) {
+  if (a.type == 'i') {
+    y << static_cast<long long>(a.number);
+  } else if (a.type == 'f') {
+    std::string text;
+    append_round_trip(text, a.number);
+    if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+    y << text;
+  } else {
+    y << YAML::DoubleQuoted << a.text;
+  }
+}
+
+/// The OSC cues; digital cues are written as the step tracks the reader made of them.
+void write_osc_cues(YAML::Emitter& y, const std::vector<playback::Cue>& cues) {
+  y << YAML::Key << "cues" << YAML::Value << YAML::BeginSeq;
+  for (const playback::Cue& cue : cues) {
+    if (!cue.is_osc()) continue;
+    y << YAML::Flow << YAML::BeginMap << YAML::Key << "time" << YAML::Value << cue.time << YAML::Key << "osc" << YAML::Value
+      << YAML::Flow << YAML::BeginMap << YAML::Key << "to" << YAML::Value << cue.osc_host + ":" + std::to_string(cue.osc_port)
+      << YAML::Key << "address" << YAML::Value << cue.osc_address;
+    if (!cue.osc_arguments.empty()) {
+      y << YAML::Key << "args" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const playback::CueArgument& a : cue.osc_arguments) write_cue_argument(y, a);
+      y << YAML::EndSeq;
+    }
+    y << YAML::EndMap << YAML::EndMap;
+  }
+  y << YAML::EndSeq;
+}
+
 }  // namespace
 
-void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment) {
+std::string show_text(const playback::Show& show, const std::string& comment) {
   YAML::Emitter y;
   y.SetDoublePrecision(17);
   y << YAML::BeginMap;
@@ -253,9 +287,16 @@ void write_show_file(const std::string& path, const playback::Show& show, const 
   }
   if (!show.clips.empty()) write_clips(y, show.clips);
   if (!show.layers.empty()) write_layers(y, show);
+  if (std::any_of(show.cues.begin(), show.cues.end(), [](const playback::Cue& c) { return c.is_osc(); }))
+    write_osc_cues(y, show.cues);
   y << YAML::EndMap;
+  return "# " + comment + '\n' + y.c_str() + '\n';
+}
+
+void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment) {
+  const std::string text = show_text(show, comment);
   std::ofstream file(path);
-  file << "# " << comment << '\n' << y.c_str() << '\n';
+  file << text;
   if (!file) throw InputError({path, 0, 0}, "cannot write the show file; expected a writable path");
 }
 

@@ -49,6 +49,41 @@ TEST(ShowWriter, ExamplesWithTargetsAndAvarSplinesSurviveARoundTrip) {
   round_trip(AVAR_SOURCE_DIR "/examples/shows/figure-eight.yaml");
 }
 
+TEST(ShowWriter, OscCuesSurviveARoundTripAndDigitalCuesPlayAsTheirTracks) {
+  const std::string path = AVAR_SOURCE_DIR "/examples/shows/stage-lights.yaml";
+  round_trip(path);
+  const playback::Show original = load_show_file(path);
+  const playback::Show again = load_show_text(show_text(original, "cues"), "again.yaml");
+  std::vector<const playback::Cue*> osc;
+  for (const playback::Cue& c : original.cues)
+    if (c.is_osc()) osc.push_back(&c);
+  ASSERT_EQ(osc.size(), 2u);
+  ASSERT_EQ(again.cues.size(), osc.size());
+  for (std::size_t i = 0; i < osc.size(); ++i) {
+    EXPECT_EQ(again.cues[i].time, osc[i]->time);
+    EXPECT_EQ(again.cues[i].osc_host, osc[i]->osc_host);
+    EXPECT_EQ(again.cues[i].osc_port, osc[i]->osc_port);
+    EXPECT_EQ(again.cues[i].osc_address, osc[i]->osc_address);
+    ASSERT_EQ(again.cues[i].osc_arguments.size(), osc[i]->osc_arguments.size());
+    for (std::size_t a = 0; a < osc[i]->osc_arguments.size(); ++a) {
+      EXPECT_EQ(again.cues[i].osc_arguments[a].type, osc[i]->osc_arguments[a].type) << "cue " << i << " argument " << a;
+      EXPECT_EQ(again.cues[i].osc_arguments[a].number, osc[i]->osc_arguments[a].number);
+      EXPECT_EQ(again.cues[i].osc_arguments[a].text, osc[i]->osc_arguments[a].text);
+    }
+  }
+  // A float that is a whole number stays a float; a string stays a string.
+  playback::Show typed = original;
+  typed.cues = {*osc[0]};
+  typed.cues[0].osc_arguments = {{'f', 2, ""}, {'i', -7, ""}, {'s', 0, "go now"}};
+  const playback::Show typed_again = load_show_text(show_text(typed, "typed"), "typed.yaml");
+  ASSERT_EQ(typed_again.cues.size(), 1u);
+  ASSERT_EQ(typed_again.cues[0].osc_arguments.size(), 3u);
+  EXPECT_EQ(typed_again.cues[0].osc_arguments[0].type, 'f');
+  EXPECT_EQ(typed_again.cues[0].osc_arguments[0].number, 2);
+  EXPECT_EQ(typed_again.cues[0].osc_arguments[1].type, 'i');
+  EXPECT_EQ(typed_again.cues[0].osc_arguments[2].text, "go now");
+}
+
 TEST(ShowWriter, OrientationAndPoseTargetsSurviveARoundTrip) {
   round_trip(avar::testing::write_temp_file("pose.yaml", R"(duration: 2
 targets:

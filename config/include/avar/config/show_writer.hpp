@@ -9,6 +9,10 @@
 
 namespace avar::config {
 
+/// The show file's text: `comment` as the first line (after "# "), then the show. OSC cues are
+/// written as cues; digital cues as the step tracks the reader made of them.
+std::string show_text(const playback::Show& show, const std::string& comment);
+
 /// Writes `show` to `path`, with `comment` as the first line (after "# "). Throws InputError
 /// naming the path when it cannot be written.
 void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment);
