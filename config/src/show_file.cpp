@@ -318,4 +318,11 @@ playback::Show load_show_text(const std::string& text, const std::string& path) 
   return show_from_yaml(parse_yaml_text(text, path), path);
 }
 
+playback::RawKey load_key_text(const std::string& text, const std::string& channel, const std::string& source) {
+  const std::string& path = source;
+  // The key's place in its track is not known here: in_slope is let through (the curve build
+  // reads it only where a hermite segment ends).
+  return detail::read_key(YamlRef{parse_yaml_text(text, path), &path}, channel, playback::Interpolation::hermite);
+}
+
 }  // namespace avar::config

@@ -35,6 +35,27 @@ constexpr FieldRule kFieldRules[] = {
      "keys that end a hermite segment (after a hermite key)"},
 };
 
+playback::Cycles read_cycles(const YamlRef& node, const std::string& channel) {
+  const std::string what = "the cycles of track '" + channel + "'";
+  node.expect_map(what);
+  node.expect_only_keys({"before", "after", "before_count", "after_count"}, what);
+  playback::Cycles cycles;
+  constexpr std::string_view kModes = "none, repeat, repeat_offset, mirror";
+  if (auto m = node.find("before")) cycles.before = read_name(*m, "cycle mode", playback::cycle_mode_from_name, kModes);
+  if (auto m = node.find("after")) cycles.after = read_name(*m, "cycle mode", playback::cycle_mode_from_name, kModes);
+  for (const auto& [field, count] :
+       {std::pair{"before_count", &cycles.before_count}, std::pair{"after_count", &cycles.after_count}}) {
+    if (auto c = node.find(field)) {
+      const long long n = c->as_integer("a cycle count");
+      if (n < 0 || n > 1000000000) c->fail("expected a cycle count of 0 (forever) or more, found " + c->describe());
+      *count = static_cast<int>(n);
+    }
+  }
+  return cycles;
+}
+
+}  // namespace
+
 playback::RawKey read_key(const YamlRef& node, const std::string& channel, std::optional<Interpolation> previous) {
   const std::string what = "a key of track '" + channel + "'";
   node.expect_map(what);
@@ -67,26 +88,6 @@ playback::RawKey read_key(const YamlRef& node, const std::string& channel, std::
   if (auto v = node.find("bias")) key.bias = v->as_double("the bias");
   return key;
 }
-
-playback::Cycles read_cycles(const YamlRef& node, const std::string& channel) {
-  const std::string what = "the cycles of track '" + channel + "'";
-  node.expect_map(what);
-  node.expect_only_keys({"before", "after", "before_count", "after_count"}, what);
-  playback::Cycles cycles;
-  constexpr std::string_view kModes = "none, repeat, repeat_offset, mirror";
-  if (auto m = node.find("before")) cycles.before = read_name(*m, "cycle mode", playback::cycle_mode_from_name, kModes);
-  if (auto m = node.find("after")) cycles.after = read_name(*m, "cycle mode", playback::cycle_mode_from_name, kModes);
-  for (const auto& [field, count] : {std::pair{"before_count", &cycles.before_count}, std::pair{"after_count", &cycles.after_count}}) {
-    if (auto c = node.find(field)) {
-      const long long n = c->as_integer("a cycle count");
-      if (n < 0 || n > 1000000000) c->fail("expected a cycle count of 0 (forever) or more, found " + c->describe());
-      *count = static_cast<int>(n);
-    }
-  }
-  return cycles;
-}
-
-}  // namespace
 
 double read_key_time(const YamlRef& key, std::string_view what) {
   return key.at("time", what).as_double("the key time (seconds)");

@@ -27,6 +27,10 @@ auto read_name(const YamlRef& node, std::string_view what, Parse parse, std::str
 /// `span_s`: the show's (or clip's) duration, where a track made from audio is cut.
 playback::Track read_track(const YamlRef& name, const YamlRef& body, double span_s);
 
+/// One key map of a track of `channel`; `previous` is the interpolation of the key before it
+/// (in_slope belongs only after a hermite key), nullopt for the first.
+playback::RawKey read_key(const YamlRef& node, const std::string& channel, std::optional<playback::Interpolation> previous);
+
 /// The `time` of a key map (`what` names the key), in seconds: any finite number.
 double read_key_time(const YamlRef& key, std::string_view what);
 

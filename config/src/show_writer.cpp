@@ -2,6 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <fstream>
 #include <vector>
@@ -291,6 +296,43 @@ std::string show_text(const playback::Show& show, const std::string& comment) {
     write_osc_cues(y, show.cues);
   y << YAML::EndMap;
   return "# " + comment + '\n' + y.c_str() + '\n';
+}
+
+namespace {
+
+/// A node of the writer's YAML as JSON, scalars resolved as YAML's core schema does: a plain
+/// number is a number, plain true and false are booleans, anything else (a quoted scalar
+/// included) is a string.
+nlohmann::json to_json(const YAML::Node& node) {
+  if (node.IsMap()) {
+    nlohmann::json object = nlohmann::json::object();
+    for (const auto& entry : node) object[entry.first.Scalar()] = to_json(entry.second);
+    return object;
+  }
+  if (node.IsSequence()) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const auto& item : node) array.push_back(to_json(item));
+    return array;
+  }
+  if (!node.IsScalar()) return nullptr;
+  const std::string& text = node.Scalar();
+  if (node.Tag() == "?") {  // plain, not quoted
+    if (text == "true" || text == "false") return text == "true";
+    char* end = nullptr;
+    errno = 0;
+    const long long whole = std::strtoll(text.c_str(), &end, 10);
+    if (!text.empty() && *end == '\0' && errno == 0) return whole;
+    const double x = std::strtod(text.c_str(), &end);
+    if (!text.empty() && *end == '\0' && std::isfinite(x)) return x;
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string show_json(const playback::Show& show) {
+  // One description of the file's fields: the writer's own text, read back as a tree.
+  return to_json(YAML::Load(show_text(show, "json"))).dump();
 }
 
 void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment) {

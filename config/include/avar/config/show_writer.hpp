@@ -13,6 +13,10 @@ namespace avar::config {
 /// written as cues; digital cues as the step tracks the reader made of them.
 std::string show_text(const playback::Show& show, const std::string& comment);
 
+/// The show as one JSON object with the show file's fields (name, duration, loop, tracks with
+/// their keys, targets, clips, layers, cues), as show_text writes them; numbers round-trip.
+std::string show_json(const playback::Show& show);
+
 /// Writes `show` to `path`, with `comment` as the first line (after "# "). Throws InputError
 /// naming the path when it cannot be written.
 void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment);
