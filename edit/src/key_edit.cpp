@@ -95,14 +95,64 @@ std::vector<RawKey> set(const std::vector<RawKey>& keys, const SetKey& e) {
   return out;
 }
 
+void check_time_edit(const InsertTime& e) {
+  if (!std::isfinite(e.at) || !std::isfinite(e.length) || !(e.length > 0))
+    throw EditError("inserting time needs a finite time and a length above 0 s; found " + format_number(e.length) + " s at " +
+                    format_number(e.at) + " s");
+}
+
+void check_time_edit(const DeleteTime& e) {
+  if (!std::isfinite(e.from) || !std::isfinite(e.to) || !(e.to > e.from))
+    throw EditError("deleting time needs a finite span that ends after it starts; found " + format_number(e.from) + " to " +
+                    format_number(e.to) + " s");
+}
+
+std::vector<RawKey> ripple(const std::vector<RawKey>& keys, const KeyEdit& edit, const std::string& channel) {
+  std::vector<RawKey> out;
+  for (const RawKey& k : keys) {
+    const std::optional<double> t = rippled_time(k.time, edit);
+    if (!t) continue;
+    RawKey moved = k;
+    shift(moved, *t - k.time, 0);
+    out.push_back(moved);
+  }
+  check_order(out, channel, "the time edit");
+  return out;
+}
+
 std::string key_count(std::size_t n) { return n == 1 ? "1 key" : std::to_string(n) + " keys"; }
 
 std::string signed_number(double x) { return (x >= 0 ? "+" : "") + format_number(x); }
 
 }  // namespace
 
+bool is_time_edit(const KeyEdit& edit) {
+  return std::holds_alternative<InsertTime>(edit) || std::holds_alternative<DeleteTime>(edit);
+}
+
 const std::string& edited_channel(const KeyEdit& edit) {
-  return std::visit([](const auto& e) -> const std::string& { return e.channel; }, edit);
+  static const std::string every;
+  if (is_time_edit(edit)) return every;
+  return std::visit(
+      [](const auto& e) -> const std::string& {
+        if constexpr (requires { e.channel; }) return e.channel;
+        else return every;
+      },
+      edit);
+}
+
+std::optional<double> rippled_time(double t, const KeyEdit& time_edit) {
+  // A time within the key snap of the edit's point counts as at it.
+  constexpr double snap = playback::Curve::kKeySnap;
+  if (const auto* insert = std::get_if<InsertTime>(&time_edit)) {
+    check_time_edit(*insert);
+    return t >= insert->at - snap ? t + insert->length : t;
+  }
+  const auto& cut = std::get<DeleteTime>(time_edit);
+  check_time_edit(cut);
+  if (t < cut.from - snap) return t;
+  if (t < cut.to - snap) return std::nullopt;
+  return t - (cut.to - cut.from);
 }
 
 std::string describe(const KeyEdit& edit) {
@@ -115,6 +165,10 @@ std::string describe(const KeyEdit& edit) {
       return "move " + key_count(e.keys.size()) + " of " + quoted(e.channel) + " by " + seconds(e.dt) + ", " +
              signed_number(e.dv);
     }
+    std::string operator()(const InsertTime& e) const { return "insert " + seconds(e.length) + " at " + seconds(e.at); }
+    std::string operator()(const DeleteTime& e) const {
+      return "delete the time from " + seconds(e.from) + " to " + seconds(e.to);
+    }
     std::string operator()(const SetKey& e) const {
       return "set key " + std::to_string(e.key) + " of " + quoted(e.channel) + " (" + seconds(e.value.time) + ", " +
              format_number(e.value.value) + ", " + playback::to_string(e.value.interpolation) + ")";
@@ -123,13 +177,16 @@ std::string describe(const KeyEdit& edit) {
   return std::visit(Describe{}, edit);
 }
 
-std::vector<RawKey> edited_keys(const std::vector<RawKey>& keys, const KeyEdit& edit) {
+std::vector<RawKey> edited_keys(const std::vector<RawKey>& keys, const KeyEdit& edit, const std::string& channel) {
+  if (is_time_edit(edit)) return ripple(keys, edit, channel);
   struct Apply {
     const std::vector<RawKey>& keys;
     std::vector<RawKey> operator()(const AddKeys& e) const { return add(keys, e); }
     std::vector<RawKey> operator()(const DeleteKeys& e) const { return remove(keys, e); }
     std::vector<RawKey> operator()(const MoveKeys& e) const { return move(keys, e); }
     std::vector<RawKey> operator()(const SetKey& e) const { return set(keys, e); }
+    std::vector<RawKey> operator()(const InsertTime&) const { return keys; }  // rippled above
+    std::vector<RawKey> operator()(const DeleteTime&) const { return keys; }
   };
   if (edited_channel(edit).empty()) throw EditError("an edit names no channel");
   return std::visit(Apply{keys}, edit);

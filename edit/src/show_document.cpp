@@ -7,6 +7,7 @@
 
 #include "avar/config/show_file.hpp"
 #include "avar/config/show_writer.hpp"
+#include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 
 namespace avar::edit {
@@ -58,20 +59,30 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
     std::vector<playback::RawKey> keys;
   };
   std::vector<Working> touched;
-  for (const KeyEdit& edit : edits) {
-    const std::string& channel = edited_channel(edit);
+  const auto working = [&](const std::string& channel) -> Working& {
     auto w = std::find_if(touched.begin(), touched.end(), [&](const Working& x) { return x.channel == channel; });
-    if (w == touched.end()) {
-      Working fresh{channel, std::nullopt, {}};
-      if (const std::optional<std::size_t> i = track_of(channel))
-        fresh.before = show_.tracks[*i].raw, fresh.keys = fresh.before->keys;
-      touched.push_back(std::move(fresh));
-      w = std::prev(touched.end());
+    if (w != touched.end()) return *w;
+    Working fresh{channel, std::nullopt, {}};
+    if (const std::optional<std::size_t> i = track_of(channel))
+      fresh.before = show_.tracks[*i].raw, fresh.keys = fresh.before->keys;
+    touched.push_back(std::move(fresh));
+    return touched.back();
+  };
+  const Times now{show_.duration, show_.cues};
+  std::optional<Times> times;
+  for (const KeyEdit& edit : edits) {
+    if (!is_time_edit(edit)) {
+      Working& w = working(edited_channel(edit));
+      w.keys = edited_keys(w.keys, edit, w.channel);
+      continue;
     }
-    w->keys = edited_keys(w->keys, edit);
+    times = rippled(times ? *times : now, edit);
+    for (const playback::Track& t : show_.tracks) working(t.channel);
+    for (Working& w : touched) w.keys = edited_keys(w.keys, edit, w.channel);
   }
   // Each changed curve built as playback builds it, before anything changes.
-  Step step{group_label(edits), {}};
+  Step step{group_label(edits), {}, std::nullopt, std::nullopt};
+  if (times) step.times_before = now, step.times_after = times;
   for (Working& w : touched) {
     TrackChange change{w.channel, 0, w.before, std::nullopt};
     if (!w.keys.empty()) {
@@ -91,6 +102,7 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
     change.position = track_of(change.channel).value_or(show_.tracks.size());
     put(change, change.after);
   }
+  put(step.times_after);
   history_.resize(position_);
   if (saved_position_ && *saved_position_ > position_) saved_position_.reset();
   history_.push_back(std::move(step));
@@ -113,10 +125,41 @@ void ShowDocument::put(const TrackChange& change, const std::optional<playback::
   }
 }
 
+void ShowDocument::put(const std::optional<Times>& times) {
+  if (!times) return;
+  show_.duration = times->duration;
+  show_.cues = times->cues;
+}
+
+ShowDocument::Times ShowDocument::rippled(const Times& times, const KeyEdit& edit) const {
+  if (show_.layered() || !show_.targets.empty())
+    throw EditError(describe(edit) + ": a time edit moves the show's tracks and cues; this show also has " +
+                    (show_.layered() ? "layers" : "targets") +
+                    ", whose times it would leave behind (edit those times in the file)");
+  rippled_time(0, edit);  // checks the edit itself
+  Times out{times.duration, {}};
+  if (const auto* insert = std::get_if<InsertTime>(&edit)) {
+    if (insert->at <= times.duration) out.duration += insert->length;
+  } else {
+    const auto& cut = std::get<DeleteTime>(edit);
+    out.duration -= std::max(0.0, std::min(cut.to, times.duration) - std::max(cut.from, 0.0));
+    if (!(out.duration > playback::Curve::kKeySnap))
+      throw EditError(describe(edit) + ": the show, " + format_number(times.duration) + " s long, would have no time left");
+  }
+  for (const playback::Cue& cue : times.cues) {
+    const std::optional<double> t = rippled_time(cue.time, edit);
+    if (!t) continue;
+    out.cues.push_back(cue);
+    out.cues.back().time = std::clamp(*t, 0.0, out.duration);
+  }
+  return out;
+}
+
 bool ShowDocument::undo() {
   if (position_ == 0) return false;
   const Step& step = history_[--position_];
   for (auto c = step.changes.rbegin(); c != step.changes.rend(); ++c) put(*c, c->before);
+  put(step.times_before);
   return true;
 }
 
@@ -124,6 +167,7 @@ bool ShowDocument::redo() {
   if (position_ == history_.size()) return false;
   const Step& step = history_[position_++];
   for (const TrackChange& c : step.changes) put(c, c.after);
+  put(step.times_after);
   return true;
 }
 

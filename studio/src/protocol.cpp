@@ -107,7 +107,7 @@ std::vector<std::size_t> indices(const Fields& f, const json& list) {
 
 edit::KeyEdit key_edit(const json& v, std::size_t n, const std::vector<std::string>& channels) {
   const Fields f(v, "edit " + std::to_string(n + 1) + " of message 'edit'");
-  const std::string op = f.text("op", "add, delete, move or set");
+  const std::string op = f.text("op", "add, delete, move, set, insert_time or delete_time");
   if (op == "add") {
     f.expect_only({"op", "channel", "keys"});
     const std::string c = channel(f, channels);
@@ -133,7 +133,15 @@ edit::KeyEdit key_edit(const json& v, std::size_t n, const std::vector<std::stri
     return edit::SetKey{c, f.index(f.at("key", "the index of the key"), "field 'key'"),
                         key(f, f.at("value", "the key"), c, "value")};
   }
-  f.fail("unknown op \"" + op + "\"; expected add, delete, move or set");
+  if (op == "insert_time") {
+    f.expect_only({"op", "at", "length"});
+    return edit::InsertTime{f.number("at", "show time in seconds"), f.number("length", "seconds to insert")};
+  }
+  if (op == "delete_time") {
+    f.expect_only({"op", "from", "to"});
+    return edit::DeleteTime{f.number("from", "show time in seconds"), f.number("to", "show time in seconds")};
+  }
+  f.fail("unknown op \"" + op + "\"; expected add, delete, move, set, insert_time or delete_time");
 }
 
 }  // namespace

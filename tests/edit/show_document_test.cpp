@@ -195,14 +195,78 @@ TEST(ShowDocument, SavingToAFolderThatIsNotThereNamesThePath) {
   EXPECT_FALSE(doc.modified());
 }
 
+TEST(ShowDocument, InsertingTimeMovesEveryLaterKeyAndCueAndDeletingCutsThemOut) {
+  ShowDocument doc = ShowDocument::open(AVAR_SOURCE_DIR "/examples/shows/stage-lights.yaml");
+  const playback::Show before = doc.show();
+  const auto k0 = keys_of(doc);
+  doc.apply(InsertTime{2.0, 0.5});
+  EXPECT_DOUBLE_EQ(doc.show().duration, before.duration + 0.5);
+  for (std::size_t t = 0; t < before.tracks.size(); ++t)
+    for (std::size_t k = 0; k < before.tracks[t].raw.keys.size(); ++k) {
+      const RawKey& was = before.tracks[t].raw.keys[k];
+      const RawKey& now = doc.show().tracks[t].raw.keys[k];
+      EXPECT_DOUBLE_EQ(now.time, was.time >= 2.0 ? was.time + 0.5 : was.time) << before.tracks[t].channel << " key " << k;
+      EXPECT_EQ(now.value, was.value);
+    }
+  ASSERT_EQ(doc.show().cues.size(), before.cues.size());
+  for (std::size_t c = 0; c < before.cues.size(); ++c)
+    EXPECT_DOUBLE_EQ(doc.show().cues[c].time, before.cues[c].time >= 2.0 ? before.cues[c].time + 0.5 : before.cues[c].time);
+  EXPECT_EQ(doc.undo_label(), "insert 0.5 s at 2 s");
+
+  // Cutting the inserted span out again gives the show back, key for key (to the rounding of
+  // adding and taking 0.5 s).
+  doc.apply(DeleteTime{2.0, 2.5});
+  EXPECT_DOUBLE_EQ(doc.show().duration, before.duration);
+  const auto k2 = keys_of(doc);
+  ASSERT_EQ(k2.size(), k0.size());
+  for (std::size_t t = 0; t < k0.size(); ++t) {
+    ASSERT_EQ(k2[t].size(), k0[t].size());
+    for (std::size_t k = 0; k < k0[t].size(); ++k) {
+      EXPECT_NEAR(k2[t][k].first, k0[t][k].first, 1e-12);
+      EXPECT_EQ(k2[t][k].second, k0[t][k].second);
+    }
+  }
+  doc.undo();
+  doc.undo();
+  EXPECT_EQ(keys_of(doc), k0);
+  EXPECT_EQ(doc.show().duration, before.duration);
+  EXPECT_FALSE(doc.modified());
+
+  // A cut over keys deletes them; a cut of the whole show is refused.
+  doc.apply(DeleteTime{2.4, 2.8});  // the strobe's cues at 2.5 and 2.7 s
+  EXPECT_DOUBLE_EQ(doc.show().duration, before.duration - 0.4);
+  EXPECT_LT(doc.show().cues.size(), before.cues.size());
+  EXPECT_THROW(doc.apply(DeleteTime{-1, before.duration + 1}), EditError);
+  EXPECT_THROW(doc.apply(InsertTime{1, 0}), EditError);
+  EXPECT_THROW(doc.apply(InsertTime{std::nan(""), 1}), EditError);
+}
+
+TEST(ShowDocument, ATimeEditIsRefusedWhereItWouldLeaveLayersOrTargetsBehind) {
+  ShowDocument doc = ShowDocument::open(AVAR_SOURCE_DIR "/examples/shows/look-around.yaml");
+  ASSERT_FALSE(doc.show().targets.empty());
+  try {
+    doc.apply(InsertTime{1, 1});
+    FAIL();
+  } catch (const EditError& e) {
+    EXPECT_NE(std::string(e.what()).find("this show also has targets"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(doc.undo_steps(), 0u);
+}
+
 /// One random edit of `doc`'s show: add, move, set (value, interpolation, handle type) or delete,
-/// on a random track. May be refused (a move past a neighbour): the caller counts those.
+/// on a random track, or a time inserted or deleted. May be refused (a move past a neighbour): the caller counts those.
 KeyEdit random_edit(std::mt19937& rng, const ShowDocument& doc) {
   std::uniform_real_distribution<double> u(0, 1);
+  if (doc.show().tracks.empty()) return AddKeys{"jaw", {key_at(12 * u(rng), 0)}};
   const playback::Track& t = doc.show().tracks[rng() % doc.show().tracks.size()];
   const std::size_t n = t.raw.keys.size();
   const std::size_t i = rng() % n;
-  switch (rng() % 5) {
+  switch (rng() % 7) {
+    case 5: return InsertTime{12 * u(rng), 0.01 + 0.5 * u(rng)};
+    case 6: {
+      const double from = 12 * u(rng);
+      return DeleteTime{from, from + 0.01 + 0.3 * u(rng)};
+    }
     case 0: return AddKeys{t.channel, {key_at(-1 + 14 * u(rng), -10 + 20 * u(rng))}};
     case 1: return MoveKeys{t.channel, {i}, -0.2 + 0.4 * u(rng), -5 + 10 * u(rng)};
     case 2: {

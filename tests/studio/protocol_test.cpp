@@ -89,6 +89,13 @@ TEST(StudioProtocol, AnEditMessageIsAGroupOfKeyEdits) {
   EXPECT_EQ(move.channel, "neck_pan");
   EXPECT_EQ(move.dt, -0.25);
   EXPECT_EQ(move.dv, 4);
+  const ClientMessage ripple = parse_client_message(
+      R"({"type": "edit", "edits": [{"op": "insert_time", "at": 2, "length": 0.5}, {"op": "delete_time", "from": 4, "to": 4.25}]})",
+      kChannels);
+  const std::vector<edit::KeyEdit>& time_edits = std::get<Edit>(ripple).edits;
+  ASSERT_EQ(time_edits.size(), 2u);
+  EXPECT_EQ(std::get<edit::InsertTime>(time_edits[0]).length, 0.5);
+  EXPECT_EQ(std::get<edit::DeleteTime>(time_edits[1]).to, 4.25);
   const auto& set = std::get<edit::SetKey>(edits[3]);
   EXPECT_EQ(set.key, 1u);
   EXPECT_EQ(set.value.interpolation, playback::Interpolation::elastic);
@@ -118,7 +125,7 @@ TEST(StudioProtocol, AMalformedMessageIsRefusedNamingTheFieldAndWhatWasExpected)
   EXPECT_EQ(refusal(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [-1], "dt": 0, "dv": 0}]})"),
             "edit 1 of message 'edit': keys[0]: expected a key index (0, 1, ...), found the number -1");
   EXPECT_EQ(refusal(R"({"type": "edit", "edits": [{"op": "shift", "channel": "jaw"}]})"),
-            "edit 1 of message 'edit': unknown op \"shift\"; expected add, delete, move or set");
+            "edit 1 of message 'edit': unknown op \"shift\"; expected add, delete, move, set, insert_time or delete_time");
   // The key's own fields: the show reader's words.
   const std::string easing_on_linear = refusal(
       R"({"type": "edit", "edits": [{"op": "add", "channel": "jaw", "keys": [{"time": 1, "value": 2, "easing": "ease_in"}]}]})");

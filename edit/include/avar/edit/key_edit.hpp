@@ -6,6 +6,7 @@
 // are checked when the curve is built (Curve::build). Load-time code: allocates, throws.
 
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -51,17 +52,41 @@ struct SetKey {
   playback::RawKey value;
 };
 
-using KeyEdit = std::variant<AddKeys, DeleteKeys, MoveKeys, SetKey>;
+/// Ripple insert: `length` seconds of nothing at show time `at`; every key, handle and cue at or
+/// after `at` (a key within Curve::kKeySnap of it included) moves that much later, on every
+/// track, and the show grows by `length`.
+struct InsertTime {
+  double at = 0;
+  double length = 0;
+};
 
-/// The channel an edit applies to.
+/// Ripple delete: the span [from, to) is cut out; keys and cues in it are deleted, those after it
+/// move `to - from` earlier on every track, and the show shrinks by the part of the span it had.
+struct DeleteTime {
+  double from = 0;
+  double to = 0;
+};
+
+using KeyEdit = std::variant<AddKeys, DeleteKeys, MoveKeys, SetKey, InsertTime, DeleteTime>;
+
+/// Whether the edit changes show time (InsertTime, DeleteTime: every track and the cues).
+bool is_time_edit(const KeyEdit& edit);
+
+/// The channel a key edit applies to; empty for a time edit (every channel).
 const std::string& edited_channel(const KeyEdit& edit);
+
+/// Where show time `t` goes under a time edit: nullopt when a DeleteTime cuts it out. EditError
+/// when the edit itself is malformed (not finite, a length or span not positive).
+std::optional<double> rippled_time(double t, const KeyEdit& time_edit);
 
 /// What an edit does, for an undo menu: "move 3 keys of 'jaw' by 0.5 s, +2".
 std::string describe(const KeyEdit& edit);
 
-/// `keys` (a track's, in time order; empty: the channel has no track yet) after `edit`; empty
-/// when every key was deleted. Throws EditError: an index out of range or given twice, a
-/// non-finite time, value or shift, a key onto another's time, a move or a new time out of order.
-std::vector<playback::RawKey> edited_keys(const std::vector<playback::RawKey>& keys, const KeyEdit& edit);
+/// `keys` (`channel`'s track, in time order; empty: the channel has no track yet) after `edit`
+/// (a key edit of that channel, or a time edit); empty when every key was deleted. Throws
+/// EditError: an index out of range or given twice, a non-finite time, value or shift, a key
+/// onto another's time, a move or a new time out of order, a malformed time edit.
+std::vector<playback::RawKey> edited_keys(const std::vector<playback::RawKey>& keys, const KeyEdit& edit,
+                                          const std::string& channel);
 
 }  // namespace avar::edit

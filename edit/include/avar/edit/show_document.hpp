@@ -8,6 +8,9 @@
 //   doc.undo(); doc.redo();
 //   doc.save("show.yaml");
 //
+// Time edits (ripple insert and delete) move every track's keys and the cues, and change the
+// duration; a show with layers or targets refuses them (their times would be left behind).
+//
 // An edit is checked whole (the edit itself, then every changed curve built as playback builds
 // it) before anything changes: a refused edit leaves the show, the history and the saved state
 // as they were. The show's curves are always the built form of its keys, ready to sample.
@@ -71,13 +74,23 @@ class ShowDocument {
     std::size_t position = 0;  ///< the track's index in show_.tracks while it exists
     std::optional<playback::RawCurve> before, after;
   };
+  /// What a time edit changes besides the tracks.
+  struct Times {
+    double duration = 0;
+    std::vector<playback::Cue> cues;
+  };
   struct Step {
     std::string label;
     std::vector<TrackChange> changes;
+    std::optional<Times> times_before, times_after;  ///< set by a step with a time edit
   };
 
   /// Puts `raw` (built into `curve`) as `channel`'s track at `position`, or removes the track.
   void put(const TrackChange& change, const std::optional<playback::RawCurve>& raw);
+  void put(const std::optional<Times>& times);
+  /// The duration and cues after `edit`; EditError when the show would have no time left or has
+  /// parts a time edit does not move (layers, targets).
+  Times rippled(const Times& times, const KeyEdit& edit) const;
   std::optional<std::size_t> track_of(const std::string& channel) const;
 
   playback::Show show_;
