@@ -83,13 +83,15 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
   // Each changed curve built as playback builds it, before anything changes.
   Step step{group_label(edits), {}, std::nullopt, std::nullopt};
   if (times) step.times_before = now, step.times_after = times;
+  std::vector<std::optional<playback::Curve>> built;  // the curves built here, committed below
   for (Working& w : touched) {
     TrackChange change{w.channel, 0, w.before, std::nullopt};
+    built.emplace_back();
     if (!w.keys.empty()) {
       playback::RawCurve raw = w.before ? *w.before : playback::RawCurve({}, {show_.where.file, 0, 0});
       raw.keys = std::move(w.keys);
       try {
-        (void)playback::Curve::build(raw);
+        built.back() = playback::Curve::build(raw);
       } catch (const InputError& e) {
         throw EditError(step.label + ": " + w.channel + ": " + e.problem());
       }
@@ -98,9 +100,10 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
     step.changes.push_back(std::move(change));
   }
   // Commit in order; each change's position is where its track is (or goes) at its turn.
-  for (TrackChange& change : step.changes) {
+  for (std::size_t i = 0; i < step.changes.size(); ++i) {
+    TrackChange& change = step.changes[i];
     change.position = track_of(change.channel).value_or(show_.tracks.size());
-    put(change, change.after);
+    put(change, change.after, std::move(built[i]));
   }
   put(step.times_after);
   history_.resize(position_);
@@ -109,14 +112,16 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
   ++position_;
 }
 
-void ShowDocument::put(const TrackChange& change, const std::optional<playback::RawCurve>& raw) {
+void ShowDocument::put(const TrackChange& change, const std::optional<playback::RawCurve>& raw,
+                       std::optional<playback::Curve> built) {
   const auto at = show_.tracks.begin() + static_cast<std::ptrdiff_t>(change.position);
   const bool exists = change.position < show_.tracks.size() && show_.tracks[change.position].channel == change.channel;
   if (!raw) {
     if (exists) show_.tracks.erase(at);
     return;
   }
-  playback::Curve curve = playback::Curve::build(*raw);  // it built when the step was applied
+  // Undo and redo build again what built when the step was applied (history keeps keys only).
+  playback::Curve curve = built ? std::move(*built) : playback::Curve::build(*raw);
   if (exists) {
     show_.tracks[change.position].raw = *raw;
     show_.tracks[change.position].curve = std::move(curve);

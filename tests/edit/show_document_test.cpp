@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "avar/config/show_file.hpp"
+#include "support/random_show_edits.hpp"
 #include "support/temp_file.hpp"
 
 namespace avar::edit {
@@ -253,37 +254,6 @@ TEST(ShowDocument, ATimeEditIsRefusedWhereItWouldLeaveLayersOrTargetsBehind) {
   EXPECT_EQ(doc.undo_steps(), 0u);
 }
 
-/// One random edit of `doc`'s show: add, move, set (value, interpolation, handle type) or delete,
-/// on a random track, or a time inserted or deleted. May be refused (a move past a neighbour): the caller counts those.
-KeyEdit random_edit(std::mt19937& rng, const ShowDocument& doc) {
-  std::uniform_real_distribution<double> u(0, 1);
-  if (doc.show().tracks.empty()) return AddKeys{"jaw", {key_at(12 * u(rng), 0)}};
-  const playback::Track& t = doc.show().tracks[rng() % doc.show().tracks.size()];
-  const std::size_t n = t.raw.keys.size();
-  const std::size_t i = rng() % n;
-  switch (rng() % 7) {
-    case 5: return InsertTime{12 * u(rng), 0.01 + 0.5 * u(rng)};
-    case 6: {
-      const double from = 12 * u(rng);
-      return DeleteTime{from, from + 0.01 + 0.3 * u(rng)};
-    }
-    case 0: return AddKeys{t.channel, {key_at(-1 + 14 * u(rng), -10 + 20 * u(rng))}};
-    case 1: return MoveKeys{t.channel, {i}, -0.2 + 0.4 * u(rng), -5 + 10 * u(rng)};
-    case 2: {
-      RawKey k = t.raw.keys[i];
-      k.value = -10 + 20 * u(rng);
-      k.interpolation = static_cast<Interpolation>(rng() % 3);
-      k.left.reset(), k.right.reset();
-      k.left_type = k.right_type = rng() % 2 ? playback::HandleType::automatic : playback::HandleType::vector;
-      return SetKey{t.channel, i, k};
-    }
-    case 3:
-      if (n > 2) return DeleteKeys{t.channel, {i}};
-      [[fallthrough]];
-    default: return MoveKeys{t.channel, {i}, 0, -1 + 2 * u(rng)};
-  }
-}
-
 TEST(ShowDocument, RandomEditsUndoneAndRedoneSaveTheSameBytesAtEachEnd) {
   const unsigned seed = 8675309;
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -292,7 +262,7 @@ TEST(ShowDocument, RandomEditsUndoneAndRedoneSaveTheSameBytesAtEachEnd) {
   std::size_t applied = 0, refused = 0;
   for (int e = 0; e < 2000; ++e) {
     try {
-      doc.apply(random_edit(rng, doc));
+      doc.apply(testing::random_show_edit(rng, doc, 12));
       ++applied;
     } catch (const EditError&) {
       ++refused;

@@ -85,8 +85,10 @@ class ShowDocument {
     std::optional<Times> times_before, times_after;  ///< set by a step with a time edit
   };
 
-  /// Puts `raw` (built into `curve`) as `channel`'s track at `position`, or removes the track.
-  void put(const TrackChange& change, const std::optional<playback::RawCurve>& raw);
+  /// Puts `raw` as `channel`'s track at `position` (its curve `built` already, or built here), or
+  /// removes the track.
+  void put(const TrackChange& change, const std::optional<playback::RawCurve>& raw,
+           std::optional<playback::Curve> built = std::nullopt);
   void put(const std::optional<Times>& times);
   /// The duration and cues after `edit`; EditError when the show would have no time left or has
   /// parts a time edit does not move (layers, targets).
