@@ -31,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   avar::edit::ShowDocument doc(show);
   try {
     doc.apply(edit->edits);
+    if (edit->continues) doc.continue_last(edit->edits);
   } catch (const avar::edit::EditError&) {
     return 0;
   }

@@ -50,7 +50,23 @@ std::optional<std::size_t> ShowDocument::track_of(const std::string& channel) co
 
 void ShowDocument::apply(const KeyEdit& edit) { apply(std::span<const KeyEdit>(&edit, 1)); }
 
-void ShowDocument::apply(std::span<const KeyEdit> edits) {
+void ShowDocument::apply(std::span<const KeyEdit> edits) { apply(edits, false); }
+
+void ShowDocument::continue_last(std::span<const KeyEdit> edits) { apply(edits, true); }
+
+bool ShowDocument::continues_last(const Step& step) const {
+  if (position_ == 0 || position_ != history_.size() || saved_position_ == position_) return false;
+  const Step& last = history_.back();
+  if (step.times_after || last.times_after || step.changes.size() != last.changes.size()) return false;
+  for (const TrackChange& c : step.changes) {
+    const auto same =
+        std::find_if(last.changes.begin(), last.changes.end(), [&](const TrackChange& l) { return l.channel == c.channel; });
+    if (same == last.changes.end() || !c.before || !c.after || !same->before || !same->after) return false;
+  }
+  return true;
+}
+
+void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
   if (edits.empty()) throw EditError("no edit given");
   // Every edit applied in order to working copies of the keys of the channels it touches.
   struct Working {
@@ -106,6 +122,16 @@ void ShowDocument::apply(std::span<const KeyEdit> edits) {
     put(change, change.after, std::move(built[i]));
   }
   put(step.times_after);
+  if (continuing && continues_last(step)) {
+    // The last step keeps its before-state and takes this one's after-state.
+    Step& last = history_.back();
+    for (TrackChange& c : step.changes)
+      std::find_if(last.changes.begin(), last.changes.end(), [&](const TrackChange& l) {
+        return l.channel == c.channel;
+      })->after = std::move(c.after);
+    last.label = std::move(step.label);
+    return;
+  }
   history_.resize(position_);
   if (saved_position_ && *saved_position_ > position_) saved_position_.reset();
   history_.push_back(std::move(step));

@@ -185,11 +185,12 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
     return Command{CommandKind::hold, c, f.number("value", "the channel's value in its units")};
   }
   if (type == "edit") {
-    f.expect_only({"type", "edits"});
+    f.expect_only({"type", "edits", "continues"});
     const json& list = f.array("edits", "the edits, applied as one undo step");
     if (list.empty()) f.fail("field 'edits': expected at least one edit");
     Edit e;
     for (std::size_t i = 0; i < list.size(); ++i) e.edits.push_back(key_edit(list[i], i, channels));
+    if (message.contains("continues")) e.continues = f.boolean("continues", "whether this continues the last edit (a drag)");
     return e;
   }
   f.fail("unknown type \"" + type +

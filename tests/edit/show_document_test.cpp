@@ -148,6 +148,38 @@ TEST(ShowDocument, AGroupIsOneStep) {
   EXPECT_EQ(keys_of(doc), k0);
 }
 
+TEST(ShowDocument, ADragIsOneUndoStepHoweverManyMovesItHas) {
+  ShowDocument doc = ShowDocument::open(kHelloHead);
+  const auto k0 = keys_of(doc);
+  doc.apply(MoveKeys{"jaw", {1}, 0, 1});
+  const auto k1 = keys_of(doc);
+  // A drag over two tracks: its first move a step of its own, then 30 moves continuing it.
+  const std::vector<KeyEdit> move = {MoveKeys{"neck_pan", {2}, 0.001, 0.5}, MoveKeys{"neck_tilt", {1}, 0, -0.5}};
+  doc.apply(move);
+  for (int i = 0; i < 30; ++i) doc.continue_last(move);
+  EXPECT_EQ(doc.undo_steps(), 2u);
+  EXPECT_NEAR(track(doc, "neck_pan").raw.keys[2].value, 40 + 31 * 0.5, 1e-9);
+  const auto dragged = keys_of(doc);
+  doc.undo();
+  EXPECT_EQ(keys_of(doc), k1);  // the whole drag undone at once
+  doc.redo();
+  EXPECT_EQ(keys_of(doc), dragged);
+
+  // A move of other tracks, a time edit, or a continuation after a save starts a step of its own.
+  doc.continue_last({MoveKeys{"jaw", {2}, 0, 1}});
+  EXPECT_EQ(doc.undo_steps(), 3u);
+  doc.save(testing::temp_path("dragged.yaml"));
+  doc.continue_last({MoveKeys{"jaw", {2}, 0, 1}});
+  EXPECT_EQ(doc.undo_steps(), 4u);
+  EXPECT_TRUE(doc.modified());
+  doc.continue_last({InsertTime{1, 1}});
+  doc.continue_last({InsertTime{1, 1}});
+  EXPECT_EQ(doc.undo_steps(), 6u);
+  while (doc.undo()) {
+  }
+  EXPECT_EQ(keys_of(doc), k0);
+}
+
 TEST(ShowDocument, TracksAreMadeAndRemovedAndComeBackInPlace) {
   ShowDocument doc = ShowDocument::open(kHelloHead);
   const std::size_t tracks = doc.show().tracks.size();

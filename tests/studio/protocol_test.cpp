@@ -92,6 +92,11 @@ TEST(StudioProtocol, AnEditMessageIsAGroupOfKeyEdits) {
   const ClientMessage ripple = parse_client_message(
       R"({"type": "edit", "edits": [{"op": "insert_time", "at": 2, "length": 0.5}, {"op": "delete_time", "from": 4, "to": 4.25}]})",
       kChannels);
+  EXPECT_FALSE(std::get<Edit>(ripple).continues);
+  const ClientMessage drag = parse_client_message(
+      R"({"type": "edit", "continues": true, "edits": [{"op": "move", "channel": "jaw", "keys": [1], "dt": 0, "dv": 0.5}]})",
+      kChannels);
+  EXPECT_TRUE(std::get<Edit>(drag).continues);
   const std::vector<edit::KeyEdit>& time_edits = std::get<Edit>(ripple).edits;
   ASSERT_EQ(time_edits.size(), 2u);
   EXPECT_EQ(std::get<edit::InsertTime>(time_edits[0]).length, 0.5);

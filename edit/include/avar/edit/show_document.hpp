@@ -50,6 +50,15 @@ class ShowDocument {
   void apply(const KeyEdit& edit);
   void apply(std::span<const KeyEdit> edits);
   void apply(std::initializer_list<KeyEdit> edits) { apply(std::span<const KeyEdit>(edits.begin(), edits.size())); }
+  /// The same, continuing the last step (the next pointer move of a drag): the last step then
+  /// goes from before the drag to after this move, so a whole drag is one undo step and the
+  /// history does not grow with it. It continues only when the last step is the newest, was not
+  /// saved since, and both change the keys of existing tracks only, the same tracks; otherwise
+  /// this is a step of its own.
+  void continue_last(std::span<const KeyEdit> edits);
+  void continue_last(std::initializer_list<KeyEdit> edits) {
+    continue_last(std::span<const KeyEdit>(edits.begin(), edits.size()));
+  }
 
   /// Steps back or forward one undo step; false when there is none.
   bool undo();
@@ -94,6 +103,9 @@ class ShowDocument {
   /// parts a time edit does not move (layers, targets).
   Times rippled(const Times& times, const KeyEdit& edit) const;
   std::optional<std::size_t> track_of(const std::string& channel) const;
+  void apply(std::span<const KeyEdit> edits, bool continuing);
+  /// Whether `step` may be folded into the last step (see continue_last).
+  bool continues_last(const Step& step) const;
 
   playback::Show show_;
   std::optional<std::string> opened_bytes_;  ///< the file as opened, for a save of that state

@@ -26,6 +26,7 @@ class ProtocolError : public std::invalid_argument {
 struct Estop {};
 struct Edit {
   std::vector<edit::KeyEdit> edits;  ///< one undo step, applied all or nothing
+  bool continues = false;            ///< the next move of a drag: ShowDocument::continue_last
 };
 struct Undo {};
 struct Redo {};
