@@ -281,6 +281,12 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
   session::FigureRun& fr = *figure_run;
+  if (options.record_path && !fr.live()) {
+    // The rig's control buttons open no live inputs without mappings: nothing could be performed.
+    err << "error: nothing to record: no live control reaches a channel; give --input, or map the rig's control inputs in "
+           "the inputs: section's mappings\n";
+    return kExitBadInput;
+  }
 
   // Digital inputs watch from here on: the e-stop before anything moves, control inputs into the
   // live mixer, start buttons for --wait-start.
@@ -292,11 +298,8 @@ int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   }
   if (options.wait_start) {
     InterruptCounter waiting;
-    if (fr.start_button_names().empty()) {
-      err << "error: --wait-start needs a digital input with role: start in the rig (digital_inputs:)\n";
-      return kExitBadInput;
-    }
-    err << "waiting for start button " << fr.start_button_names() << "; Ctrl-C gives up" << std::endl;
+    if (const std::string buttons = fr.start_button_names(); !buttons.empty())
+      err << "waiting for start button " << buttons << "; Ctrl-C gives up" << std::endl;
     switch (fr.wait_for_start_button(waiting.count())) {
       case session::StartWait::pressed: break;
       case session::StartWait::interrupted:

@@ -242,5 +242,21 @@ TEST(LiveInput, RefusesMissingOrUnreadableInputsBeforeAnythingMoves) {
   EXPECT_NE(r.err.find("drop --fast"), std::string::npos) << r.err;
 }
 
+TEST(LiveInput, ARecordingWithNoControlMappedToAChannelIsRefusedBeforeAnythingMoves) {
+  // The haunt prop with a button of the control role but no inputs: mappings: nothing could be
+  // performed, so nothing may run.
+  std::ifstream in(std::string(AVAR_SOURCE_DIR) + "/examples/rigs/haunt-prop.yaml");
+  std::stringstream rig;
+  rig << in.rdbuf() << "  button: {chip: sim, line: 6, active_low: true, bias: pull_up, role: control}\n";
+  const std::string rig_path = testing::write_temp_file("control-rig.yaml", rig.str());
+  const std::string take = testing::temp_path("no-take.yaml");
+  const testing::CliResult r = testing::run_avar(
+      {"record", "--rig", rig_path, "--sim", "--no-progress", "--priority", "0", "--duration", "1", "--out", take});
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("nothing to record: no live control reaches a channel"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("playing"), std::string::npos) << r.err;  // refused before the run
+  EXPECT_FALSE(std::ifstream(take).good());
+}
+
 }  // namespace
 }  // namespace avar
