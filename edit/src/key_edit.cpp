@@ -131,8 +131,7 @@ bool is_time_edit(const KeyEdit& edit) {
 }
 
 const std::string& edited_channel(const KeyEdit& edit) {
-  static const std::string every;
-  if (is_time_edit(edit)) return every;
+  static const std::string every;  // a time edit's: every channel
   return std::visit(
       [](const auto& e) -> const std::string& {
         if constexpr (requires { e.channel; }) return e.channel;

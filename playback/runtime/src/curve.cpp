@@ -177,8 +177,9 @@ double Curve::warm(const CurveCursor& cursor) const noexcept {
 // Key times themselves come here too: the general path decides which segment owns them.
 double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
   if (times_.empty()) return 0;
-  t = snapped_to_ends(t);
-  if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, &cursor);
+  if (!cycles_.any()) return evaluate_keys(t, &cursor);  // it snaps t to the keys
+  t = snapped_to_ends(t);                                // before the cycle map: the end key, not the next cycle
+  if (t >= start_ && t <= end_) return evaluate_keys(t, &cursor);
   double offset = 0;
   const double mapped = cycle_time(t, offset);
   const double base = evaluate_keys(mapped, &cursor);
@@ -187,8 +188,9 @@ double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
 
 double Curve::evaluate(double t) const noexcept {
   if (times_.empty()) return 0;
-  t = snapped_to_ends(t);
-  if (!cycles_.any() || (t >= start_ && t <= end_)) return evaluate_keys(t, nullptr);
+  if (!cycles_.any()) return evaluate_keys(t, nullptr);  // it snaps t to the keys
+  t = snapped_to_ends(t);                                // before the cycle map: the end key, not the next cycle
+  if (t >= start_ && t <= end_) return evaluate_keys(t, nullptr);
   double offset = 0;
   const double mapped = cycle_time(t, offset);
   const double base = evaluate_keys(mapped, nullptr);
