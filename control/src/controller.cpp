@@ -44,16 +44,24 @@ const char* to_string(Stage s) noexcept {
   return "unknown";
 }
 
+ShowBinding::ShowBinding(const rig::Rig& rig, const playback::Show& show_to_bind, std::span<const double> rest_frame,
+                         std::shared_ptr<const playback::Show> keep_alive)
+    : keep(std::move(keep_alive)), show(&show_to_bind), sampler(show_to_bind, channel_names_of(rig), rest_frame) {
+  if (!show_to_bind.targets.empty()) {
+    if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
+    ik.emplace(*rig.kinematics, show_to_bind, rest_frame);
+  }
+}
+
 Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
                        ControllerOptions options)
     : rig_(rig),
-      show_(show),
       links_(std::move(links)),
       options_(options),
-      sampler_(show, channel_names_of(rig), rig.rest_frame()),
+      rest_(rig.rest_frame()),
+      binding_(std::make_unique<ShowBinding>(rig, show, rest_)),
       limiter_(limits_of(rig), options.tick_period_s),
       ramp_(rig.channels.size(), switched_channels(rig)),
-      rest_(rig.rest_frame()),
       supervisor_(rig, links_.size()),
       failsafe_goal_(rig.channels.size()),
       ramp_velocity_(rig.channels.size()),
@@ -69,17 +77,25 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       link_telemetry_seen_(rig.channels.size(), 0),
       source_known_(new bool[rig.channels.size()]()) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
-  if (!show.targets.empty()) {
-    if (!rig.kinematics) throw std::invalid_argument("the show has targets but the rig has no kinematics section");
-    ik_.emplace(*rig.kinematics, show, rest_);
-  }
   sample_show(0.0, first_frame_);
 }
 
+std::unique_ptr<ShowBinding> Controller::bind_show(std::shared_ptr<const playback::Show> show) const {
+  if (!show) throw std::invalid_argument("no show to bind");
+  const playback::Show& s = *show;
+  return std::make_unique<ShowBinding>(rig_, s, rest_, std::move(show));
+}
+
+void Controller::swap_show(std::unique_ptr<ShowBinding>& next) noexcept {
+  if (!next) return;
+  binding_.swap(next);
+  if (binding_->ik) binding_->ik->reseed(limiter_.last());
+}
+
 void Controller::sample_show(double show_time_s, std::span<double> frame) noexcept {
-  sampler_.sample(show_time_s, frame);
+  binding_->sampler.sample(show_time_s, frame);
   // The stage keeps its own tally of converged, degraded and failed solves (IkStage::stats).
-  if (ik_) (void)ik_->apply(show_time_s, frame);
+  if (binding_->ik) (void)binding_->ik->apply(show_time_s, frame);
 }
 
 void Controller::lap(Stage s, std::int64_t& mark) noexcept {
@@ -94,10 +110,10 @@ void Controller::lap(Stage s, std::int64_t& mark) noexcept {
 void Controller::begin(double now_s, std::span<const double> start_pose) noexcept {
   if (supervisor_.phase() != Phase::disabled) return;
   limiter_.reset(start_pose);
-  if (ik_) {
+  if (binding_->ik) {
     // Solve the first frame from where the figure is, so that homing heads for the solution
     // nearest to it.
-    ik_->reseed(limiter_.last());
+    binding_->ik->reseed(limiter_.last());
     sample_show(0.0, first_frame_);
   }
   const auto from = limiter_.last();
@@ -118,8 +134,9 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
 }
 
 double Controller::show_end() const noexcept {
-  if (!show_.loop) return show_.duration;
-  return options_.loops > 0 ? static_cast<double>(options_.loops) * show_.duration : std::numeric_limits<double>::infinity();
+  const playback::Show& show = *binding_->show;
+  if (!show.loop) return show.duration;
+  return options_.loops > 0 ? static_cast<double>(options_.loops) * show.duration : std::numeric_limits<double>::infinity();
 }
 
 bool Controller::show_over(double show_time_s) const noexcept { return show_time_s >= show_end() + options_.lead_out_s; }
@@ -252,7 +269,7 @@ void Controller::tick(double now_s) noexcept {
         show_start_ = now_s;
       } else {
         std::copy(first_frame_.begin(), first_frame_.end(), target_.begin());
-        sampler_.warm();  // the show's first samples then find their curves in cache
+        binding_->sampler.warm();  // the show's first samples then find their curves in cache
         break;
       }
       [[fallthrough]];
@@ -267,7 +284,7 @@ void Controller::tick(double now_s) noexcept {
       }
       if (!clock_stop && !show_over(show_time_)) {
         // The lead-in holds the first frame and the lead-out the last (a looping show's too).
-        sampler_.sample(std::clamp(show_time_, 0.0, show_end()), target_);
+        binding_->sampler.sample(std::clamp(show_time_, 0.0, show_end()), target_);
         sampled_show = true;
         break;
       }
@@ -280,7 +297,8 @@ void Controller::tick(double now_s) noexcept {
     case Phase::disabled: break;
   }
   lap(Stage::sample, mark);
-  if (sampled_show && ik_) (void)ik_->apply(std::clamp(show_time_, 0.0, show_end()), target_);  // tallied in IkStage::stats
+  if (sampled_show && binding_->ik)
+    (void)binding_->ik->apply(std::clamp(show_time_, 0.0, show_end()), target_);  // tallied in IkStage::stats
   lap(Stage::ik, mark);
   if (sampled_show && options_.live) options_.live->apply(now_s, target_);
   lap(Stage::mix, mark);

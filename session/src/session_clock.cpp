@@ -6,8 +6,8 @@
 
 namespace avar::session {
 
-SessionClock::SessionClock(double lead_in_s, control::ShowClock* external, bool paused) noexcept
-    : lead_in_s_(lead_in_s), external_(external), playing_(!paused) {
+SessionClock::SessionClock(double lead_in_s, control::ShowClock* external, bool paused, bool hold_at_end) noexcept
+    : lead_in_s_(lead_in_s), external_(external), playing_(!paused), hold_at_end_(hold_at_end) {
   if (paused) {
     anchored_ = true;
     anchor_pending_ = true;
@@ -47,7 +47,21 @@ control::ShowClockReading SessionClock::read(double now_s) noexcept {
     t = std::fmod(t, d);
     anchor(t, now_s);
   }
-  if (loop_ == 0 && controller_->show_loops() && t >= pass_end_s_) stop = true;
+  if (loop_ == 0 && controller_->show_loops() && t >= pass_end_s_) {
+    if (hold_at_end_) {
+      // Hold the pass's last frame (just before it wraps), paused.
+      t = std::nextafter(pass_end_s_, 0.0);
+      anchor(t, now_s);
+      playing_ = false;
+    } else {
+      stop = true;
+    }
+  }
+  if (hold_at_end_ && d > 0 && !controller_->show_loops() && loop_ != 1 && t >= d && playing_) {
+    t = d;
+    anchor(t, now_s);
+    playing_ = false;
+  }
   last_show_s_ = t;
   return {t, stop};
 }
@@ -66,7 +80,12 @@ CommandOutcome SessionClock::apply(const Command& command, double now_s) noexcep
   switch (command.kind) {
     case CommandKind::play:
       if (!playing_) {
-        jump_to(here);
+        // At the end a held show starts over.
+        const bool loops = controller_ && controller_->show_loops();
+        const bool at_end =
+            hold_at_end_ && controller_ && (loops ? loop_ == 0 && here >= std::nextafter(pass_end_s_, 0.0) : here >= duration());
+        if (at_end && loops) pass_end_s_ = duration();
+        jump_to(at_end ? 0.0 : here);
         playing_ = true;
       }
       return CommandOutcome::applied;

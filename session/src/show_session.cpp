@@ -34,7 +34,7 @@ ShowSession::ShowSession(const rig::Rig& rig, const playback::Show& show, Sessio
       config_(std::move(config)),
       figure_(std::make_unique<assembly::FigureLinks>(rig, selection_for(config_))),
       links_(figure_->links()),
-      clock_(config_.lead_in_s, config_.external_clock, config_.start_paused),
+      clock_(config_.lead_in_s, config_.external_clock, config_.start_paused, config_.hold_at_end),
       holds_(rig, config_.live),
       queue_(config_.command_capacity),
       ring_(config_.record_capacity, rig.channels.size(), rig.links.size(),
@@ -45,12 +45,29 @@ ShowSession::ShowSession(const rig::Rig& rig, const playback::Show& show, Sessio
 NeedsSimulatedLinks::NeedsSimulatedLinks()
     : std::invalid_argument("a stepped session runs on a simulated clock and needs every link simulated") {}
 
-ShowSession::~ShowSession() = default;
+ShowSession::~ShowSession() { free_handover(); }
 
-void ShowSession::load(const playback::Show& show) {
-  if (running_.load()) throw std::logic_error("a show is loaded only while no run is under way");
-  show_ = &show;
-  controller_.reset();
+void ShowSession::free_handover() noexcept {
+  delete pending_show_.exchange(nullptr);
+  delete retired_show_;
+  retired_show_ = nullptr;
+}
+
+bool ShowSession::replace_show(std::shared_ptr<const playback::Show> show, std::chrono::milliseconds wait) {
+  const std::lock_guard<std::mutex> lock(replace_mutex_);
+  if (!controller_) throw std::logic_error("replace_show() before begin()");
+  std::unique_ptr<control::ShowBinding> next = controller_->bind_show(std::move(show));
+  // The show handed over before must have been taken first.
+  const auto deadline = std::chrono::steady_clock::now() + wait;
+  while (pending_show_.load(std::memory_order_acquire) != nullptr) {
+    if (!running_.load() || std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  if (!running_.load()) return false;
+  delete retired_show_;
+  retired_show_ = nullptr;
+  pending_show_.store(next.release(), std::memory_order_release);
+  return true;
 }
 
 void ShowSession::add_estop_input(const std::atomic<bool>& pressed) {
@@ -82,6 +99,7 @@ void ShowSession::begin() {
   for (firmware_iface::ActuatorLink* link : links_)
     (void)link->read_positions(start_pose, std::span<bool>(known.get(), rig_.channels.size()));
 
+  free_handover();
   control::ControllerOptions options;
   options.tick_period_s = 1.0 / config_.rate_hz;
   // On the simulated clock a run is deterministic, trace included: stages are not timed.
@@ -90,7 +108,7 @@ void ShowSession::begin() {
   options.positions = figure_.get();  // the simulator's ground truth, for simulated links
   options.live = &holds_;
   options.lead_in_s = config_.lead_in_s;
-  options.lead_out_s = config_.lead_out_s;
+  options.lead_out_s = config_.hold_at_end ? std::numeric_limits<double>::infinity() : config_.lead_out_s;
   options.show_clock = &clock_;
   controller_ = std::make_unique<control::Controller>(rig_, *show_, links_, options);
   clock_.attach(*controller_);
@@ -174,6 +192,12 @@ void ShowSession::before_tick(std::uint64_t, double now_s, control::Controller& 
   if (estop_.load(std::memory_order_relaxed) && !estop_seen_) {
     estop_seen_ = true;
     controller.fault(control::FaultCause::estop, 0, 0, now_s);
+  }
+  if (control::ShowBinding* next = pending_show_.load(std::memory_order_acquire)) {
+    std::unique_ptr<control::ShowBinding> swap(next);
+    controller.swap_show(swap);
+    retired_show_ = swap.release();
+    pending_show_.store(nullptr, std::memory_order_release);
   }
   taken_count_ = 0;
   Command c;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,26 @@
 namespace avar::session::test_support {
 
 inline std::string example(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
+
+/// The hello-head rig and show, and its channels by name.
+struct HelloHead {
+  rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
+  playback::Show show = config::load_show_file(example("shows/hello-head.yaml"));
+  std::size_t channel(const std::string& name) const {
+    for (std::size_t c = 0; c < rig.channels.size(); ++c)
+      if (rig.channels[c].name == name) return c;
+    throw std::invalid_argument(name);
+  }
+};
+
+/// Every link simulated, on the stepped clock at 50 Hz.
+inline SessionConfig stepped_config() {
+  SessionConfig config;
+  config.rate_hz = 50;
+  config.stepped = true;
+  config.links.simulate_all = true;
+  return config;
+}
 
 /// What one record said, kept past the record's life.
 struct Kept {

@@ -14,23 +14,8 @@ using test_support::example;
 using test_support::KeepAll;
 using test_support::Kept;
 
-struct Figure {
-  rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
-  playback::Show show = config::load_show_file(example("shows/hello-head.yaml"));
-  std::size_t channel(const std::string& name) const {
-    for (std::size_t c = 0; c < rig.channels.size(); ++c)
-      if (rig.channels[c].name == name) return c;
-    throw std::invalid_argument(name);
-  }
-};
-
-SessionConfig stepped_config() {
-  SessionConfig config;
-  config.rate_hz = 50;
-  config.stepped = true;
-  config.links.simulate_all = true;
-  return config;
-}
+using Figure = test_support::HelloHead;
+using test_support::stepped_config;
 
 /// Calls `act` from the observer (on the stepped loop's thread, between ticks) at tick `at`.
 template <typename F>

@@ -78,6 +78,20 @@ struct ControllerOptions {
   ShowClock* show_clock = nullptr;
 };
 
+/// A show bound to a rig's channels, ready for a controller to sample: its sampler and, when the
+/// show has targets, its inverse-kinematics stage. Built off the loop thread (allocates, throws
+/// as Controller's constructor does), then handed to Controller::swap_show on it. `keep` holds
+/// the show alive where the binding owns it (a show edited while it plays); otherwise the show
+/// is borrowed and must outlive the binding.
+struct ShowBinding {
+  ShowBinding(const rig::Rig& rig, const playback::Show& show, std::span<const double> rest_frame,
+              std::shared_ptr<const playback::Show> keep = nullptr);
+  std::shared_ptr<const playback::Show> keep;
+  const playback::Show* show;
+  playback::Sampler sampler;
+  std::optional<IkStage> ik;  ///< when the show has targets for the rig's kinematics
+};
+
 class Controller {
  public:
   /// Binds the show's tracks to the rig's channels (names resolved here, once). The show must
@@ -86,6 +100,17 @@ class Controller {
   /// borrowed and must outlive the controller.
   Controller(const rig::Rig& rig, const playback::Show& show, std::vector<firmware_iface::ActuatorLink*> links,
              ControllerOptions options = {});
+
+  /// Binds another show (validated against this controller's rig) for swap_show. Allocates and
+  /// may throw (std::invalid_argument as the constructor); any thread, the controller is only
+  /// read (its rig and rest pose).
+  std::unique_ptr<ShowBinding> bind_show(std::shared_ptr<const playback::Show> show) const;
+
+  /// Plays `next` from now on, in every phase, and hands the binding it replaces back in `next`
+  /// (to be freed off the loop thread). Show time is not moved: the next tick samples the new
+  /// show at the same time, and the limiter turns any jump in the frame into a glide. Real-time
+  /// safe (pointer swaps; the new IK stage is seeded from the last command). Loop thread.
+  void swap_show(std::unique_ptr<ShowBinding>& next) noexcept;
 
   /// disabled -> homing at loop time now_s, from start_pose (the devices' reported positions,
   /// or the rest pose where unknown). Ignored in any other state.
@@ -142,7 +167,7 @@ class Controller {
   /// Show time of the last running tick (seconds into the show, growing across loops; negative
   /// during the lead-in).
   double show_time() const noexcept { return show_time_; }
-  double show_duration() const noexcept { return show_.duration; }
+  double show_duration() const noexcept { return binding_->show->duration; }
   /// Show time at which the show's last pass ends (before any lead-out); infinite for a show
   /// looping until stopped.
   double show_end() const noexcept;
@@ -158,12 +183,12 @@ class Controller {
   /// tracking check compared with that command.
   std::span<const double> measured() const noexcept { return feedback_; }
   /// Whether the show starts over at its end (Show::loop).
-  bool show_loops() const noexcept { return show_.loop; }
+  bool show_loops() const noexcept { return binding_->show->loop; }
   /// The frame that the last tick asked for before limits.
   std::span<const double> target() const noexcept { return target_; }
   const Limiter& limiter() const noexcept { return limiter_; }
   /// The inverse-kinematics stage, when the show has targets; nullptr otherwise.
-  const IkStage* ik() const noexcept { return ik_ ? &*ik_ : nullptr; }
+  const IkStage* ik() const noexcept { return binding_->ik ? &*binding_->ik : nullptr; }
   const StageTime& stage_time(Stage s) const noexcept { return stage_times_[static_cast<std::size_t>(s)]; }
   std::size_t channel_count() const noexcept { return rig_.channels.size(); }
   double tick_period() const noexcept { return options_.tick_period_s; }
@@ -184,14 +209,12 @@ class Controller {
   void sample_show(double show_time_s, std::span<double> frame) noexcept;
 
   const rig::Rig& rig_;
-  const playback::Show& show_;
   std::vector<firmware_iface::ActuatorLink*> links_;
   ControllerOptions options_;
-  playback::Sampler sampler_;
-  std::optional<IkStage> ik_;  ///< when the show has targets for the rig's kinematics
+  std::vector<double> rest_;
+  std::unique_ptr<ShowBinding> binding_;  ///< the show being played; never null
   Limiter limiter_;
   Ramp ramp_;
-  std::vector<double> rest_;
   Supervisor supervisor_;
   std::vector<double> failsafe_goal_;  ///< per channel, filled when a fault starts
   std::vector<double> ramp_velocity_;

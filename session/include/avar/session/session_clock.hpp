@@ -23,7 +23,9 @@ class SessionClock final : public control::ShowClock {
  public:
   /// `lead_in_s`: the controller's lead-in (ControllerOptions::lead_in_s). `external`: show
   /// time from elsewhere (borrowed; nullptr: the session's own). Start playing unless `paused`.
-  SessionClock(double lead_in_s, control::ShowClock* external, bool paused) noexcept;
+  /// `hold_at_end` (SessionConfig::hold_at_end): show time pauses where a pass would end the
+  /// show, instead of running on, and play there starts the show over.
+  SessionClock(double lead_in_s, control::ShowClock* external, bool paused, bool hold_at_end = false) noexcept;
 
   /// The controller this clock serves (for its show start and duration); set before its first
   /// tick.
@@ -48,6 +50,7 @@ class SessionClock final : public control::ShowClock {
   control::ShowClock* external_;
   const control::Controller* controller_ = nullptr;
   bool playing_;
+  bool hold_at_end_;
   bool anchored_ = false;  ///< show time comes from the anchor (a command moved it)
   double anchor_show_s_ = 0;
   double anchor_now_s_ = 0;

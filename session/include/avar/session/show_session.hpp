@@ -26,9 +26,11 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -67,6 +69,10 @@ struct SessionConfig {
   control::ShowClock* external_clock = nullptr;
   /// Show time stands at the first frame until play.
   bool start_paused = false;
+  /// The run does not end with the show (an editor's session): show time stops at the end of a
+  /// pass that would end the show, the figure holds that frame (lead_out_s is ignored), and play
+  /// there starts the show over; the run ends on stop, Ctrl-C or a fault.
+  bool hold_at_end = false;
   control::RealtimeRequest realtime{50, true, -1};  ///< the loop thread's scheduling (real time)
   std::uint64_t deadline_miss_budget = UINT64_MAX;  ///< more misses in a run is a fault
   std::size_t command_capacity = 64;                ///< queued commands
@@ -97,6 +103,15 @@ class ShowSession final : private control::TickObserver {
   ShowSession(const ShowSession&) = delete;
   ShowSession& operator=(const ShowSession&) = delete;
 
+  /// Plays another show from the run's next tick (a show edited while it plays), at the same
+  /// show time; the limiter turns the change into a glide. The show must be validated against
+  /// the rig; the session shares it until a later show replaces it. Any thread, the loop's
+  /// observers included (callers are serialised). Binds the show here, off the loop thread
+  /// (std::invalid_argument as Controller's constructor); the loop takes it at its next tick
+  /// without allocating. False, and nothing changes, when no run is under way or the show
+  /// handed over before is still waiting for a tick after `wait`. The next begin() plays the
+  /// show load() gave again.
+  bool replace_show(std::shared_ptr<const playback::Show> show, std::chrono::milliseconds wait = std::chrono::milliseconds(1000));
   /// Replaces the show (borrowed) for the next begin(). Only while no run is under way:
   /// std::logic_error otherwise. The show must be validated against the rig already.
   void load(const playback::Show& show);
@@ -172,6 +187,14 @@ class ShowSession final : private control::TickObserver {
   std::array<CommandRecord, kMaxCommandsPerTick> taken_{};
   std::size_t taken_count_ = 0;
   bool estop_seen_ = false;
+  // The show hand-over (replace_show): the replacing thread stores a binding in pending_show_
+  // only when it is null; the loop thread swaps it in, leaves the binding it replaced in
+  // retired_show_, then clears pending_show_ (release). The replacing thread frees retired_show_
+  // only after it saw pending_show_ null (acquire): each side writes only in its own state.
+  std::mutex replace_mutex_;
+  std::atomic<control::ShowBinding*> pending_show_{nullptr};
+  control::ShowBinding* retired_show_ = nullptr;
+  void free_handover() noexcept;
 };
 
 }  // namespace avar::session
