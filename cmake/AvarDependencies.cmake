@@ -15,6 +15,10 @@ pkg_check_modules(LIBLO REQUIRED IMPORTED_TARGET liblo)
 pkg_check_modules(SNDFILE REQUIRED IMPORTED_TARGET sndfile)
 # Rhubarb Lip Sync's JSON mouth cues.
 find_package(nlohmann_json REQUIRED)
+# HTTP and WebSocket for the studio's server: CivetWeb, one small embeddable C library for both.
+# Found by hand: Debian's CMake package for it names a server binary the -dev package lacks.
+find_path(CIVETWEB_INCLUDE_DIR civetweb.h REQUIRED)
+find_library(CIVETWEB_LIBRARY civetweb REQUIRED)
 # SMPTE linear timecode (LTC) decoding for the timecode chase.
 pkg_check_modules(LTC REQUIRED IMPORTED_TARGET ltc)
 # ALSA PCM capture: LTC from a sound card input (--timecode ltc:alsa:DEVICE).

@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config make
           libserial-dev libyaml-cpp-dev libcli11-dev libeigen3-dev
           liburdfdom-dev libtinyxml-dev
-          libtinygltf-dev nlohmann-json3-dev libsndfile1-dev libltc-dev libasound2-dev
+          libtinygltf-dev nlohmann-json3-dev libcivetweb-dev libsndfile1-dev libltc-dev libasound2-dev
           ola espeak-ng sox
           libusb-1.0-0-dev libhidapi-dev libgpiod-dev librtmidi-dev liblo-dev
           libgtest-dev libgmock-dev libbenchmark-dev

@@ -55,7 +55,7 @@ void ShowSession::free_handover() noexcept {
 
 bool ShowSession::replace_show(std::shared_ptr<const playback::Show> show, std::chrono::milliseconds wait) {
   const std::lock_guard<std::mutex> lock(replace_mutex_);
-  if (!controller_) throw std::logic_error("replace_show() before begin()");
+  if (!controller_) return false;
   std::unique_ptr<control::ShowBinding> next = controller_->bind_show(std::move(show));
   // The show handed over before must have been taken first.
   const auto deadline = std::chrono::steady_clock::now() + wait;

@@ -1,0 +1,241 @@
+#include "avar/studio/studio.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "avar/config/show_writer.hpp"
+#include "avar/core/input_error.hpp"
+#include "avar/studio/protocol.hpp"
+
+namespace avar::studio {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kMaxRefusedKept = 64;
+
+/// A measurement that may be missing (NaN): null then.
+json maybe(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json rig_json(const rig::Rig& rig) {
+  json channels = json::array();
+  for (const rig::ChannelSpec& c : rig.channels)
+    channels.push_back({{"name", c.name},
+                        {"unit", c.unit},
+                        {"kind", c.digital() ? "digital" : "analog"},
+                        {"min", c.min},
+                        {"max", c.max},
+                        {"rest", c.rest},
+                        {"max_velocity", maybe(c.max_velocity)},
+                        {"max_acceleration", maybe(c.max_acceleration)},
+                        {"max_jerk", maybe(c.max_jerk)}});
+  json links = json::array();
+  for (const rig::LinkSpec& l : rig.links) links.push_back({{"name", l.name}, {"protocol", l.protocol}, {"port", l.port}});
+  return {{"name", rig.name}, {"rate_hz", rig.rate_hz}, {"channels", channels}, {"links", links}};
+}
+
+std::string error_reply(std::string_view request, const std::string& problem) {
+  return json{{"type", "error"}, {"request", request}, {"message", problem}}.dump();
+}
+
+std::string ok_reply(std::string_view request) { return json{{"type", "ok"}, {"request", request}}.dump(); }
+
+/// The message type a client sent, for naming it in a reply ("" when it is not readable).
+std::string request_type(std::string_view message) {
+  const json j = json::parse(message, nullptr, false);
+  if (j.is_object() && j.contains("type") && j["type"].is_string()) return j["type"].get<std::string>();
+  return "";
+}
+
+}  // namespace
+
+Studio::Studio(const rig::Rig& rig, edit::ShowDocument document, std::string show_path)
+    : rig_(rig),
+      document_(std::move(document)),
+      show_path_(std::move(show_path)),
+      playing_(std::make_shared<const playback::Show>(document_.show())) {
+  for (const rig::ChannelSpec& c : rig.channels) channel_names_.push_back(c.name);
+}
+
+void Studio::attach(session::ShowSession* session) {
+  const std::lock_guard lock(mutex_);
+  session_ = session;
+}
+
+std::string Studio::show_fields() const {
+  const json head = {{"version", version_},
+                     {"file", show_path_.empty() ? json(nullptr) : json(show_path_)},
+                     {"modified", document_.modified()},
+                     {"undo", document_.undo_label()},
+                     {"redo", document_.redo_label()}};
+  // The show's JSON is spliced in as the writer wrote it: numbers that read back to the same
+  // doubles.
+  const std::string fields = head.dump();
+  return fields.substr(1, fields.size() - 2) + ",\"show\":" + config::show_json(document_.show());
+}
+
+std::string Studio::show_message() const { return "{\"type\":\"show\"," + show_fields() + "}"; }
+
+std::string Studio::hello() const {
+  std::string head = json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}}.dump();
+  head.pop_back();
+  const std::lock_guard lock(mutex_);
+  return head + "," + show_fields() + "}";
+}
+
+void Studio::play_document() {
+  playing_ = std::make_shared<const playback::Show>(document_.show());
+  ++version_;
+  // The figure follows while the run lasts; without one the document alone changes.
+  if (session_) (void)session_->replace_show(playing_);
+}
+
+Replies Studio::handle(std::string_view message) {
+  const std::string type = request_type(message);
+  Replies out;
+  const std::lock_guard lock(mutex_);
+  try {
+    const ClientMessage parsed = parse_client_message(message, channel_names_);
+    std::visit(
+        [&](const auto& m) {
+          using M = std::decay_t<decltype(m)>;
+          if constexpr (std::is_same_v<M, session::Command>) {
+            if (!session_) throw ProtocolError("message '" + type + "': no figure is running");
+            if (!session_->command(m))
+              throw ProtocolError("message '" + type + "': the figure's command queue is full; send it again");
+            out.to_sender = ok_reply(type);
+          } else if constexpr (std::is_same_v<M, Estop>) {
+            if (session_) session_->estop();
+            out.to_sender = ok_reply(type);
+          } else if constexpr (std::is_same_v<M, Edit>) {
+            if (m.continues) document_.continue_last(m.edits);
+            else document_.apply(m.edits);
+            play_document();
+            out.to_sender = ok_reply(type);
+            out.to_all.push_back(show_message());
+          } else if constexpr (std::is_same_v<M, Undo> || std::is_same_v<M, Redo>) {
+            const bool done = std::is_same_v<M, Undo> ? document_.undo() : document_.redo();
+            if (!done) throw ProtocolError("message '" + type + "': there is nothing to " + type);
+            play_document();
+            out.to_sender = ok_reply(type);
+            out.to_all.push_back(show_message());
+          } else {
+            static_assert(std::is_same_v<M, Save>);
+            if (show_path_.empty())
+              throw ProtocolError("message 'save': the show has no file; start the studio with a show path to save to");
+            document_.save(show_path_);
+            out.to_sender = json{{"type", "saved"}, {"file", show_path_}}.dump();
+            out.to_all.push_back(show_message());
+          }
+        },
+        parsed);
+  } catch (const ProtocolError& e) {
+    out = {error_reply(type, e.what()), {}};
+  } catch (const edit::EditError& e) {
+    out = {error_reply(type, std::string("message '") + type + "': " + e.what()), {}};
+  } catch (const InputError& e) {
+    out = {error_reply(type, std::string("message '") + type + "': " + e.what()), {}};
+  }
+  return out;
+}
+
+void Studio::on_tick(const session::TickRecord& record) {
+  const std::lock_guard lock(status_mutex_);
+  newest_.tick = record.tick;
+  newest_.show_time_s = record.show_time_s;
+  newest_.paused = record.paused;
+  newest_.estop = record.estop;
+  newest_.stop_requested = record.stop_requested;
+  newest_.phase = record.phase;
+  newest_.fault = record.fault;
+  newest_.channels.assign(record.channels.begin(), record.channels.end());
+  newest_.links.assign(record.links.begin(), record.links.end());
+  for (std::size_t i = 0; i < record.command_count; ++i)
+    if (record.commands[i].outcome != session::CommandOutcome::applied && refused_.size() < kMaxRefusedKept)
+      refused_.push_back(record.commands[i]);
+  fresh_ = true;
+}
+
+std::string Studio::status() {
+  Snapshot s;
+  {
+    const std::lock_guard lock(status_mutex_);
+    s = newest_;
+  }
+  return status_json(s);
+}
+
+std::vector<std::string> Studio::take_status() {
+  Snapshot s;
+  std::vector<session::CommandRecord> refused;
+  {
+    const std::lock_guard lock(status_mutex_);
+    if (!fresh_ && refused_.empty()) return {};
+    fresh_ = false;
+    s = newest_;
+    refused.swap(refused_);
+  }
+  std::vector<std::string> out;
+  for (const session::CommandRecord& r : refused) {
+    json m = {{"type", "refused"}, {"command", session::to_string(r.command.kind)}, {"outcome", session::to_string(r.outcome)}};
+    if (r.command.kind == session::CommandKind::hold || r.command.kind == session::CommandKind::release)
+      m["channel"] = r.command.channel < channel_names_.size() ? json(channel_names_[r.command.channel]) : json(nullptr);
+    out.push_back(m.dump());
+  }
+  out.push_back(status_json(s));
+  return out;
+}
+
+std::string Studio::status_json(const Snapshot& s) const {
+  json channels = json::array();
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    const session::ChannelRecord& ch = s.channels[c];
+    channels.push_back({{"name", channel_names_[c]},
+                        {"target", maybe(ch.target)},
+                        {"command", maybe(ch.command)},
+                        {"measured", maybe(ch.measured)},
+                        {"held", ch.held},
+                        {"temperature", maybe(ch.temperature_c)},
+                        {"load", maybe(ch.load)},
+                        {"device_faults", ch.device_faults}});
+  }
+  json links = json::array();
+  for (std::size_t l = 0; l < s.links.size(); ++l) {
+    const firmware_iface::LinkCounters& k = s.links[l];
+    links.push_back({{"name", l < rig_.links.size() ? rig_.links[l].name : std::string()},
+                     {"exchanges", k.exchanges},
+                     {"bytes_sent", k.bytes_sent},
+                     {"bytes_received", k.bytes_received},
+                     {"replies", k.replies},
+                     {"crc_errors", k.crc_errors},
+                     {"timeouts", k.timeouts},
+                     {"retries", k.retries},
+                     {"device_errors", k.device_errors},
+                     {"reconnects", k.reconnects}});
+  }
+  json fault = nullptr;
+  if (s.fault.cause != control::FaultCause::none)
+    fault = {{"cause", control::to_string(s.fault.cause)}, {"index", s.fault.index}, {"value", maybe(s.fault.value)}};
+  double duration = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    duration = playing_->duration;
+  }
+  return json{{"type", "status"},
+              {"tick", s.tick},
+              {"phase", control::to_string(s.phase)},
+              {"show_time", s.show_time_s},
+              {"duration", duration},
+              {"paused", s.paused},
+              {"estop", s.estop},
+              {"stopping", s.stop_requested},
+              {"fault", fault},
+              {"channels", channels},
+              {"links", links}}
+      .dump();
+}
+
+}  // namespace avar::studio

@@ -1,0 +1,206 @@
+// The studio apart from its transport: what a client is told when it connects, edits that reach
+// the running figure at the next tick, undo and redo, save (the original bytes when the show is
+// as opened), refusals that name what was wrong, and the status made from the tick records.
+#include "avar/studio/studio.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
+#include "support/temp_file.hpp"
+
+namespace avar::studio {
+namespace {
+
+using nlohmann::json;
+
+std::string example(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Calls `act` with every record, on the stepped loop's thread between ticks.
+class EachTick final : public session::SessionObserver {
+ public:
+  explicit EachTick(std::function<void(const session::TickRecord&)> act) : act_(std::move(act)) {}
+  void on_tick(const session::TickRecord& r) override { act_(r); }
+
+ private:
+  std::function<void(const session::TickRecord&)> act_;
+};
+
+/// The hello-head figure in a studio: the show copied to a file of the test's own, a stepped
+/// session on simulated links playing the studio's copy.
+struct StudioFigure {
+  rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
+  std::string original = read_all(example("shows/hello-head.yaml"));
+  std::string path = testing::write_temp_file("show.yaml", original);
+  Studio studio{rig, edit::ShowDocument::open(path), path};
+  session::ShowSession session{rig, studio.initial_show(), config()};
+  std::atomic<int> interrupts{0};
+
+  static session::SessionConfig config() {
+    session::SessionConfig c;
+    c.stepped = true;
+    c.links.simulate_all = true;
+    c.hold_at_end = true;
+    c.start_paused = true;
+    return c;
+  }
+  StudioFigure() { studio.attach(&session); }
+  ~StudioFigure() { studio.attach(nullptr); }
+  std::size_t channel(const std::string& name) const { return *rig.find_channel(name); }
+  /// Runs the session with `act` called every tick; `act` returns false to stop the run.
+  void run(const std::function<bool(const session::TickRecord&)>& act) {
+    bool stopped = false;
+    EachTick each([&](const session::TickRecord& r) {
+      if (!stopped && !act(r)) {
+        stopped = true;
+        session.stop();
+      }
+    });
+    session.add_observer(studio);
+    session.add_observer(each);
+    ASSERT_FALSE(session.start_links());
+    session.begin();
+    (void)session.run(interrupts);
+  }
+};
+
+json reply(const Replies& r) { return json::parse(r.to_sender); }
+
+TEST(Studio, HelloTellsTheRigAndTheShow) {
+  StudioFigure f;
+  const json hello = json::parse(f.studio.hello());
+  EXPECT_EQ(hello["type"], "hello");
+  EXPECT_EQ(hello["protocol"], 1);
+  EXPECT_EQ(hello["rig"]["name"], "hello-head");
+  ASSERT_EQ(hello["rig"]["channels"].size(), f.rig.channels.size());
+  const json& jaw = hello["rig"]["channels"][f.channel("jaw")];
+  EXPECT_EQ(jaw["name"], "jaw");
+  EXPECT_EQ(jaw["min"].get<double>(), f.rig.channels[f.channel("jaw")].min);
+  EXPECT_EQ(jaw["max_velocity"].get<double>(), f.rig.channels[f.channel("jaw")].max_velocity);
+  EXPECT_EQ(hello["show"]["name"], "hello-head");
+  EXPECT_EQ(hello["version"], 0);
+  EXPECT_EQ(hello["file"], f.path);
+  EXPECT_EQ(hello["modified"], false);
+  EXPECT_EQ(hello["undo"], "");
+}
+
+TEST(Studio, AnEditReachesTheFigureAtTheNextTickAndUndoTakesItBack) {
+  StudioFigure f;
+  const std::size_t jaw = f.channel("jaw");
+  std::vector<double> targets;
+  Replies edited, undone;
+  f.run([&](const session::TickRecord& r) {
+    targets.push_back(r.channels[jaw].target);
+    if (r.tick == 5) (void)f.studio.handle(R"({"type": "scrub", "time": 6.8})");
+    if (r.tick == 100)  // the jaw's key at 6.8 s, 18 -> 8
+      edited =
+          f.studio.handle(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0, "dv": -10}]})");
+    if (r.tick == 200) undone = f.studio.handle(R"({"type": "undo"})");
+    return r.tick < 300;
+  });
+  EXPECT_EQ(reply(edited)["type"], "ok");
+  ASSERT_EQ(edited.to_all.size(), 1u);
+  const json show = json::parse(edited.to_all[0]);
+  EXPECT_EQ(show["type"], "show");
+  EXPECT_EQ(show["version"], 1);
+  EXPECT_EQ(show["modified"], true);
+  EXPECT_EQ(show["show"]["tracks"]["jaw"][2]["value"].get<double>(), 8.0);
+  EXPECT_EQ(json::parse(undone.to_all.at(0))["version"], 2);
+  EXPECT_EQ(json::parse(undone.to_all.at(0))["modified"], false);
+  ASSERT_GT(targets.size(), 300u);
+  EXPECT_DOUBLE_EQ(targets[100], 18.0);
+  EXPECT_DOUBLE_EQ(targets[101], 8.0);
+  EXPECT_DOUBLE_EQ(targets[201], 18.0);
+}
+
+TEST(Studio, SavesTheOriginalBytesWhenTheShowIsAsOpenedAndTheEditOtherwise) {
+  StudioFigure f;
+  const Replies moved =
+      f.studio.handle(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0.05, "dv": 0}]})");
+  ASSERT_EQ(reply(moved)["type"], "ok");
+  const Replies saved = f.studio.handle(R"({"type": "save"})");
+  EXPECT_EQ(reply(saved)["type"], "saved");
+  EXPECT_EQ(reply(saved)["file"], f.path);
+  const std::string edited = read_all(f.path);
+  EXPECT_NE(edited, f.original);
+  const json reread = json::parse(config::show_json(config::load_show_file(f.path)));
+  EXPECT_NEAR(reread["tracks"]["jaw"][2]["time"].get<double>(), 6.85, 1e-12);
+  ASSERT_EQ(reply(f.studio.handle(R"({"type": "undo"})"))["type"], "ok");
+  ASSERT_EQ(reply(f.studio.handle(R"({"type": "save"})"))["type"], "saved");
+  EXPECT_EQ(read_all(f.path), f.original);
+}
+
+TEST(Studio, RefusalsNameWhatWasWrongAndChangeNothing) {
+  StudioFigure f;
+  const json nothing = reply(f.studio.handle(R"({"type": "undo"})"));
+  EXPECT_EQ(nothing["type"], "error");
+  EXPECT_EQ(nothing["request"], "undo");
+  EXPECT_EQ(nothing["message"], "message 'undo': there is nothing to undo");
+  const json clash =
+      reply(f.studio.handle(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0.2, "dv": 0}]})"));
+  EXPECT_EQ(clash["type"], "error");
+  EXPECT_NE(clash["message"].get<std::string>().find("jaw"), std::string::npos) << clash["message"];
+  const json unknown = reply(f.studio.handle(R"({"type": "hold", "channel": "tail", "value": 1})"));
+  EXPECT_EQ(unknown["type"], "error");
+  EXPECT_NE(unknown["message"].get<std::string>().find("tail"), std::string::npos);
+  const json garbage = reply(f.studio.handle("not json"));
+  EXPECT_EQ(garbage["type"], "error");
+  EXPECT_FALSE(f.studio.document().modified());
+  EXPECT_EQ(json::parse(f.studio.hello())["version"], 0);
+}
+
+TEST(Studio, ASliderHoldsItsChannelAndTheStatusSaysWhereTheFigureIs) {
+  StudioFigure f;
+  const std::size_t jaw = f.channel("jaw");
+  std::vector<std::string> statuses;
+  f.run([&](const session::TickRecord& r) {
+    if (r.tick == 5) {
+      EXPECT_EQ(reply(f.studio.handle(R"({"type": "hold", "channel": "jaw", "value": 15})"))["type"], "ok");
+    }
+    if (r.tick % 10 == 0)
+      for (std::string& s : f.studio.take_status()) statuses.push_back(std::move(s));
+    return r.tick < 300;
+  });
+  ASSERT_FALSE(statuses.empty());
+  const json last = json::parse(statuses.back());
+  EXPECT_EQ(last["type"], "status");
+  EXPECT_EQ(last["phase"], "running");
+  EXPECT_EQ(last["paused"], true);
+  EXPECT_EQ(last["show_time"].get<double>(), 0.0);
+  EXPECT_EQ(last["fault"], nullptr);
+  const json& ch = last["channels"][jaw];
+  EXPECT_EQ(ch["name"], "jaw");
+  EXPECT_EQ(ch["held"], true);
+  EXPECT_NEAR(ch["command"].get<double>(), 15.0, 1e-9);
+  EXPECT_NEAR(ch["measured"].get<double>(), 15.0, 0.5);  // the simulated servo is getting there
+  ASSERT_EQ(last["links"].size(), f.rig.links.size());
+  EXPECT_EQ(last["links"][0]["name"], f.rig.links[0].name);
+}
+
+TEST(Studio, CommandsWaitForAFigureButEditsDoNot) {
+  const rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
+  Studio studio(rig, edit::ShowDocument(config::load_show_file(example("shows/hello-head.yaml"))), "");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "play"})"))["message"], "message 'play': no figure is running");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "edit", "edits": [{"op": "delete", "channel": "jaw", "keys": [0]}]})"))["type"],
+            "ok");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "save"})"))["message"],
+            "message 'save': the show has no file; start the studio with a show path to save to");
+}
+
+}  // namespace
+}  // namespace avar::studio
