@@ -1,0 +1,261 @@
+// The studio's server end to end, as a program other than the page drives it: a WebSocket client
+// (CivetWeb's) against a real-time session on the simulated hello-head figure. A slider's hold
+// moves the simulated servo, a scrub moves show time, an edit comes back to every client, the
+// token guards any address but loopback, and the HTTP API answers GET.
+#include "avar/studio/server.hpp"
+
+#include <arpa/inet.h>
+#include <civetweb.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+
+namespace avar::studio {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+std::string example_file(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
+
+/// A WebSocket client that keeps every message it gets.
+class Client {
+ public:
+  /// Connects to ws://127.0.0.1:port + path; connected() says whether it did.
+  Client(int port, const std::string& path) {
+    char error[256] = {};
+    conn_ = mg_connect_websocket_client("127.0.0.1", port, 0, error, sizeof error, path.c_str(), nullptr, &Client::data,
+                                        &Client::closed, this);
+    error_ = error;
+  }
+  ~Client() {
+    if (conn_) mg_close_connection(conn_);
+  }
+  Client(const Client&) = delete;
+  Client& operator=(const Client&) = delete;
+  bool connected() const { return conn_ != nullptr; }
+  const std::string& error() const { return error_; }
+
+  void send(const std::string& text) {
+    ASSERT_GT(mg_websocket_client_write(conn_, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size()), 0);
+  }
+  /// The next message of `type` (others before it are dropped), within 5 s.
+  std::optional<json> next(const std::string& type) {
+    return wait_for([&](const json& m) { return m["type"] == type; });
+  }
+  /// The first message, from now on, that `accept` takes, within 5 s.
+  std::optional<json> wait_for(const std::function<bool(const json&)>& accept) {
+    std::unique_lock lock(mutex_);
+    const auto deadline = std::chrono::steady_clock::now() + 5s;
+    for (;;) {
+      while (!inbox_.empty()) {
+        json m = json::parse(inbox_.front());
+        inbox_.pop_front();
+        if (accept(m)) return m;
+      }
+      if (arrived_.wait_until(lock, deadline) == std::cv_status::timeout && inbox_.empty()) return std::nullopt;
+    }
+  }
+
+ private:
+  static int data(mg_connection*, int bits, char* data, std::size_t length, void* user) {
+    auto* self = static_cast<Client*>(user);
+    if ((bits & 0xf) != MG_WEBSOCKET_OPCODE_TEXT) return 1;
+    {
+      const std::lock_guard lock(self->mutex_);
+      self->inbox_.emplace_back(data, length);
+    }
+    self->arrived_.notify_all();
+    return 1;
+  }
+  static void closed(const mg_connection*, void*) {}
+
+  mg_connection* conn_ = nullptr;
+  std::string error_;
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::deque<std::string> inbox_;
+};
+
+/// GET `target` from 127.0.0.1:port over plain HTTP/1.0: the status line and the body.
+std::pair<std::string, std::string> http_get(int port, const std::string& target) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    ::close(fd);
+    return {"no connection", ""};
+  }
+  const std::string request = "GET " + target + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+  (void)::write(fd, request.data(), request.size());
+  std::string response;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(n));
+  ::close(fd);
+  const std::size_t line_end = response.find("\r\n");
+  const std::size_t body = response.find("\r\n\r\n");
+  return {response.substr(0, line_end), body == std::string::npos ? "" : response.substr(body + 4)};
+}
+
+/// The hello-head figure behind a studio server, its session running in real time on a thread
+/// of its own until stopped.
+struct ServedFigure {
+  rig::Rig rig = config::load_rig_file(example_file("rigs/hello-head.yaml"));
+  Studio studio{rig, edit::ShowDocument(config::load_show_file(example_file("shows/hello-head.yaml"))), ""};
+  session::ShowSession session{rig, studio.initial_show(), config()};
+  std::atomic<int> interrupts{0};
+  std::optional<Server> server;
+  std::thread runner;
+
+  static session::SessionConfig config() {
+    session::SessionConfig c;
+    c.rate_hz = 100;
+    c.links.simulate_all = true;
+    c.hold_at_end = true;
+    c.start_paused = true;
+    c.realtime = {0, false, -1};
+    return c;
+  }
+  explicit ServedFigure(ServerOptions options = {}) {
+    studio.attach(&session);
+    session.add_observer(studio);
+    EXPECT_FALSE(session.start_links());
+    session.begin();
+    server.emplace(studio, options);
+    runner = std::thread([this] { (void)session.run(interrupts); });
+  }
+  ~ServedFigure() {
+    session.stop();
+    runner.join();
+    server.reset();
+    studio.attach(nullptr);
+  }
+  std::size_t channel(const std::string& name) const { return *rig.find_channel(name); }
+};
+
+TEST(StudioServer, ASliderMovesTheSimulatedServoAndAScrubMovesShowTime) {
+  ServedFigure f;
+  Client client(f.server->port(), "/ws");
+  ASSERT_TRUE(client.connected()) << client.error();
+  const auto hello = client.next("hello");
+  ASSERT_TRUE(hello);
+  EXPECT_EQ((*hello)["rig"]["name"], "hello-head");
+  EXPECT_EQ(f.server->clients(), 1u);
+
+  const std::size_t jaw = f.channel("jaw");
+  // The simulated servo settles within its pulse resolution of the command.
+  client.send(R"({"type": "hold", "channel": "jaw", "value": 15})");
+  const auto ok = client.next("ok");
+  ASSERT_TRUE(ok);
+  EXPECT_EQ((*ok)["request"], "hold");
+  std::string jaw_seen;
+  const auto there = client.wait_for([&](const json& m) {
+    if (m["type"] == "status") jaw_seen = m["channels"][jaw].dump() + m["phase"].dump();
+    return m["type"] == "status" && m["channels"][jaw]["measured"].is_number() &&
+           std::abs(m["channels"][jaw]["measured"].get<double>() - 15.0) < 0.2;
+  });
+  ASSERT_TRUE(there) << "the simulated jaw did not reach 15: " << jaw_seen;
+  EXPECT_EQ((*there)["channels"][jaw]["held"], true);
+
+  client.send(R"({"type": "scrub", "time": 7.2})");
+  std::string last;
+  const auto scrubbed = client.wait_for([&](const json& m) {
+    last = m.dump().substr(0, 300);
+    return m["type"] == "status" && m["show_time"] == 7.2;
+  });
+  ASSERT_TRUE(scrubbed) << last;
+  EXPECT_EQ((*scrubbed)["paused"], true);
+}
+
+TEST(StudioServer, AnEditGoesBackToEveryClientAndARefusalOnlyToItsSender) {
+  ServedFigure f;
+  Client editor(f.server->port(), "/ws");
+  Client watcher(f.server->port(), "/ws");
+  ASSERT_TRUE(editor.connected() && watcher.connected());
+  ASSERT_TRUE(editor.next("hello"));
+  ASSERT_TRUE(watcher.next("hello"));
+  editor.send(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0, "dv": -10}]})");
+  ASSERT_TRUE(editor.next("ok"));
+  const auto seen = watcher.next("show");
+  ASSERT_TRUE(seen);
+  EXPECT_EQ((*seen)["version"], 1);
+  EXPECT_EQ((*seen)["show"]["tracks"]["jaw"][2]["value"].get<double>(), 8.0);
+  editor.send(R"({"type": "redo"})");
+  const auto refused = editor.next("error");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ((*refused)["message"], "message 'redo': there is nothing to redo");
+  // The watcher hears of no refusal: its next show is the undo's.
+  editor.send(R"({"type": "undo"})");
+  const auto next = watcher.wait_for([](const json& m) { return m["type"] == "error" || m["type"] == "show"; });
+  ASSERT_TRUE(next);
+  EXPECT_EQ((*next)["type"], "show");
+  EXPECT_EQ((*next)["version"], 2);
+}
+
+TEST(StudioServer, OffLoopbackEveryRequestNeedsTheToken) {
+  ServerOptions options;
+  options.host = "0.0.0.0";
+  ServedFigure f(options);
+  const std::string token = f.server->token();
+  ASSERT_EQ(token.size(), 32u);
+  EXPECT_NE(f.server->url().find("?token=" + token), std::string::npos);
+  Client stranger(f.server->port(), "/ws");
+  EXPECT_FALSE(stranger.connected());
+  Client wrong(f.server->port(), "/ws?token=0123");
+  EXPECT_FALSE(wrong.connected());
+  Client user(f.server->port(), "/ws?token=" + token);
+  ASSERT_TRUE(user.connected()) << user.error();
+  EXPECT_TRUE(user.next("hello"));
+  EXPECT_EQ(http_get(f.server->port(), "/api/hello").first, "HTTP/1.0 403 Forbidden");
+  const auto [status, body] = http_get(f.server->port(), "/api/hello?token=" + token);
+  EXPECT_EQ(status, "HTTP/1.0 200 OK");
+  EXPECT_EQ(json::parse(body)["type"], "hello");
+}
+
+TEST(StudioServer, TheHttpApiAnswersGet) {
+  ServedFigure f;
+  EXPECT_TRUE(f.server->token().empty());
+  EXPECT_EQ(f.server->url(), "http://127.0.0.1:" + std::to_string(f.server->port()) + "/");
+  const auto [hello_status, hello] = http_get(f.server->port(), "/api/hello");
+  EXPECT_EQ(hello_status, "HTTP/1.0 200 OK");
+  EXPECT_EQ(json::parse(hello)["show"]["name"], "hello-head");
+  std::this_thread::sleep_for(100ms);  // some ticks
+  const auto [status_line, status] = http_get(f.server->port(), "/api/status");
+  EXPECT_EQ(status_line, "HTTP/1.0 200 OK");
+  EXPECT_EQ(json::parse(status)["type"], "status");
+  EXPECT_EQ(json::parse(status)["channels"].size(), f.rig.channels.size());
+  EXPECT_EQ(http_get(f.server->port(), "/api/nothing").first, "HTTP/1.0 404 Not Found");
+  EXPECT_EQ(http_get(f.server->port(), "/").first, "HTTP/1.0 404 Not Found");
+}
+
+TEST(StudioServer, AnAddressInUseIsNamed) {
+  ServedFigure f;
+  ServerOptions taken;
+  taken.port = f.server->port();
+  try {
+    Server second(f.studio, taken);
+    FAIL() << "a second server listened on the same port";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(taken.port)), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace avar::studio
