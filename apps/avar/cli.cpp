@@ -13,6 +13,7 @@
 #include "avar/mocap_command.hpp"
 #include "avar/jaw_command.hpp"
 #include "avar/play_command.hpp"
+#include "avar/studio_command.hpp"
 #include "avar/sample_command.hpp"
 #include "avar/sim_command.hpp"
 #include "avar/timecode_options.hpp"
@@ -205,6 +206,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   SimCommands sims;
   add_sim_subcommands(app, sims);
 
+  StudioOptions studio;
+  CLI::App* studio_cmd = add_studio_subcommand(app, studio);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -241,6 +245,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*jaw_cmd) return run_jaw(jaw, out, err);
   if (*visemes_cmd) return run_visemes(visemes, out, err);
   if (*sims.sim) return run_sim(sims, out, err);
+  if (*studio_cmd) return run_studio(studio, out, err);
   return kExitBadInput;
 }
 

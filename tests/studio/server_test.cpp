@@ -4,19 +4,10 @@
 // token guards any address but loopback, and the HTTP API answers GET.
 #include "avar/studio/server.hpp"
 
-#include <arpa/inet.h>
-#include <civetweb.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <functional>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -24,95 +15,17 @@
 
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
+#include "support/studio_client.hpp"
 
 namespace avar::studio {
 namespace {
 
 using nlohmann::json;
+using testing::http_get;
+using testing::StudioClient;
 using namespace std::chrono_literals;
 
 std::string example_file(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
-
-/// A WebSocket client that keeps every message it gets.
-class Client {
- public:
-  /// Connects to ws://127.0.0.1:port + path; connected() says whether it did.
-  Client(int port, const std::string& path) {
-    char error[256] = {};
-    conn_ = mg_connect_websocket_client("127.0.0.1", port, 0, error, sizeof error, path.c_str(), nullptr, &Client::data,
-                                        &Client::closed, this);
-    error_ = error;
-  }
-  ~Client() {
-    if (conn_) mg_close_connection(conn_);
-  }
-  Client(const Client&) = delete;
-  Client& operator=(const Client&) = delete;
-  bool connected() const { return conn_ != nullptr; }
-  const std::string& error() const { return error_; }
-
-  void send(const std::string& text) {
-    ASSERT_GT(mg_websocket_client_write(conn_, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size()), 0);
-  }
-  /// The next message of `type` (others before it are dropped), within 5 s.
-  std::optional<json> next(const std::string& type) {
-    return wait_for([&](const json& m) { return m["type"] == type; });
-  }
-  /// The first message, from now on, that `accept` takes, within 5 s.
-  std::optional<json> wait_for(const std::function<bool(const json&)>& accept) {
-    std::unique_lock lock(mutex_);
-    const auto deadline = std::chrono::steady_clock::now() + 5s;
-    for (;;) {
-      while (!inbox_.empty()) {
-        json m = json::parse(inbox_.front());
-        inbox_.pop_front();
-        if (accept(m)) return m;
-      }
-      if (arrived_.wait_until(lock, deadline) == std::cv_status::timeout && inbox_.empty()) return std::nullopt;
-    }
-  }
-
- private:
-  static int data(mg_connection*, int bits, char* data, std::size_t length, void* user) {
-    auto* self = static_cast<Client*>(user);
-    if ((bits & 0xf) != MG_WEBSOCKET_OPCODE_TEXT) return 1;
-    {
-      const std::lock_guard lock(self->mutex_);
-      self->inbox_.emplace_back(data, length);
-    }
-    self->arrived_.notify_all();
-    return 1;
-  }
-  static void closed(const mg_connection*, void*) {}
-
-  mg_connection* conn_ = nullptr;
-  std::string error_;
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::deque<std::string> inbox_;
-};
-
-/// GET `target` from 127.0.0.1:port over plain HTTP/1.0: the status line and the body.
-std::pair<std::string, std::string> http_get(int port, const std::string& target) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
-    ::close(fd);
-    return {"no connection", ""};
-  }
-  const std::string request = "GET " + target + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
-  (void)::write(fd, request.data(), request.size());
-  std::string response;
-  char buffer[4096];
-  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(n));
-  ::close(fd);
-  const std::size_t line_end = response.find("\r\n");
-  const std::size_t body = response.find("\r\n\r\n");
-  return {response.substr(0, line_end), body == std::string::npos ? "" : response.substr(body + 4)};
-}
 
 /// The hello-head figure behind a studio server, its session running in real time on a thread
 /// of its own until stopped.
@@ -152,7 +65,7 @@ struct ServedFigure {
 
 TEST(StudioServer, ASliderMovesTheSimulatedServoAndAScrubMovesShowTime) {
   ServedFigure f;
-  Client client(f.server->port(), "/ws");
+  StudioClient client(f.server->port(), "/ws");
   ASSERT_TRUE(client.connected()) << client.error();
   const auto hello = client.next("hello");
   ASSERT_TRUE(hello);
@@ -186,8 +99,8 @@ TEST(StudioServer, ASliderMovesTheSimulatedServoAndAScrubMovesShowTime) {
 
 TEST(StudioServer, AnEditGoesBackToEveryClientAndARefusalOnlyToItsSender) {
   ServedFigure f;
-  Client editor(f.server->port(), "/ws");
-  Client watcher(f.server->port(), "/ws");
+  StudioClient editor(f.server->port(), "/ws");
+  StudioClient watcher(f.server->port(), "/ws");
   ASSERT_TRUE(editor.connected() && watcher.connected());
   ASSERT_TRUE(editor.next("hello"));
   ASSERT_TRUE(watcher.next("hello"));
@@ -216,11 +129,11 @@ TEST(StudioServer, OffLoopbackEveryRequestNeedsTheToken) {
   const std::string token = f.server->token();
   ASSERT_EQ(token.size(), 32u);
   EXPECT_NE(f.server->url().find("?token=" + token), std::string::npos);
-  Client stranger(f.server->port(), "/ws");
+  StudioClient stranger(f.server->port(), "/ws");
   EXPECT_FALSE(stranger.connected());
-  Client wrong(f.server->port(), "/ws?token=0123");
+  StudioClient wrong(f.server->port(), "/ws?token=0123");
   EXPECT_FALSE(wrong.connected());
-  Client user(f.server->port(), "/ws?token=" + token);
+  StudioClient user(f.server->port(), "/ws?token=" + token);
   ASSERT_TRUE(user.connected()) << user.error();
   EXPECT_TRUE(user.next("hello"));
   EXPECT_EQ(http_get(f.server->port(), "/api/hello").first, "HTTP/1.0 403 Forbidden");

@@ -1,0 +1,148 @@
+#include "avar/studio_command.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "avar/config/input_map.hpp"
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_check.hpp"
+#include "avar/exit_codes.hpp"
+#include "avar/interrupts.hpp"
+#include "avar/studio/studio_run.hpp"
+
+extern char** environ;
+
+namespace avar::app {
+namespace {
+
+/// Hands the URL to the desktop's browser (xdg-open); false when there is none.
+bool open_in_browser(const std::string& url) {
+  pid_t pid = 0;
+  std::string program = "xdg-open";
+  char* argv[] = {program.data(), const_cast<char*>(url.c_str()), nullptr};
+  if (posix_spawnp(&pid, "xdg-open", nullptr, nullptr, argv, environ) != 0) return false;
+  int status = 0;
+  return waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+}  // namespace
+
+CLI::App* add_studio_subcommand(CLI::App& app, StudioOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "studio", "Serve the studio: pose the figure, scrub and edit its show from a browser page or any program");
+  cmd->add_option("show", o.show_path,
+                  "Show file to edit and save (YAML); a path that does not exist is a new show, made when you save; "
+                  "none: a new show that cannot be saved");
+  cmd->add_option("--rig", o.rig_path, "Rig file (YAML: channels, limits, links)")->required();
+  CLI::Option* sim = cmd->add_flag("--sim", o.simulate, "Simulate every link: the simulator answers with the same bytes");
+  cmd->add_option("--port", o.port, "Serial port of the rig's single link, instead of the rig file's")->excludes(sim);
+  cmd->add_option("--rate", o.rate_hz, "Ticks per second, 1 to 1000 (default: the rig's rate_hz)");
+  cmd->add_option("--listen", o.listen,
+                  "HOST:PORT to serve on (default 127.0.0.1:0: this machine only, a free port). Any address but loopback "
+                  "needs the token printed in the URL");
+  cmd->add_flag("--open", o.open_browser, "Open the URL in the desktop's browser (xdg-open)");
+  cmd->footer(
+      "The figure homes to the show's first frame and waits, paused. Clients connect to ws://HOST:PORT/ws and\n"
+      "speak the studio protocol (docs: reference/studio-protocol): play, pause, seek, scrub, loop; hold a channel\n"
+      "at a value (a slider) and release it; edit keys, insert and delete time; undo, redo, save; stop; e-stop.\n"
+      "Whatever a client asks, the figure obeys the rig's limits and glides, never snaps; edits reach it at the\n"
+      "next tick. The show holds its end instead of ending; Ctrl-C eases to rest and stops.\n"
+      "Examples:\n"
+      "  avar studio examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --sim\n"
+      "      edit the bundled show on the simulated head; the URL is printed\n"
+      "  avar studio my-show.yaml --rig my-rig.yaml --port /dev/ttyACM0 --listen 0.0.0.0:8080\n"
+      "      on the real figure, reachable from the workshop's network with the printed token");
+  return cmd;
+}
+
+int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
+  studio::StudioSetup setup;
+  try {
+    studio::parse_listen_address(o.listen, setup.server);
+  } catch (const std::invalid_argument& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+  std::optional<rig::Rig> rig;
+  std::optional<edit::ShowDocument> document;
+  config::InputMap inputs;
+  try {
+    rig = config::load_rig_file(o.rig_path);
+    inputs = config::load_input_map(*rig, o.rig_path, false);
+    if (!o.show_path) {
+      document.emplace(studio::new_show("untitled"));
+    } else if (!std::filesystem::exists(*o.show_path)) {
+      document.emplace(studio::new_show(std::filesystem::path(*o.show_path).stem().string()));
+      err << "new show: " << *o.show_path << " is made when you save\n";
+    } else {
+      document.emplace(edit::ShowDocument::open(*o.show_path));
+    }
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+  const config::ShowCheck check = config::check_show_against_rig(document->show(), *rig);
+  for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';
+  for (const auto& e : check.errors) err << "error: " << e.to_string() << '\n';
+  if (!check.ok()) return kExitBadInput;
+
+  const double rate = o.rate_hz.value_or(rig->rate_hz);
+  if (!(rate >= 1 && rate <= 1000)) {
+    err << "error: --rate " << rate << " is outside 1 to 1000 ticks per second\n";
+    return kExitBadInput;
+  }
+  setup.run.session.rate_hz = rate;
+  setup.run.session.links.simulate_all = o.simulate;
+  setup.run.session.links.port = o.port;
+
+  std::unique_ptr<studio::StudioRun> run;
+  try {
+    run = std::make_unique<studio::StudioRun>(*rig, inputs, std::move(*document), o.show_path.value_or(""), setup);
+  } catch (const std::exception& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+  try {
+    if (const std::optional<session::LinkProblem> p = run->start()) {
+      err << "error: " << run->figure().session().figure().links()[p->link]->describe()
+          << " did not start: " << to_string(p->status) << (p->problem.empty() ? "" : ": " + p->problem)
+          << " (check power, cable, the device's serial mode and the baud rate)\n";
+      return kExitFault;
+    }
+  } catch (const std::runtime_error& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+
+  out << "studio: " << run->url() << '\n'
+      << "  figure '" << rig->name << "' " << (o.simulate ? "on the simulator" : "on its links") << ", show '"
+      << run->studio().document().show().name << "'" << (o.show_path ? " (" + *o.show_path + ")" : " (no file: save is off)")
+      << '\n'
+      << "  the protocol: /ws (WebSocket), /api/hello and /api/status (GET); see the studio protocol in the manual\n"
+      << "  Ctrl-C eases the figure to rest and stops; Ctrl-\\ is the e-stop" << std::endl;
+  if (o.open_browser && !open_in_browser(run->url())) err << "could not open a browser (xdg-open); open the URL above\n";
+
+  InterruptCounter interrupts;
+  const control::RunResult result = run->run(interrupts.count(), &interrupts.estop());
+  const edit::ShowDocument& edited = run->studio().document();
+  if (edited.modified())
+    err << "warning: the show has changes that were not saved (" << edited.undo_steps() << " undo steps); they are lost\n";
+  const control::Fault& fault = run->figure().session().controller().latched_fault();
+  if (fault.cause != control::FaultCause::none) {
+    err << "fault: " << control::to_string(fault.cause) << "; every actuator took its fail-safe action\n";
+    return kExitFault;
+  }
+  if (result.interrupted) {
+    out << "stopped: eased to rest\n";
+    return kExitInterrupted;
+  }
+  out << "stopped: a client asked; eased to rest\n";
+  return kExitOk;
+}
+
+}  // namespace avar::app
