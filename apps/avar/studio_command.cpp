@@ -1,6 +1,7 @@
 #include "avar/studio_command.hpp"
 
 #include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <CLI/CLI.hpp>
@@ -14,8 +15,6 @@
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
 #include "avar/studio/studio_run.hpp"
-
-extern char** environ;
 
 namespace avar::app {
 namespace {
