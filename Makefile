@@ -52,12 +52,12 @@ demo-talking: configure $(TALKING_VOICE)
 	$(AVAR) play examples/shows/talking-skull.yaml --rig examples/rigs/talking-skull.yaml --plot $(BUILD)/talking-skull.svg
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer, then the suites whose code runs
-# threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link, a figure's
+# threads (I/O threads and mailboxes, the simulators' pty hosts, the serial link, the studio's server, a figure's
 # assembled links) under ThreadSanitizer; the limiter's tests are left out there (it runs on the
 # caller's thread only, and its property family is the suite's longest test). `make test-fast` runs every test on the
 # optimised build instead. The sanitizer builds use -O1, as the sanitizers' authors advise: at
 # -O0 the Eigen-heavy tests ran 5x slower.
-TSAN_SUITES = control sim firmware_iface inputs assembly session
+TSAN_SUITES = control sim firmware_iface inputs assembly session studio
 TSAN_EXCLUDE = ^Limiter\.
 test: lint test-sanitize test-docs test-tsan
 
