@@ -9,6 +9,8 @@
 #include <cfloat>
 #include <cmath>
 
+#include "avar/core/portable_math.hpp"
+
 namespace avar::playback {
 namespace {
 
@@ -18,7 +20,7 @@ struct Point {
 Point operator+(Point a, Point b) { return {a.x + b.x, a.y + b.y}; }
 Point operator-(Point a, Point b) { return {a.x - b.x, a.y - b.y}; }
 Point operator*(Point a, double f) { return {a.x * f, a.y * f}; }
-double length(Point a) { return std::hypot(a.x, a.y); }
+double length(Point a) { return pmath::hypot(a.x, a.y); }
 
 /// A key in Blender's form: left handle, key, right handle.
 struct Triple {

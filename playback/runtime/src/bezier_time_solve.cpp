@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "avar/core/portable_math.hpp"
+
 namespace avar::playback {
 namespace {
 
@@ -62,20 +64,20 @@ int solve_cubic_in_unit_interval(double c0, double c1, double c2, double c3, dou
       // One real root, Cardano: y = cbrt(-q + sqrt d) + cbrt(-q - sqrt d). The two cube roots
       // multiply to -p, so the one of larger magnitude is taken and the other is -p divided by
       // it: the same root without the cancellation of adding two nearly opposite terms.
-      const double big = std::cbrt(-q - std::copysign(std::sqrt(d), q));
+      const double big = pmath::cbrt(-q - std::copysign(std::sqrt(d), q));
       return keep(big - p / big - a, roots, 0);
     }
     if (d == 0.0) {
       // A double root: the simple root 2t - a first, then the double one -t - a.
-      const double t = std::cbrt(-q);
+      const double t = pmath::cbrt(-q);
       const int n = keep(2.0 * t - a, roots, 0);
       return keep(-t - a, roots, n);
     }
     // Three real roots, trigonometric form y = 2 sqrt(-p) cos((phi + 2 pi k) / 3). Blender's order:
     // the largest (k = 0), the smallest, the middle one.
-    const double phi = std::acos(-q / std::sqrt(-(p * p * p)));
+    const double phi = pmath::acos(-q / std::sqrt(-(p * p * p)));
     const double t = std::sqrt(-p);
-    const double cp = std::cos(phi / 3.0);
+    const double cp = pmath::cos(phi / 3.0);
     const double sq = std::sqrt(3.0 - 3.0 * cp * cp);
     int n = keep(2.0 * t * cp - a, roots, 0);
     n = keep(-t * (cp + sq) - a, roots, n);

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "avar/core/portable_math.hpp"
+
 namespace avar::playback {
 namespace {
 
@@ -33,15 +35,15 @@ double DistanceTime::distance(double t) const noexcept {
   const double pi = std::numbers::pi, two_over_pi = 2 / pi;
   switch (shape_) {
     case DistanceTimeShape::linear: return t;
-    case DistanceTimeShape::sine: return 0.5 * (1 - std::cos(pi * t));
+    case DistanceTimeShape::sine: return 0.5 * (1 - pmath::cos(pi * t));
     case DistanceTimeShape::cubic: return t * t * (3 - 2 * t);
     case DistanceTimeShape::user: return std::clamp(user_.evaluate(t), 0.0, 1.0);
     case DistanceTimeShape::sine_constant_middle: {
       // Unnormalised distance: the ease-in quarter sine covers k1 (2/pi) at unit top speed.
       double d;
-      if (t < k1_) d = k1_ * two_over_pi * (1 - std::cos(0.5 * pi * t / k1_));
+      if (t < k1_) d = k1_ * two_over_pi * (1 - pmath::cos(0.5 * pi * t / k1_));
       else if (t <= k2_) d = k1_ * two_over_pi + (t - k1_);
-      else d = k1_ * two_over_pi + (k2_ - k1_) + (1 - k2_) * two_over_pi * std::sin(0.5 * pi * (t - k2_) / (1 - k2_));
+      else d = k1_ * two_over_pi + (k2_ - k1_) + (1 - k2_) * two_over_pi * pmath::sin(0.5 * pi * (t - k2_) / (1 - k2_));
       return std::min(1.0, d * scale_);
     }
     case DistanceTimeShape::parabolic: {
@@ -64,7 +66,7 @@ double DistanceTime::speed(double t) const noexcept {
   const double pi = std::numbers::pi;
   switch (shape_) {
     case DistanceTimeShape::linear: return 1;
-    case DistanceTimeShape::sine: return 0.5 * pi * std::sin(pi * t);
+    case DistanceTimeShape::sine: return 0.5 * pi * pmath::sin(pi * t);
     case DistanceTimeShape::cubic: return 6 * t * (1 - t);
     case DistanceTimeShape::user: {
       constexpr double h = 1e-6;
@@ -72,9 +74,9 @@ double DistanceTime::speed(double t) const noexcept {
       return (distance(b) - distance(a)) / (b - a);
     }
     case DistanceTimeShape::sine_constant_middle:
-      if (t < k1_) return scale_ * std::sin(0.5 * pi * t / k1_);
+      if (t < k1_) return scale_ * pmath::sin(0.5 * pi * t / k1_);
       if (t <= k2_) return scale_;
-      return scale_ * std::cos(0.5 * pi * (t - k2_) / (1 - k2_));
+      return scale_ * pmath::cos(0.5 * pi * (t - k2_) / (1 - k2_));
     case DistanceTimeShape::parabolic:
       if (t < k1_) return scale_ * t / k1_;
       if (t <= k2_) return scale_;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "avar/core/portable_math.hpp"
+
 namespace avar::playback {
 namespace {
 
@@ -46,8 +48,8 @@ double bounce_in(double t) noexcept { return 1 - bounce_out(1 - t); }
 // Blender scales 2^(10 (t - 1)) so that it starts at exactly 0 and ends at exactly 1.
 constexpr double kPowMin = 0.0009765625;  // 2^-10
 constexpr double kPowScale = 1.0 / (1.0 - kPowMin);
-double expo_in(double t) noexcept { return t == 0 ? 0 : (std::pow(2.0, 10 * (t - 1)) - kPowMin) * kPowScale; }
-double expo_out(double t) noexcept { return t == 0 ? 0 : 1 - (std::pow(2.0, -10 * t) - kPowMin) * kPowScale; }
+double expo_in(double t) noexcept { return t == 0 ? 0 : (pmath::exp2(10 * (t - 1)) - kPowMin) * kPowScale; }
+double expo_out(double t) noexcept { return t == 0 ? 0 : 1 - (pmath::exp2(-10 * t) - kPowMin) * kPowScale; }
 
 double circ_in(double t) noexcept { return 1 - std::sqrt(std::max(0.0, 1 - t * t)); }
 double circ_out(double t) noexcept {
@@ -72,9 +74,9 @@ double elastic_wave(double u, double change, double duration, double amplitude, 
     }
     amplitude = change;
   } else {
-    s = period / (2 * kPi) * std::asin(change / amplitude);
+    s = period / (2 * kPi) * pmath::asin(change / amplitude);
   }
-  return amplitude * std::pow(2.0, 10 * u) * std::sin((u * duration - s) * (2 * kPi) / period);
+  return amplitude * pmath::exp2(10 * u) * pmath::sin((u * duration - s) * (2 * kPi) / period);
 }
 
 double elastic(Easing e, double time, double begin, double change, double duration, double amplitude, double period) noexcept {
@@ -130,7 +132,8 @@ double back(Easing e, double t, double overshoot) noexcept {
 double fraction(Interpolation family, Easing e, double t, const EasingParams& p) noexcept {
   const bool in = e == Easing::ease_in, out = e == Easing::ease_out;
   switch (family) {
-    case Interpolation::sine: return in ? 1 - std::cos(t * kPi / 2) : out ? std::sin(t * kPi / 2) : -(std::cos(kPi * t) - 1) / 2;
+    case Interpolation::sine:
+      return in ? 1 - pmath::cos(t * kPi / 2) : out ? pmath::sin(t * kPi / 2) : -(pmath::cos(kPi * t) - 1) / 2;
     case Interpolation::quad:
       return in ? t * t : out ? -t * (t - 2) : (t < 0.5 ? 2 * t * t : -((2 * t - 1) * (2 * t - 3) - 1) / 2);
     case Interpolation::cubic: return in ? poly_in(t, 3) : out ? poly_out(t, 3) : poly_in_out(t, 3);

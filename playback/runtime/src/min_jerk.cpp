@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "avar/core/portable_math.hpp"
+
 namespace avar::playback {
 
 double min_jerk(double x) noexcept {
@@ -15,7 +17,7 @@ double min_jerk_duration(double amplitude, const IdleChannelLimits& limits, doub
   double t = at_least;
   if (limits.max_velocity > 0) t = std::max(t, kMinJerkPeakVelocity * a / (share * limits.max_velocity));
   if (limits.max_acceleration > 0) t = std::max(t, std::sqrt(kMinJerkPeakAcceleration * a / (share * limits.max_acceleration)));
-  if (limits.max_jerk > 0) t = std::max(t, std::cbrt(kMinJerkPeakJerk * a / (share * limits.max_jerk)));
+  if (limits.max_jerk > 0) t = std::max(t, pmath::cbrt(kMinJerkPeakJerk * a / (share * limits.max_jerk)));
   return t;
 }
 
