@@ -29,38 +29,46 @@ inline constexpr double kHalfPi2 = 6.07710050630396597660e-11;
 inline constexpr double kHalfPi3 = 2.02226624879595063154e-21;
 inline constexpr double kTwoOverPi = 6.36619772367581382433e-01;
 
-/// sin r for |r| <= pi/4: the Taylor series to r^21, Horner in r^2.
-inline double sin_kernel(double r) {
-  const double z = r * r;
-  double p = -1.0 / 51090942171709440000.0;  // -1/21!
-  p = p * z + 1.0 / 121645100408832000.0;    // 1/19!
-  p = p * z - 1.0 / 355687428096000.0;       // -1/17!
-  p = p * z + 1.0 / 1307674368000.0;         // 1/15!
-  p = p * z - 1.0 / 6227020800.0;            // -1/13!
-  p = p * z + 1.0 / 39916800.0;              // 1/11!
-  p = p * z - 1.0 / 362880.0;                // -1/9!
-  p = p * z + 1.0 / 5040.0;                  // 1/7!
-  p = p * z - 1.0 / 120.0;                   // -1/5!
-  p = p * z + 1.0 / 6.0;                     // 1/3!
-  return r - r * (z * p);
+/// c[0] + z (c[1] + z (c[2] + ...)), from the last coefficient.
+template <int N>
+double horner(const double (&c)[N], double z) {
+  double p = c[N - 1];
+  for (int i = N - 2; i >= 0; --i) p = p * z + c[i];
+  return p;
 }
 
-/// cos r for |r| <= pi/4: the Taylor series to r^22, Horner in r^2.
-inline double cos_kernel(double r) {
+/// sin r for |r| <= pi/4: the Taylor series to r^21, in r^2.
+inline double sin_kernel(double r) {
+  static constexpr double kTerms[] = {1.0 / 6.0,
+                                      -1.0 / 120.0,
+                                      1.0 / 5040.0,
+                                      -1.0 / 362880.0,
+                                      1.0 / 39916800.0,
+                                      -1.0 / 6227020800.0,
+                                      1.0 / 1307674368000.0,
+                                      -1.0 / 355687428096000.0,
+                                      1.0 / 121645100408832000.0,
+                                      -1.0 / 51090942171709440000.0};  // 1/3!, -1/5!, ... -1/21!
   const double z = r * r;
-  double p = -1.0 / 1124000727777607680000.0;  // -1/22!
-  p = p * z + 1.0 / 2432902008176640000.0;     // 1/20!
-  p = p * z - 1.0 / 6402373705728000.0;        // -1/18!
-  p = p * z + 1.0 / 20922789888000.0;          // 1/16!
-  p = p * z - 1.0 / 87178291200.0;             // -1/14!
-  p = p * z + 1.0 / 479001600.0;               // 1/12!
-  p = p * z - 1.0 / 3628800.0;                 // -1/10!
-  p = p * z + 1.0 / 40320.0;                   // 1/8!
-  p = p * z - 1.0 / 720.0;                     // -1/6!
-  p = p * z + 1.0 / 24.0;                      // 1/4!
+  return r - r * (z * horner(kTerms, z));
+}
+
+/// cos r for |r| <= pi/4: the Taylor series to r^22, in r^2.
+inline double cos_kernel(double r) {
+  static constexpr double kTerms[] = {1.0 / 24.0,
+                                      -1.0 / 720.0,
+                                      1.0 / 40320.0,
+                                      -1.0 / 3628800.0,
+                                      1.0 / 479001600.0,
+                                      -1.0 / 87178291200.0,
+                                      1.0 / 20922789888000.0,
+                                      -1.0 / 6402373705728000.0,
+                                      1.0 / 2432902008176640000.0,
+                                      -1.0 / 1124000727777607680000.0};  // 1/4!, -1/6!, ... -1/22!
+  const double z = r * r;
   // 1 - z/2 + z^2 p, with 1 - z/2 formed last for the small terms' bits.
   const double half = 0.5 * z;
-  return (1.0 - half) + ((1.0 - (1.0 - half)) - half + z * (z * p));
+  return (1.0 - half) + ((1.0 - (1.0 - half)) - half + z * (z * horner(kTerms, z)));
 }
 
 /// x reduced to [-pi/4, pi/4] and the quadrant it fell in (x = r + quadrant * pi/2).
@@ -156,21 +164,22 @@ inline double exp2(double x) {
   const double f = x - n;                   // exact, |f| <= 0.5
   const double g = f * 0.6931471805599453;  // ln 2
   // e^g for |g| <= 0.347: Taylor to g^16.
-  double p = 1.0 / 20922789888000.0;  // 1/16!
-  p = p * g + 1.0 / 1307674368000.0;  // 1/15!
-  p = p * g + 1.0 / 87178291200.0;    // 1/14!
-  p = p * g + 1.0 / 6227020800.0;     // 1/13!
-  p = p * g + 1.0 / 479001600.0;      // 1/12!
-  p = p * g + 1.0 / 39916800.0;       // 1/11!
-  p = p * g + 1.0 / 3628800.0;        // 1/10!
-  p = p * g + 1.0 / 362880.0;         // 1/9!
-  p = p * g + 1.0 / 40320.0;          // 1/8!
-  p = p * g + 1.0 / 5040.0;           // 1/7!
-  p = p * g + 1.0 / 720.0;            // 1/6!
-  p = p * g + 1.0 / 120.0;            // 1/5!
-  p = p * g + 1.0 / 24.0;             // 1/4!
-  p = p * g + 1.0 / 6.0;              // 1/3!
-  p = p * g + 0.5;                    // 1/2!
+  static constexpr double kTerms[] = {1.0 / 2.0,
+                                      1.0 / 6.0,
+                                      1.0 / 24.0,
+                                      1.0 / 120.0,
+                                      1.0 / 720.0,
+                                      1.0 / 5040.0,
+                                      1.0 / 40320.0,
+                                      1.0 / 362880.0,
+                                      1.0 / 3628800.0,
+                                      1.0 / 39916800.0,
+                                      1.0 / 479001600.0,
+                                      1.0 / 6227020800.0,
+                                      1.0 / 87178291200.0,
+                                      1.0 / 1307674368000.0,
+                                      1.0 / 20922789888000.0};  // 1/2! ... 1/16!
+  const double p = detail::horner(kTerms, g);
   const double e = 1.0 + (g + g * (g * p));
   // Scaled in two steps so that a result near the subnormal range is rounded once.
   const int k = static_cast<int>(n);
