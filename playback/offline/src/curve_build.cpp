@@ -2,7 +2,6 @@
 // and inverse tables (the offline half of curve.hpp's Curve).
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -11,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "avar/core/bit_cast.hpp"
 #include "avar/core/format.hpp"
 #include "avar/playback/offline/handles.hpp"
 #include "avar/playback/runtime/bezier_time_solve.hpp"
@@ -406,7 +406,7 @@ std::uint32_t CurveBuilder::tabulate_inverse(double k1, double k2, double k3, st
       table.push_back(piece);
     }
     if (all_certified || n == finest) {
-      table[header] = std::bit_cast<InversePiece>(TableHeader{k1, k2, k3, static_cast<double>(n), {0, 0}});
+      table[header] = avar::bit_cast<InversePiece>(TableHeader{k1, k2, k3, static_cast<double>(n), {0, 0}});
       // x == 1: u = 1 (uncertified by its a1 = 0, so checked; only t rounding onto t1 reads it).
       table.push_back(InversePiece{1.0, 0.0, 0.0, 0.0, 0.0, 0.0});
       return n;

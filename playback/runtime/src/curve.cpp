@@ -1,10 +1,10 @@
 #include "avar/playback/runtime/curve.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cfloat>
 #include <cmath>
 
+#include "avar/core/bit_cast.hpp"
 #include "avar/playback/runtime/bezier_time_solve.hpp"
 #include "avar/playback/runtime/easing.hpp"
 
@@ -20,7 +20,7 @@ double finite_or(double x, double fallback) noexcept { return std::isfinite(x) ?
 // A u is taken once it lies in Blender's window with |s(u) - x| <= kMaxResidual; that is the
 // certificate here, checked on every sample.
 double Curve::evaluate_uncertified(const Segment& s, const InversePiece& p, double w, double scaled) const noexcept {
-  const auto b = std::bit_cast<TableHeader>(inverse_[s.extra - 1]);
+  const auto b = avar::bit_cast<TableHeader>(inverse_[s.extra - 1]);
   const double pieces = b.pieces;
   const double x = scaled / pieces;  // exact: a power of two
   const InversePiece q{p.a0, -p.a1, p.a2, p.a3, p.a4, p.a5};

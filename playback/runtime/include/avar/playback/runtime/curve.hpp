@@ -126,7 +126,7 @@ class Curve {
     }
   };
   /// The entry of inverse_ just before a table's first piece, as many bytes as a piece (read and
-  /// written with std::bit_cast): what the table's uncertified pieces need.
+  /// written with bit_cast): what the table's uncertified pieces need.
   struct TableHeader {
     double k1 = 0, k2 = 0, k3 = 0;  ///< normalised time cubic s(u)
     double pieces = 0;              ///< how many equal pieces of s the table has

@@ -1,0 +1,64 @@
+// The studio page's curve engine (WebAssembly) against the native one, bit for bit: every curve
+// the probe wrote (tests/tools/wasm_curves_probe.cpp) is built from its flat keys in the module
+// and sampled at the probe's times; every value must have the native value's bits.
+//
+//   node wasm_curves_test.mjs --module build/studio/avar_curves.js --probe probe.json
+import { createRequire } from 'node:module';
+import { readFileSync } from 'node:fs';
+import { resolve } from 'node:path';
+
+const args = process.argv.slice(2);
+const option = (name) => {
+  const at = args.indexOf(name);
+  if (at < 0 || at + 1 >= args.length) {
+    console.error(`usage: node wasm_curves_test.mjs --module avar_curves.js --probe probe.json (missing ${name})`);
+    process.exit(2);
+  }
+  return args[at + 1];
+};
+const require = createRequire(import.meta.url);
+const AvarCurves = require(resolve(option('--module')));
+const probe = JSON.parse(readFileSync(option('--probe'), 'utf8'));
+const engine = await AvarCurves();
+
+const bitsOf = (value) => {
+  const view = new DataView(new ArrayBuffer(8));
+  view.setFloat64(0, value);
+  return view.getBigUint64(0).toString(16).padStart(16, '0');
+};
+/// Copies numbers into the module's heap; returns the address (free it).
+const toHeap = (numbers) => {
+  const address = engine._malloc(numbers.length * 8);
+  engine.HEAPF64.set(numbers, address / 8);
+  return address;
+};
+
+let samples = 0;
+const mismatches = [];
+for (const curve of probe.curves) {
+  const flat = toHeap(curve.flat);
+  const id = engine._avar_curve_build(flat, curve.flat.length);
+  engine._free(flat);
+  if (id < 0) {
+    mismatches.push(`${curve.name}: the module refused keys the native engine built: ${engine.UTF8ToString(engine._avar_error())}`);
+    continue;
+  }
+  const times = toHeap(curve.times);
+  const out = engine._malloc(curve.times.length * 8);
+  engine._avar_curve_sample_many(id, times, out, curve.times.length);
+  const values = engine.HEAPF64.slice(out / 8, out / 8 + curve.times.length);
+  engine._free(times);
+  engine._free(out);
+  engine._avar_curve_free(id);
+  curve.times.forEach((t, i) => {
+    samples += 1;
+    const got = bitsOf(values[i]);
+    if (got !== curve.bits[i]) mismatches.push(`${curve.name} at t=${t}: native ${curve.bits[i]}, WebAssembly ${got} (${values[i]})`);
+  });
+}
+if (mismatches.length > 0) {
+  console.error(`${mismatches.length} of ${samples} samples differ:`);
+  for (const m of mismatches.slice(0, 20)) console.error(`  ${m}`);
+  process.exit(1);
+}
+console.log(`wasm curves: ${probe.curves.length} curves, ${samples} samples, every one bit-identical to the native engine`);
