@@ -56,7 +56,8 @@ Studio::Studio(const rig::Rig& rig, edit::ShowDocument document, std::string sho
     : rig_(rig),
       document_(std::move(document)),
       show_path_(std::move(show_path)),
-      playing_(std::make_shared<const playback::Show>(document_.show())) {
+      initial_(std::make_shared<const playback::Show>(document_.show())),
+      playing_(initial_) {
   for (const rig::ChannelSpec& c : rig.channels) channel_names_.push_back(c.name);
 }
 

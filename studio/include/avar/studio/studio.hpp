@@ -39,7 +39,7 @@ class Studio final : public session::SessionObserver {
 
   /// The show the figure's session must be made with: a copy of the document's, which the
   /// studio keeps alive (the document's own show changes under edits).
-  const playback::Show& initial_show() const noexcept { return *playing_; }
+  const playback::Show& initial_show() const noexcept { return *initial_; }
   /// The session that plays initial_show() (borrowed; outlives the studio, or is detached with
   /// nullptr). Until then commands are refused; edits change the document alone.
   void attach(session::ShowSession* session);
@@ -75,6 +75,9 @@ class Studio final : public session::SessionObserver {
   std::string show_path_;
   session::ShowSession* session_ = nullptr;
   std::vector<std::string> channel_names_;
+  /// The show the session was made with: it borrows it, so it lives as long as the studio.
+  std::shared_ptr<const playback::Show> initial_;
+  /// The show handed to the session last (its binding shares it).
   std::shared_ptr<const playback::Show> playing_;
   std::uint64_t version_ = 0;  ///< counts the show's changes, in every "show" message
 

@@ -1,0 +1,195 @@
+// avar-bench-studio: the studio's server under a client's hand, on the simulated hello-head at the
+// rig's rate, in real time, over a real WebSocket on loopback.
+// - Glass to wire: a slider's hold message sent -> the first tick whose frame carries it (the
+//   frame the links send at that tick). Median, p95 and worst over N holds, each sent at a random
+//   phase of the tick. Target: p95 <= 30 ms.
+// - Scrubbing back and forth at 10 Hz: scrub messages jumping between the show's two ends, every
+//   tick's commands checked against each channel's range, speed and acceleration limits.
+//   Target: 0 commands outside any limit.
+// Usage: avar-bench-studio [--holds N] [--scrub-seconds S]
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/studio/server.hpp"
+#include "support/studio_client.hpp"
+
+namespace {
+
+using namespace avar;
+using Clock = std::chrono::steady_clock;
+
+std::string example(const std::string& path) { return std::string(AVAR_SOURCE_DIR) + "/examples/" + path; }
+
+/// On the loop thread, right after each tick's send: when the watched channel's target first left
+/// its resting value since the last arm().
+class Departure final : public control::TickObserver {
+ public:
+  Departure(std::size_t channel, double rest) : channel_(channel), rest_(rest) {}
+  void arm() { departed_ns_.store(0); }
+  std::int64_t departed_ns() const { return departed_ns_.load(); }
+  bool at_rest() const { return at_rest_.load(); }
+  void after_tick(std::uint64_t, double, double, double, control::Controller& controller) override {
+    const double target = controller.target()[channel_];
+    at_rest_.store(target == rest_ && controller.commanded()[channel_] == rest_);
+    if (target != rest_ && departed_ns_.load() == 0) departed_ns_.store(Clock::now().time_since_epoch().count());
+  }
+
+ private:
+  std::size_t channel_;
+  double rest_;
+  std::atomic<std::int64_t> departed_ns_{1};
+  std::atomic<bool> at_rest_{false};
+};
+
+/// On the publisher thread: every tick's commands against the rig's limits.
+class LimitCheck final : public session::SessionObserver {
+ public:
+  LimitCheck(const rig::Rig& rig, double dt) : rig_(rig), dt_(dt) {}
+  void on_tick(const session::TickRecord& r) override {
+    if (!counting_.load()) return;
+    ++ticks_;
+    for (std::size_t c = 0; c < r.channels.size(); ++c) {
+      const rig::ChannelSpec& spec = rig_.channels[c];
+      const double x = r.channels[c].command;
+      if (x < spec.min || x > spec.max) ++out_of_range_;
+      if (have_ >= 1 && std::abs(x - last_[c]) > spec.max_velocity * dt_ * (1 + 1e-9)) ++too_fast_;
+      if (have_ >= 2 && std::abs(x - 2 * last_[c] + before_[c]) > spec.max_acceleration * dt_ * dt_ * (1 + 1e-9)) ++too_sharp_;
+    }
+    before_ = last_;
+    last_.assign(r.channels.size(), 0);
+    for (std::size_t c = 0; c < r.channels.size(); ++c) last_[c] = r.channels[c].command;
+    have_ = std::min(have_ + 1, 2);
+  }
+  void start() { counting_.store(true); }
+  void stop() { counting_.store(false); }
+  std::uint64_t ticks_ = 0, out_of_range_ = 0, too_fast_ = 0, too_sharp_ = 0;
+
+ private:
+  const rig::Rig& rig_;
+  double dt_;
+  std::atomic<bool> counting_{false};
+  std::vector<double> last_, before_;
+  int have_ = 0;
+};
+
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, std::ceil(p * static_cast<double>(v.size())) - 1))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int holds = 100;
+  double scrub_seconds = 60;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--holds" && i + 1 < argc) {
+      holds = std::atoi(argv[++i]);
+    } else if (arg == "--scrub-seconds" && i + 1 < argc) {
+      scrub_seconds = std::atof(argv[++i]);
+    } else {
+      std::printf("usage: avar-bench-studio [--holds N] [--scrub-seconds S]\n"
+                  "  --holds N          slider holds timed from message to wire (default 100)\n"
+                  "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n");
+      return arg == "--help" || arg == "-h" ? 0 : 2;
+    }
+  }
+  if (holds < 1 || !(scrub_seconds > 0)) {
+    std::fprintf(stderr, "avar-bench-studio: expected a positive count of holds and of seconds\n");
+    return 2;
+  }
+
+  const rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
+  studio::Studio studio(rig, edit::ShowDocument::open(example("shows/hello-head.yaml")), "");
+  session::SessionConfig config;
+  config.rate_hz = rig.rate_hz;
+  config.links.simulate_all = true;
+  config.hold_at_end = true;
+  config.start_paused = true;
+  session::ShowSession session(rig, studio.initial_show(), config);
+  const std::size_t jaw = *rig.find_channel("jaw");
+  Departure departure(jaw, 0.0);
+  LimitCheck limits(rig, 1.0 / config.rate_hz);
+  session.set_loop_observer(&departure);
+  session.add_observer(studio);
+  session.add_observer(limits);
+  studio.attach(&session);
+  if (session.start_links()) {
+    std::fprintf(stderr, "avar-bench-studio: the simulated links did not start\n");
+    return 1;
+  }
+  session.begin();
+  studio::Server server(studio, {});
+  std::atomic<int> interrupts{0};
+  std::thread runner([&] { (void)session.run(interrupts); });
+  avar::testing::StudioClient client(server.port(), "/ws");
+  if (!client.connected() || !client.next("hello")) {
+    std::fprintf(stderr, "avar-bench-studio: could not connect: %s\n", client.error().c_str());
+    session.stop();
+    runner.join();
+    return 1;
+  }
+  const auto wait_until = [](const auto& done, std::chrono::milliseconds limit) {
+    const auto deadline = Clock::now() + limit;
+    while (!done() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    return done();
+  };
+  wait_until([&] { return departure.at_rest(); }, std::chrono::seconds(10));  // homed, paused at 0 s
+
+  // Glass to wire.
+  std::mt19937 rng(20261206);
+  std::uniform_int_distribution<int> phase_us(0, static_cast<int>(2e6 / config.rate_hz));
+  std::vector<double> latency_ms;
+  for (int i = 0; i < holds; ++i) {
+    std::this_thread::sleep_for(std::chrono::microseconds(phase_us(rng)));
+    departure.arm();
+    const std::int64_t sent = Clock::now().time_since_epoch().count();
+    client.send(R"({"type": "hold", "channel": "jaw", "value": 15})");
+    if (!wait_until([&] { return departure.departed_ns() != 0; }, std::chrono::seconds(1))) {
+      std::fprintf(stderr, "avar-bench-studio: hold %d never reached the wire\n", i);
+      break;
+    }
+    latency_ms.push_back(static_cast<double>(departure.departed_ns() - sent) / 1e6);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    client.send(R"({"type": "release", "channel": "jaw"})");
+    wait_until([&] { return departure.at_rest(); }, std::chrono::seconds(2));
+  }
+
+  // Scrubbing back and forth at 10 Hz between the show's ends.
+  limits.start();
+  const auto scrubs = static_cast<int>(scrub_seconds * 10);
+  auto next = Clock::now();
+  for (int i = 0; i < scrubs; ++i) {
+    client.send(std::string(R"({"type": "scrub", "time": )") + (i % 2 ? "11.5" : "0.5") + "}");
+    next += std::chrono::milliseconds(100);
+    std::this_thread::sleep_until(next);
+  }
+  limits.stop();
+  session.stop();
+  runner.join();
+
+  if (!latency_ms.empty()) {
+    std::printf("glass to wire (hold message -> the tick whose frame carries it), %zu holds at %g Hz: median %.2f ms, "
+                "p95 %.2f ms, worst %.2f ms (target p95 <= 30 ms)\n",
+                latency_ms.size(), config.rate_hz, percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
+                percentile(latency_ms, 1.0));
+  }
+  std::printf("scrubbing at 10 Hz for %g s (%d jumps between 0.5 s and 11.5 s): %llu ticks, %llu commands outside a channel's "
+              "range, %llu faster than its max_velocity, %llu beyond its max_acceleration (target 0); records dropped %llu\n",
+              scrub_seconds, scrubs, static_cast<unsigned long long>(limits.ticks_),
+              static_cast<unsigned long long>(limits.out_of_range_), static_cast<unsigned long long>(limits.too_fast_),
+              static_cast<unsigned long long>(limits.too_sharp_), static_cast<unsigned long long>(session.records_dropped()));
+  return 0;
+}
