@@ -85,7 +85,8 @@ class LimitCheck final : public session::SessionObserver {
 
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, std::ceil(p * static_cast<double>(v.size())) - 1))];
+  return v[static_cast<std::size_t>(
+      std::min<double>(static_cast<double>(v.size()) - 1, std::ceil(p * static_cast<double>(v.size())) - 1))];
 }
 
 }  // namespace
@@ -100,9 +101,10 @@ int main(int argc, char** argv) {
     } else if (arg == "--scrub-seconds" && i + 1 < argc) {
       scrub_seconds = std::atof(argv[++i]);
     } else {
-      std::printf("usage: avar-bench-studio [--holds N] [--scrub-seconds S]\n"
-                  "  --holds N          slider holds timed from message to wire (default 100)\n"
-                  "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n");
+      std::printf(
+          "usage: avar-bench-studio [--holds N] [--scrub-seconds S]\n"
+          "  --holds N          slider holds timed from message to wire (default 100)\n"
+          "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n");
       return arg == "--help" || arg == "-h" ? 0 : 2;
     }
   }
@@ -181,15 +183,17 @@ int main(int argc, char** argv) {
   runner.join();
 
   if (!latency_ms.empty()) {
-    std::printf("glass to wire (hold message -> the tick whose frame carries it), %zu holds at %g Hz: median %.2f ms, "
-                "p95 %.2f ms, worst %.2f ms (target p95 <= 30 ms)\n",
-                latency_ms.size(), config.rate_hz, percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
-                percentile(latency_ms, 1.0));
+    std::printf(
+        "glass to wire (hold message -> the tick whose frame carries it), %zu holds at %g Hz: median %.2f ms, "
+        "p95 %.2f ms, worst %.2f ms (target p95 <= 30 ms)\n",
+        latency_ms.size(), config.rate_hz, percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
+        percentile(latency_ms, 1.0));
   }
-  std::printf("scrubbing at 10 Hz for %g s (%d jumps between 0.5 s and 11.5 s): %llu ticks, %llu commands outside a channel's "
-              "range, %llu faster than its max_velocity, %llu beyond its max_acceleration (target 0); records dropped %llu\n",
-              scrub_seconds, scrubs, static_cast<unsigned long long>(limits.ticks_),
-              static_cast<unsigned long long>(limits.out_of_range_), static_cast<unsigned long long>(limits.too_fast_),
-              static_cast<unsigned long long>(limits.too_sharp_), static_cast<unsigned long long>(session.records_dropped()));
+  std::printf(
+      "scrubbing at 10 Hz for %g s (%d jumps between 0.5 s and 11.5 s): %llu ticks, %llu commands outside a channel's "
+      "range, %llu faster than its max_velocity, %llu beyond its max_acceleration (target 0); records dropped %llu\n",
+      scrub_seconds, scrubs, static_cast<unsigned long long>(limits.ticks_),
+      static_cast<unsigned long long>(limits.out_of_range_), static_cast<unsigned long long>(limits.too_fast_),
+      static_cast<unsigned long long>(limits.too_sharp_), static_cast<unsigned long long>(session.records_dropped()));
   return 0;
 }
