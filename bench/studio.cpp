@@ -6,7 +6,7 @@
 // - Scrubbing back and forth at 10 Hz: scrub messages jumping between the show's two ends, every
 //   tick's commands checked against each channel's range, speed and acceleration limits.
 //   Target: 0 commands outside any limit.
-// Usage: avar-bench-studio [--holds N] [--scrub-seconds S]
+// Usage: avar-bench-studio [--holds N] [--scrub-seconds S] [--status-hz R]
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -41,7 +41,7 @@ class Departure final : public control::TickObserver {
   bool at_rest() const { return at_rest_.load(); }
   void after_tick(std::uint64_t, double, double, double, control::Controller& controller) override {
     const double target = controller.target()[channel_];
-    at_rest_.store(target == rest_ && controller.commanded()[channel_] == rest_);
+    at_rest_.store(controller.phase() == control::Phase::running && target == rest_ && controller.commanded()[channel_] == rest_);
     if (target != rest_ && departed_ns_.load() == 0) departed_ns_.store(Clock::now().time_since_epoch().count());
   }
 
@@ -94,17 +94,21 @@ double percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
   int holds = 100;
   double scrub_seconds = 60;
+  studio::ServerOptions server_options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--holds" && i + 1 < argc) {
       holds = std::atoi(argv[++i]);
     } else if (arg == "--scrub-seconds" && i + 1 < argc) {
       scrub_seconds = std::atof(argv[++i]);
+    } else if (arg == "--status-hz" && i + 1 < argc) {
+      server_options.status_hz = std::atof(argv[++i]);
     } else {
       std::printf(
           "usage: avar-bench-studio [--holds N] [--scrub-seconds S]\n"
           "  --holds N          slider holds timed from message to wire (default 100)\n"
-          "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n");
+          "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n"
+          "  --status-hz R      status messages a second from the server (default 20)\n");
       return arg == "--help" || arg == "-h" ? 0 : 2;
     }
   }
@@ -133,7 +137,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   session.begin();
-  studio::Server server(studio, {});
+  studio::Server server(studio, server_options);
   std::atomic<int> interrupts{0};
   std::thread runner([&] { (void)session.run(interrupts); });
   avar::testing::StudioClient client(server.port(), "/ws");
@@ -148,7 +152,8 @@ int main(int argc, char** argv) {
     while (!done() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::microseconds(200));
     return done();
   };
-  wait_until([&] { return departure.at_rest(); }, std::chrono::seconds(10));  // homed, paused at 0 s
+  // Homed (holds act on the running show), paused at 0 s.
+  wait_until([&] { return departure.at_rest(); }, std::chrono::seconds(10));
 
   // Glass to wire.
   std::mt19937 rng(20261206);

@@ -140,7 +140,10 @@ Server::Server(Studio& studio, ServerOptions options) : studio_(studio), options
   if (!is_loopback(options_.host)) token_ = make_token();
   const bool v6 = options_.host.find(':') != std::string::npos && options_.host.front() != '[';
   const std::string listen = (v6 ? "[" + options_.host + "]" : options_.host) + ":" + std::to_string(options_.port);
-  std::vector<const char*> config = {"listening_ports", listen.c_str(), "num_threads", "8", "enable_directory_listing", "no"};
+  // No Nagle: a reply or a status is a few small writes (frame header, payload) that must not
+  // wait for the client's delayed acknowledgement.
+  std::vector<const char*> config = {"listening_ports",          listen.c_str(), "num_threads", "8",
+                                     "enable_directory_listing", "no",           "tcp_nodelay", "1"};
   if (!options_.assets_dir.empty()) {
     config.push_back("document_root");
     config.push_back(options_.assets_dir.c_str());
