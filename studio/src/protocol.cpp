@@ -169,6 +169,7 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
   if (type == "undo") return plain(Undo{});
   if (type == "redo") return plain(Redo{});
   if (type == "save") return plain(Save{});
+  if (type == "curves") return plain(Curves{});
   if (type == "seek" || type == "scrub") {
     f.expect_only({"type", "time"});
     return Command{type == "seek" ? CommandKind::seek : CommandKind::scrub, 0, f.number("time", "show time in seconds")};
@@ -194,7 +195,7 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
     return e;
   }
   f.fail("unknown type \"" + type +
-         "\"; expected one of: play, pause, seek, scrub, loop, hold, release, stop, estop, edit, undo, redo, save");
+         "\"; expected one of: play, pause, seek, scrub, loop, hold, release, stop, estop, edit, undo, redo, save, curves");
 }
 
 }  // namespace avar::studio

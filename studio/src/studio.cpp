@@ -8,6 +8,7 @@
 
 #include "avar/config/show_writer.hpp"
 #include "avar/core/input_error.hpp"
+#include "avar/playback/runtime/raw_curve_codec.hpp"
 #include "avar/studio/protocol.hpp"
 
 namespace avar::studio {
@@ -80,6 +81,12 @@ std::string Studio::show_fields() const {
 
 std::string Studio::show_message() const { return "{\"type\":\"show\"," + show_fields() + "}"; }
 
+std::string Studio::curves_message() const {
+  json tracks = json::object();
+  for (const playback::Track& t : document_.show().tracks) tracks[t.channel] = playback::encode_raw_curve(t.raw);
+  return json{{"type", "curves"}, {"version", version_}, {"format", playback::kRawCurveFormat}, {"tracks", tracks}}.dump();
+}
+
 std::string Studio::hello() const {
   std::string head = json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}}.dump();
   head.pop_back();
@@ -123,6 +130,8 @@ Replies Studio::handle(std::string_view message) {
             play_document();
             out.to_sender = ok_reply(type);
             out.to_all.push_back(show_message());
+          } else if constexpr (std::is_same_v<M, Curves>) {
+            out.to_sender = curves_message();
           } else {
             static_assert(std::is_same_v<M, Save>);
             if (show_path_.empty())

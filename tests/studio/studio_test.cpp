@@ -15,6 +15,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/config/show_writer.hpp"
+#include "avar/playback/runtime/raw_curve_codec.hpp"
 #include "support/temp_file.hpp"
 
 namespace avar::studio {
@@ -190,6 +191,27 @@ TEST(Studio, ASliderHoldsItsChannelAndTheStatusSaysWhereTheFigureIs) {
   EXPECT_NEAR(ch["measured"].get<double>(), 15.0, 0.5);  // the simulated servo is getting there
   ASSERT_EQ(last["links"].size(), f.rig.links.size());
   EXPECT_EQ(last["links"][0]["name"], f.rig.links[0].name);
+}
+
+TEST(Studio, CurvesAreTheTracksAsTheEnginesFlatKeysAndFollowEdits) {
+  StudioFigure f;
+  ASSERT_EQ(reply(f.studio.handle(
+                R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0, "dv": -10}]})"))["type"],
+            "ok");
+  const json curves = reply(f.studio.handle(R"({"type": "curves"})"));
+  EXPECT_EQ(curves["type"], "curves");
+  EXPECT_EQ(curves["version"], 1);
+  EXPECT_EQ(curves["format"], playback::kRawCurveFormat);
+  const playback::Show& show = f.studio.document().show();
+  ASSERT_EQ(curves["tracks"].size(), show.tracks.size());
+  for (const playback::Track& track : show.tracks) {
+    // Built from the numbers as sent (JSON doubles read back exactly), the curve samples as the
+    // show's own, edit included.
+    const auto flat = curves["tracks"][track.channel].get<std::vector<double>>();
+    const playback::Curve rebuilt = playback::Curve::build(playback::decode_raw_curve(flat));
+    for (int i = -10; i <= 1300; ++i) ASSERT_EQ(rebuilt.evaluate(i * 0.01), track.curve.evaluate(i * 0.01)) << track.channel;
+  }
+  EXPECT_EQ(reply(f.studio.handle(R"({"type": "curves", "channels": ["jaw"]})"))["type"], "error");
 }
 
 TEST(Studio, CommandsWaitForAFigureButEditsDoNot) {

@@ -2,7 +2,7 @@
 // The studio's protocol (docs/reference/studio-protocol.md): one JSON object per message, with a
 // "type". What a client (the studio's page, or any program) sends is parsed here, whole, into a
 // session command (play, pause, seek, scrub, loop, hold, release, stop), an e-stop, a group of key
-// edits, undo, redo or save; channels are named and resolved against the rig's. Keys in edits are
+// edits, undo, redo, save, or a request for the curves; channels are named and resolved against the rig's. Keys in edits are
 // the show file's key maps written in JSON, checked by the show reader's own rules. Pure: no I/O.
 // Not real-time: allocates and throws.
 
@@ -31,8 +31,11 @@ struct Edit {
 struct Undo {};
 struct Redo {};
 struct Save {};
+/// The show's tracks as the curve engine's flat keys (raw_curve_codec.hpp), for a client that
+/// evaluates curves itself (the page's WebAssembly engine).
+struct Curves {};
 
-using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save>;
+using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves>;
 
 /// Parses one message. `channels`: the rig's channel names, in the rig's order (a hold's channel
 /// index is its place there; an edit may name only these). Throws ProtocolError: not JSON, not

@@ -66,6 +66,8 @@ class Studio final : public session::SessionObserver {
   /// The show's fields of a "show" or "hello" message, without braces.
   std::string show_fields() const;
   std::string show_message() const;
+  /// The "curves" reply: every track's keys, flat.
+  std::string curves_message() const;
   /// Hands the document's show to the session.
   void play_document();
 
