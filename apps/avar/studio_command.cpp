@@ -5,13 +5,9 @@
 #include <sys/wait.h>
 
 #include <CLI/CLI.hpp>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
-#include "avar/config/input_map.hpp"
-#include "avar/config/rig_file.hpp"
-#include "avar/config/show_check.hpp"
 #include "avar/exit_codes.hpp"
 #include "avar/interrupts.hpp"
 #include "avar/studio/studio_run.hpp"
@@ -67,41 +63,25 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
   }
-  std::optional<rig::Rig> rig;
-  std::optional<edit::ShowDocument> document;
-  config::InputMap inputs;
+  std::optional<studio::StudioFiles> files;
   try {
-    rig = config::load_rig_file(o.rig_path);
-    inputs = config::load_input_map(*rig, o.rig_path, false);
-    if (!o.show_path) {
-      document.emplace(studio::new_show("untitled"));
-    } else if (!std::filesystem::exists(*o.show_path)) {
-      document.emplace(studio::new_show(std::filesystem::path(*o.show_path).stem().string()));
-      err << "new show: " << *o.show_path << " is made when you save\n";
-    } else {
-      document.emplace(edit::ShowDocument::open(*o.show_path));
-    }
+    files.emplace(studio::open_studio_files(o.rig_path, o.show_path));
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
   }
-  const config::ShowCheck check = config::check_show_against_rig(document->show(), *rig);
-  for (const auto& w : check.warnings) err << "warning: " << w.to_string() << '\n';
-  for (const auto& e : check.errors) err << "error: " << e.to_string() << '\n';
-  if (!check.ok()) return kExitBadInput;
-
-  const double rate = o.rate_hz.value_or(rig->rate_hz);
-  if (!(rate >= 1 && rate <= 1000)) {
-    err << "error: --rate " << rate << " is outside 1 to 1000 ticks per second\n";
-    return kExitBadInput;
-  }
-  setup.run.session.rate_hz = rate;
+  for (const auto& w : files->check.warnings) err << "warning: " << w.to_string() << '\n';
+  for (const auto& e : files->check.errors) err << "error: " << e.to_string() << '\n';
+  if (!files->check.ok()) return kExitBadInput;
+  if (files->new_file) err << "new show: " << *o.show_path << " is made when you save\n";
+  const rig::Rig& rig = files->rig;
+  setup.run.session.rate_hz = o.rate_hz.value_or(rig.rate_hz);
   setup.run.session.links.simulate_all = o.simulate;
   setup.run.session.links.port = o.port;
 
   std::unique_ptr<studio::StudioRun> run;
   try {
-    run = std::make_unique<studio::StudioRun>(*rig, inputs, std::move(*document), o.show_path.value_or(""), setup);
+    run = std::make_unique<studio::StudioRun>(rig, files->inputs, std::move(files->document), o.show_path.value_or(""), setup);
   } catch (const std::exception& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
@@ -119,7 +99,7 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
   }
 
   out << "studio: " << run->url() << '\n'
-      << "  figure '" << rig->name << "' " << (o.simulate ? "on the simulator" : "on its links") << ", show '"
+      << "  figure '" << rig.name << "' " << (o.simulate ? "on the simulator" : "on its links") << ", show '"
       << run->studio().document().show().name << "'" << (o.show_path ? " (" + *o.show_path + ")" : " (no file: save is off)")
       << '\n'
       << "  the protocol: /ws (WebSocket), /api/hello and /api/status (GET); see the studio protocol in the manual\n"

@@ -1,6 +1,9 @@
 #include "avar/studio/studio_run.hpp"
 
+#include "avar/config/rig_file.hpp"
+
 #include <charconv>
+#include <filesystem>
 #include <stdexcept>
 
 namespace avar::studio {
@@ -9,6 +12,19 @@ playback::Show new_show(const std::string& name, double duration_s) {
   playback::Show show = session::live_only_show(duration_s);
   show.name = name;
   return show;
+}
+
+StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path) {
+  rig::Rig rig = config::load_rig_file(rig_path);
+  config::InputMap inputs = config::load_input_map(rig, rig_path, false);
+  const bool new_file = show_path && !std::filesystem::exists(*show_path);
+  edit::ShowDocument document = !show_path ? edit::ShowDocument(new_show("untitled"))
+                                : new_file ? edit::ShowDocument(new_show(std::filesystem::path(*show_path).stem().string()))
+                                           : edit::ShowDocument::open(*show_path);
+  config::ShowCheck check = config::check_show_against_rig(document.show(), rig);
+  // A new show drives no channel yet: that it holds the rest pose is no news.
+  if (!show_path || new_file) check.warnings.clear();
+  return {std::move(rig), std::move(inputs), std::move(document), std::move(check), new_file};
 }
 
 void parse_listen_address(const std::string& text, ServerOptions& options) {

@@ -143,6 +143,11 @@ TEST(EditorSession, ShowsReplacedFromAnotherThreadWhileTheLoopRunsInRealTime) {
   ShowSession session(f.rig, f.show, config);
   KeepAll all;
   session.add_observer(all);
+  std::atomic<bool> jaw_at_twenty{false};
+  Script watch([&](const TickRecord& r) {
+    if (r.channels[f.channel("jaw")].target == 20.0 && !jaw_at_twenty.exchange(true)) jaw_at_twenty.notify_all();
+  });
+  session.add_observer(watch);
   ASSERT_FALSE(session.start_links());
   session.begin();
   int handed = 0;
@@ -151,7 +156,7 @@ TEST(EditorSession, ShowsReplacedFromAnotherThreadWhileTheLoopRunsInRealTime) {
     while (!session.replace_show(original, std::chrono::milliseconds(0))) std::this_thread::yield();
     for (int i = 0; i < 40; ++i) handed += session.replace_show(i % 2 ? original : edited) ? 1 : 0;
     EXPECT_TRUE(session.replace_show(edited));
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    jaw_at_twenty.wait(false);  // an edited show has played
     session.stop();
   });
   (void)session.run(not_interrupted);

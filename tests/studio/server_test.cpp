@@ -149,7 +149,9 @@ TEST(StudioServer, TheHttpApiAnswersGet) {
   const auto [hello_status, hello] = http_get(f.server->port(), "/api/hello");
   EXPECT_EQ(hello_status, "HTTP/1.0 200 OK");
   EXPECT_EQ(json::parse(hello)["show"]["name"], "hello-head");
-  std::this_thread::sleep_for(100ms);  // some ticks
+  // Once the figure has ticked, the status has its channels.
+  StudioClient client(f.server->port(), "/ws");
+  ASSERT_TRUE(client.next("status"));
   const auto [status_line, status] = http_get(f.server->port(), "/api/status");
   EXPECT_EQ(status_line, "HTTP/1.0 200 OK");
   EXPECT_EQ(json::parse(status)["type"], "status");

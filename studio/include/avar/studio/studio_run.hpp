@@ -16,6 +16,7 @@
 #include <string>
 
 #include "avar/config/input_map.hpp"
+#include "avar/config/show_check.hpp"
 #include "avar/edit/show_document.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/session/figure_run.hpp"
@@ -33,6 +34,22 @@ struct StudioSetup {
 
 /// A show for a file that does not exist yet: no tracks, `duration_s` long, named `name`.
 playback::Show new_show(const std::string& name, double duration_s = 10.0);
+
+/// What `avar studio` opens before anything moves: the rig, its inputs map, the show to edit and
+/// the show checked against the rig (check.ok() false: it must not run; a new show has no
+/// warnings, though it drives no channel yet).
+struct StudioFiles {
+  rig::Rig rig;
+  config::InputMap inputs;
+  edit::ShowDocument document;
+  config::ShowCheck check;
+  bool new_file = false;  ///< show_path does not exist yet: a new show, written there on save
+};
+
+/// Opens the rig and the show: the show file when it exists, a new show named after it when it
+/// does not, a new "untitled" show without a path. InputError (file:line:col) for a file that
+/// cannot be read.
+StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path);
 
 /// "HOST:PORT" ("127.0.0.1:8080", "0.0.0.0:0", "[::1]:9000") into the server's host and port;
 /// std::invalid_argument naming what was expected.
