@@ -12,7 +12,7 @@ packages=(cmake ninja-build g++ pkg-config make
           libusb-1.0-0-dev libhidapi-dev libgpiod-dev librtmidi-dev liblo-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3-can
-          emscripten node-acorn
+          emscripten node-acorn chromium
           mkdocs mkdocs-material
           clang-format clang-tidy "$@")
 

@@ -41,10 +41,14 @@ CLI::App* add_studio_subcommand(CLI::App& app, StudioOptions& o) {
                   "HOST:PORT to serve on (default 127.0.0.1:0: this machine only, a free port). Any address but loopback "
                   "needs the token printed in the URL");
   cmd->add_flag("--open", o.open_browser, "Open the URL in the desktop's browser (xdg-open)");
+  cmd->add_option("--page", o.page_dir, "Serve the browser page from this folder instead of the one built with avar")
+      ->check(CLI::ExistingDirectory);
   cmd->footer(
-      "The figure homes to the show's first frame and waits, paused. Clients connect to ws://HOST:PORT/ws and\n"
-      "speak the studio protocol (docs: reference/studio-protocol): play, pause, seek, scrub, loop; hold a channel\n"
-      "at a value (a slider) and release it; edit keys, insert and delete time; undo, redo, save; stop; e-stop.\n"
+      "Open the printed URL in a browser: sliders pose the figure, the timeline scrubs it, the dope sheet and\n"
+      "the graph editor edit the show. The figure homes to the show's first frame and waits, paused.\n"
+      "Programs connect to ws://HOST:PORT/ws and speak the studio protocol (docs: reference/studio-protocol):\n"
+      "play, pause, seek, scrub, loop; hold a channel at a value (a slider) and release it; edit keys, insert and\n"
+      "delete time; undo, redo, save; stop; e-stop.\n"
       "Whatever a client asks, the figure obeys the rig's limits and glides, never snaps; edits reach it at the\n"
       "next tick. The show holds its end instead of ending; Ctrl-C eases to rest and stops.\n"
       "Examples:\n"
@@ -59,6 +63,7 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
   studio::StudioSetup setup;
   try {
     studio::parse_listen_address(o.listen, setup.server);
+    setup.server.assets_dir = o.page_dir.value_or(studio::built_page_dir());
   } catch (const std::invalid_argument& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
@@ -104,6 +109,9 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
       << '\n'
       << "  the protocol: /ws (WebSocket), /api/hello and /api/status (GET); see the studio protocol in the manual\n"
       << "  Ctrl-C eases the figure to rest and stops; Ctrl-\\ is the e-stop" << std::endl;
+  if (setup.server.assets_dir.empty())
+    err << "warning: this avar was built without the studio's page (it needs node, npm and emscripten: "
+           "scripts/install-deps.sh); /ws and /api still serve\n";
   if (o.open_browser && !open_in_browser(run->url())) err << "could not open a browser (xdg-open); open the URL above\n";
 
   InterruptCounter interrupts;

@@ -20,6 +20,7 @@ struct StudioOptions {
   std::optional<double> rate_hz;         ///< default: the rig's
   std::string listen = "127.0.0.1:0";    ///< --listen HOST:PORT
   bool open_browser = false;             ///< --open
+  std::optional<std::string> page_dir;   ///< --page: the page's folder; default: the one built with avar
 };
 
 /// Declares `avar studio` and its options on `app`.

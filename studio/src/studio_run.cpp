@@ -27,6 +27,15 @@ StudioFiles open_studio_files(const std::string& rig_path, const std::optional<s
   return {std::move(rig), std::move(inputs), std::move(document), std::move(check), new_file};
 }
 
+std::string built_page_dir() {
+#ifdef AVAR_STUDIO_PAGE_DIR
+  const std::string dir = AVAR_STUDIO_PAGE_DIR;
+  std::error_code ignored;
+  if (std::filesystem::is_regular_file(std::filesystem::path(dir) / "index.html", ignored)) return dir;
+#endif
+  return {};
+}
+
 void parse_listen_address(const std::string& text, ServerOptions& options) {
   const std::size_t colon = text.rfind(':');
   const auto refuse = [&] {

@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -140,6 +142,25 @@ TEST(StudioServer, OffLoopbackEveryRequestNeedsTheToken) {
   const auto [status, body] = http_get(f.server->port(), "/api/hello?token=" + token);
   EXPECT_EQ(status, "HTTP/1.0 200 OK");
   EXPECT_EQ(json::parse(body)["type"], "hello");
+}
+
+TEST(StudioServer, ServesThePageFolderWithoutTheTokenAndTheConversationWithIt) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "avar-studio-page-test";
+  std::filesystem::create_directories(dir);
+  { std::ofstream(dir / "index.html") << "<!doctype html><title>page</title>"; }
+  ServerOptions options;
+  options.host = "0.0.0.0";
+  options.assets_dir = dir.string();
+  ServedFigure f(options);
+  const auto [status, body] = http_get(f.server->port(), "/");
+  EXPECT_EQ(status, "HTTP/1.0 200 OK");
+  EXPECT_EQ(body, "<!doctype html><title>page</title>");
+  EXPECT_EQ(http_get(f.server->port(), "/index.html").first, "HTTP/1.0 200 OK");
+  EXPECT_EQ(http_get(f.server->port(), "/missing.js").first, "HTTP/1.0 404 Not Found");
+  EXPECT_EQ(http_get(f.server->port(), "/api/hello").first, "HTTP/1.0 403 Forbidden");
+  StudioClient stranger(f.server->port(), "/ws");
+  EXPECT_FALSE(stranger.connected());
+  std::filesystem::remove_all(dir);
 }
 
 TEST(StudioServer, TheHttpApiAnswersGet) {

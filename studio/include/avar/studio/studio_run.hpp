@@ -51,6 +51,10 @@ struct StudioFiles {
 /// cannot be read.
 StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path);
 
+/// The folder of the browser page built with this avar (index.html and what it loads); empty when
+/// this build made none (it needs node, npm and emscripten) or the folder is gone.
+std::string built_page_dir();
+
 /// "HOST:PORT" ("127.0.0.1:8080", "0.0.0.0:0", "[::1]:9000") into the server's host and port;
 /// std::invalid_argument naming what was expected.
 void parse_listen_address(const std::string& text, ServerOptions& options);

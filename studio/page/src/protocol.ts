@@ -1,0 +1,149 @@
+// The studio protocol's messages as the page reads them (docs/reference/studio-protocol.md).
+// Times are seconds of show time; values are in the channel's units.
+
+export interface RigChannel {
+  name: string;
+  unit: string;
+  kind: 'analog' | 'digital';
+  min: number;
+  max: number;
+  rest: number;
+  max_velocity: number;
+  max_acceleration: number;
+  max_jerk: number;
+}
+
+export interface RigLink {
+  name: string;
+  protocol: string;
+  port: string;
+}
+
+export interface Rig {
+  name: string;
+  rate_hz: number;
+  channels: RigChannel[];
+  links: RigLink[];
+}
+
+/// A key as the show file writes it; fields the page does not read pass through unchanged.
+export interface Key {
+  time: number;
+  value: number | boolean;
+  interpolation?: string;
+  left?: [number, number];
+  right?: [number, number];
+  left_type?: string;
+  right_type?: string;
+  [field: string]: unknown;
+}
+
+export interface TrackObject {
+  keys: Key[];
+  [field: string]: unknown;
+}
+
+export type Track = Key[] | TrackObject;
+
+export interface Cue {
+  time: number;
+  [field: string]: unknown;
+}
+
+export interface ShowJson {
+  name: string;
+  duration: number;
+  loop: boolean;
+  tracks: Record<string, Track>;
+  cues?: Cue[];
+  [field: string]: unknown;
+}
+
+/// `hello` and `show` share these fields.
+export interface ShowState {
+  version: number;
+  file: string | null;
+  modified: boolean;
+  undo: string;
+  redo: string;
+  show: ShowJson;
+}
+
+export interface Hello extends ShowState {
+  type: 'hello';
+  protocol: number;
+  rig: Rig;
+}
+
+export interface ChannelStatus {
+  name: string;
+  target: number;
+  command: number;
+  measured: number | null;
+  held: boolean;
+  temperature: number | null;
+  load: number | null;
+  device_faults: number;
+}
+
+export interface LinkStatus {
+  name: string;
+  exchanges: number;
+  bytes_sent: number;
+  bytes_received: number;
+  replies: number;
+  crc_errors: number;
+  timeouts: number;
+  retries: number;
+  device_errors: number;
+  reconnects: number;
+}
+
+export interface Status {
+  type: 'status';
+  tick: number;
+  phase: string;
+  show_time: number;
+  duration: number;
+  paused: boolean;
+  estop: boolean;
+  stopping: boolean;
+  fault: { cause: string; index: number; value: number } | null;
+  channels: ChannelStatus[];
+  links: LinkStatus[];
+}
+
+export interface Curves {
+  type: 'curves';
+  version: number;
+  format: number;
+  tracks: Record<string, number[]>;
+}
+
+export type ServerMessage =
+  | Hello
+  | Status
+  | Curves
+  | ({ type: 'show' } & ShowState)
+  | { type: 'ok'; request: string }
+  | { type: 'error'; request: string; message: string }
+  | { type: 'saved'; file: string }
+  | { type: 'refused'; command: string; outcome: string; channel?: string };
+
+export type Edit =
+  | { op: 'add'; channel: string; keys: Key[] }
+  | { op: 'delete'; channel: string; keys: number[] }
+  | { op: 'move'; channel: string; keys: number[]; dt: number; dv: number }
+  | { op: 'set'; channel: string; key: number; value: Key }
+  | { op: 'insert_time'; at: number; length: number }
+  | { op: 'delete_time'; from: number; to: number };
+
+/// The keys of a track, whichever form the show file gave it.
+export function trackKeys(track: Track | undefined): Key[] {
+  if (!track) return [];
+  return Array.isArray(track) ? track : track.keys;
+}
+
+export function numericValue(key: Key): number {
+  return typeof key.value === 'boolean' ? (key.value ? 1 : 0) : key.value;
+}

@@ -1,0 +1,116 @@
+// What the page knows: the rig, the show as the server last sent it, the newest status, what is
+// selected and which stretch of show time the timeline and graph editor show. Views read it and
+// ask for a redraw; only messages from the server change the show.
+import type { Connection } from './connection';
+import type { CurveEngine } from './engine';
+import type { Edit, Hello, Rig, ShowState, Status } from './protocol';
+import { trackKeys } from './protocol';
+
+/// Keys picked, per channel (indices into the channel's track, in time order).
+export type Selection = Map<string, Set<number>>;
+
+export class StudioState {
+  rig: Rig | null = null;
+  show: ShowState | null = null;
+  status: Status | null = null;
+  /// The channel the graph editor and the pose panel point at.
+  channel: string | null = null;
+  selection: Selection = new Map();
+  /// The visible stretch of show time, seconds.
+  view = { t0: 0, t1: 10 };
+  /// The last refusal or problem (or, `noticeIsProblem` false, news such as a save), shown in the
+  /// status bar.
+  notice = '';
+  noticeIsProblem = true;
+  private listeners: (() => void)[] = [];
+  private scheduled = false;
+
+  constructor(
+    readonly connection: Connection,
+    readonly engine: CurveEngine,
+  ) {}
+
+  onChange(listener: () => void): void {
+    this.listeners.push(listener);
+  }
+
+  /// Redraws at the next animation frame, once however often it is asked.
+  changed(): void {
+    if (this.scheduled) return;
+    this.scheduled = true;
+    requestAnimationFrame(() => {
+      this.scheduled = false;
+      for (const listener of this.listeners) listener();
+    });
+  }
+
+  takeHello(hello: Hello): void {
+    const first = this.rig === null;
+    this.rig = hello.rig;
+    this.takeShow(hello);
+    if (first) {
+      // The whole show, with a margin so the first and last keys are not cut.
+      const d = Math.max(1, hello.show.duration);
+      this.view = { t0: -0.02 * d, t1: 1.03 * d };
+      this.channel = hello.rig.channels[0]?.name ?? null;
+    }
+  }
+
+  takeShow(show: ShowState): void {
+    const keysBefore = this.show ? this.keyCounts() : null;
+    this.show = show;
+    // A selection survives an edit that kept every track's key count (a move, a set); otherwise
+    // indices may name other keys, so it is dropped.
+    if (keysBefore) {
+      const after = this.keyCounts();
+      for (const channel of this.selection.keys())
+        if (keysBefore.get(channel) !== after.get(channel)) this.selection.delete(channel);
+    }
+    void this.connection.request({ type: 'curves' })?.then((reply) => {
+      if (reply?.type !== 'curves') return;
+      const problems = this.engine.setTracks(reply.tracks);
+      if (problems.length > 0) this.notice = `the page's engine refused: ${problems.join('; ')}`;
+      this.changed();
+    });
+    this.changed();
+  }
+
+  keys(channel: string) {
+    return trackKeys(this.show?.show.tracks[channel]);
+  }
+
+  duration(): number {
+    return this.show?.show.duration ?? 10;
+  }
+
+  /// Sends edits as one undo step (`continues`: the next move of a drag); the reply's refusal
+  /// becomes the notice. Resolves true when the studio took them.
+  async edit(edits: Edit[], continues = false): Promise<boolean> {
+    const reply = await this.connection.request({ type: 'edit', edits, ...(continues ? { continues: true } : {}) });
+    return this.answer(reply);
+  }
+
+  /// Sends a message that is answered `ok` or `error`; the error becomes the notice.
+  async ask(message: object): Promise<boolean> {
+    return this.answer(await this.connection.request(message));
+  }
+
+  private answer(reply: Awaited<ReturnType<Connection['request']>>): boolean {
+    this.noticeIsProblem = true;
+    if (reply === null || reply === undefined) {
+      this.notice = 'not connected to the studio';
+    } else if (reply.type === 'error') {
+      this.notice = reply.message;
+    } else {
+      this.notice = '';
+    }
+    this.changed();
+    return reply !== null && reply !== undefined && reply.type !== 'error';
+  }
+
+  private keyCounts(): Map<string, number> {
+    const counts = new Map<string, number>();
+    for (const [channel, track] of Object.entries(this.show?.show.tracks ?? {})) counts.set(channel, trackKeys(track).length);
+    return counts;
+  }
+}

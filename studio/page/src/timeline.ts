@@ -1,0 +1,305 @@
+// The dope sheet: a ruler with cues and the playhead, and a row of keys per channel. Drag on the
+// ruler to scrub (the figure glides after the playhead); click a key to select it (Shift adds),
+// drag a box to select many, drag selected keys to move them in time, double-click a row to add a
+// key there with the curve's value, Delete removes the selection. Wheel zooms, Shift+wheel pans.
+import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
+import type { StudioState } from './state';
+
+const GUTTER = 120;
+const RULER = 24;
+const ROW = 22;
+const KEY_RADIUS = 5;
+
+type Drag =
+  | { kind: 'scrub' }
+  | { kind: 'keys'; startX: number; applied: number; busy: boolean; started: boolean; pendingX: number | null }
+  | { kind: 'box'; x0: number; y0: number; x1: number; y1: number };
+
+export class DopeSheet {
+  private drag: Drag | null = null;
+  private lastScrub = 0;
+
+  constructor(
+    private readonly canvas: HTMLCanvasElement,
+    private readonly state: StudioState,
+  ) {
+    canvas.addEventListener('pointerdown', (e) => this.down(e));
+    canvas.addEventListener('pointermove', (e) => this.move(e));
+    canvas.addEventListener('pointerup', (e) => this.up(e));
+    canvas.addEventListener('dblclick', (e) => void this.addKey(e));
+    canvas.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
+    window.addEventListener('keydown', (e) => {
+      if (e.target instanceof HTMLInputElement && e.target.type !== 'range') return;
+      if (e.key === 'Delete' || e.key === 'Backspace') void this.deleteSelection();
+    });
+    new ResizeObserver(() => state.changed()).observe(canvas);
+  }
+
+  axis(): TimeAxis {
+    return new TimeAxis(this.state.view.t0, this.state.view.t1, GUTTER, this.canvas.clientWidth - 8);
+  }
+
+  private channelAt(y: number): string | null {
+    const row = Math.floor((y - RULER) / ROW);
+    return y < RULER ? null : (this.state.rig?.channels[row]?.name ?? null);
+  }
+
+  private keyAt(x: number, y: number): { channel: string; index: number } | null {
+    const channel = this.channelAt(y);
+    if (!channel) return null;
+    const axis = this.axis();
+    const keys = this.state.keys(channel);
+    let best: { channel: string; index: number } | null = null;
+    let bestDistance = KEY_RADIUS + 3;
+    keys.forEach((key, index) => {
+      const d = Math.abs(axis.x(key.time) - x);
+      if (d <= bestDistance) {
+        best = { channel, index };
+        bestDistance = d;
+      }
+    });
+    return best;
+  }
+
+  private scrubTo(x: number): void {
+    const t = Math.min(this.state.duration(), Math.max(0, this.axis().t(x)));
+    this.state.connection.send({ type: 'scrub', time: t });
+    this.lastScrub = t;
+    if (this.state.status) this.state.status = { ...this.state.status, show_time: t, paused: true };
+    this.state.changed();
+  }
+
+  private down(e: PointerEvent): void {
+    const { offsetX: x, offsetY: y } = e;
+    this.canvas.setPointerCapture(e.pointerId);
+    if (y < RULER && x >= GUTTER) {
+      this.drag = { kind: 'scrub' };
+      this.scrubTo(x);
+      return;
+    }
+    const channel = this.channelAt(y);
+    if (channel) this.state.channel = channel;
+    const hit = this.keyAt(x, y);
+    const selection = this.state.selection;
+    if (hit) {
+      const picked = selection.get(hit.channel)?.has(hit.index) ?? false;
+      if (e.shiftKey) {
+        const set = selection.get(hit.channel) ?? new Set<number>();
+        if (picked) set.delete(hit.index);
+        else set.add(hit.index);
+        selection.set(hit.channel, set);
+      } else if (!picked) {
+        selection.clear();
+        selection.set(hit.channel, new Set([hit.index]));
+      }
+      this.drag = { kind: 'keys', startX: x, applied: 0, busy: false, started: false, pendingX: null };
+    } else {
+      if (!e.shiftKey) selection.clear();
+      this.drag = { kind: 'box', x0: x, y0: y, x1: x, y1: y };
+    }
+    this.state.changed();
+  }
+
+  private move(e: PointerEvent): void {
+    const drag = this.drag;
+    if (!drag) return;
+    const { offsetX: x, offsetY: y } = e;
+    if (drag.kind === 'scrub') {
+      this.scrubTo(x);
+    } else if (drag.kind === 'box') {
+      drag.x1 = x;
+      drag.y1 = y;
+      this.state.changed();
+    } else {
+      void this.moveKeys(drag, x);
+    }
+  }
+
+  /// Moves the selection by what the pointer travelled, one edit in flight at a time (the newest
+  /// pointer position is sent when it is answered); a whole drag is one undo step. A refused move
+  /// (a key would pass its neighbour) leaves the keys where they were.
+  private async moveKeys(drag: Extract<Drag, { kind: 'keys' }>, x: number): Promise<void> {
+    drag.pendingX = x;
+    if (drag.busy) return;
+    drag.busy = true;
+    while (drag.pendingX !== null) {
+      const wanted = (drag.pendingX - drag.startX) * this.axis().secondsPerPixel();
+      drag.pendingX = null;
+      const dt = wanted - drag.applied;
+      if (Math.abs(dt) < 1e-4) continue;
+      const edits = [...this.state.selection].map(([channel, keys]) => ({
+        op: 'move' as const,
+        channel,
+        keys: [...keys].sort((a, b) => a - b),
+        dt,
+        dv: 0,
+      }));
+      if (edits.length === 0) break;
+      if (await this.state.edit(edits, drag.started)) {
+        drag.applied += dt;
+        drag.started = true;
+      }
+    }
+    drag.busy = false;
+  }
+
+  private up(e: PointerEvent): void {
+    const drag = this.drag;
+    this.drag = null;
+    this.canvas.releasePointerCapture(e.pointerId);
+    if (drag?.kind === 'box') {
+      const axis = this.axis();
+      const [xa, xb] = [Math.min(drag.x0, drag.x1), Math.max(drag.x0, drag.x1)];
+      const [ya, yb] = [Math.min(drag.y0, drag.y1), Math.max(drag.y0, drag.y1)];
+      this.state.rig?.channels.forEach((channel, row) => {
+        const cy = RULER + row * ROW + ROW / 2;
+        if (cy < ya || cy > yb) return;
+        this.state.keys(channel.name).forEach((key, index) => {
+          const kx = axis.x(key.time);
+          if (kx < xa || kx > xb) return;
+          const set = this.state.selection.get(channel.name) ?? new Set<number>();
+          set.add(index);
+          this.state.selection.set(channel.name, set);
+        });
+      });
+    } else if (drag?.kind === 'keys') {
+      // Let the last pointer position land.
+      void this.moveKeys(drag, e.offsetX);
+    }
+    this.state.changed();
+  }
+
+  private async addKey(e: MouseEvent): Promise<void> {
+    const channel = this.channelAt(e.offsetY);
+    if (!channel || e.offsetX < GUTTER) return;
+    const t = Math.max(0, this.axis().t(e.offsetX));
+    const spec = this.state.rig?.channels.find((c) => c.name === channel);
+    const value = this.state.engine.sample(channel, t) ?? spec?.rest ?? 0;
+    const time = Math.round(t * 1000) / 1000;
+    const keys = this.state.keys(channel);
+    const interpolation = keys.length > 0 ? (keys[0]?.interpolation ?? 'bezier') : 'bezier';
+    await this.state.edit([{ op: 'add', channel, keys: [{ time, value, interpolation }] }]);
+  }
+
+  private async deleteSelection(): Promise<void> {
+    const edits = [...this.state.selection]
+      .filter(([, keys]) => keys.size > 0)
+      .map(([channel, keys]) => ({ op: 'delete' as const, channel, keys: [...keys].sort((a, b) => a - b) }));
+    if (edits.length === 0) return;
+    this.state.selection.clear();
+    await this.state.edit(edits);
+  }
+
+  private wheel(e: WheelEvent): void {
+    e.preventDefault();
+    const axis = this.axis();
+    const view = this.state.view;
+    if (e.shiftKey || Math.abs(e.deltaX) > Math.abs(e.deltaY)) {
+      const dt = (e.shiftKey ? e.deltaY : e.deltaX) * axis.secondsPerPixel();
+      view.t0 += dt;
+      view.t1 += dt;
+    } else {
+      zoomView(view, axis.t(Math.max(GUTTER, e.offsetX)), Math.exp(e.deltaY * 0.002));
+    }
+    this.state.changed();
+  }
+
+  render(): void {
+    const rig = this.state.rig;
+    const rows = rig?.channels.length ?? 0;
+    this.canvas.style.height = `${RULER + rows * ROW + 4}px`;
+    const g = fitCanvas(this.canvas);
+    const width = this.canvas.clientWidth;
+    const height = this.canvas.clientHeight;
+    const axis = this.axis();
+    const color = themeColor;
+    g.clearRect(0, 0, width, height);
+    g.font = '11px system-ui, sans-serif';
+
+    // Ruler and grid.
+    const step = tickStep(70 * axis.secondsPerPixel());
+    g.fillStyle = color('--panel');
+    g.fillRect(0, 0, width, RULER);
+    g.strokeStyle = color('--grid');
+    g.fillStyle = color('--muted');
+    g.lineWidth = 1;
+    for (let t = Math.ceil(this.state.view.t0 / step) * step; t <= this.state.view.t1; t += step) {
+      const x = Math.round(axis.x(t)) + 0.5;
+      if (x < GUTTER) continue;
+      g.beginPath();
+      g.moveTo(x, RULER - 6);
+      g.lineTo(x, height);
+      g.stroke();
+      g.fillText(formatTime(t, step), x + 3, 12);
+    }
+    // The show's end, and time outside it, shaded.
+    const end = axis.x(this.state.duration());
+    g.fillStyle = color('--outside');
+    if (end < width) g.fillRect(Math.max(GUTTER, end), RULER, width - Math.max(GUTTER, end), height - RULER);
+    const start = axis.x(0);
+    if (start > GUTTER) g.fillRect(GUTTER, RULER, start - GUTTER, height - RULER);
+    // Cues on the ruler.
+    g.fillStyle = color('--cue');
+    for (const cue of this.state.show?.show.cues ?? []) {
+      const x = axis.x(cue.time);
+      if (x < GUTTER) continue;
+      g.beginPath();
+      g.moveTo(x - 4, RULER - 8);
+      g.lineTo(x + 4, RULER - 8);
+      g.lineTo(x, RULER - 2);
+      g.fill();
+    }
+
+    // Rows: name, keys, selection.
+    rig?.channels.forEach((channel, row) => {
+      const y = RULER + row * ROW;
+      const cy = y + ROW / 2;
+      const selectedRow = this.state.channel === channel.name;
+      g.fillStyle = selectedRow ? color('--row-selected') : row % 2 ? color('--row-odd') : color('--row-even');
+      g.fillRect(0, y, width, ROW);
+      g.fillStyle = color('--text');
+      g.fillText(channel.name, 8, cy + 4);
+      const keys = this.state.keys(channel.name);
+      const picked = this.state.selection.get(channel.name);
+      // A bar under the keys shows the track's span.
+      if (keys.length > 1) {
+        const first = keys[0];
+        const last = keys[keys.length - 1];
+        if (first && last) {
+          g.fillStyle = color('--track');
+          const xa = Math.max(GUTTER, axis.x(first.time));
+          const xb = axis.x(last.time);
+          if (xb > xa) g.fillRect(xa, cy - 2, xb - xa, 4);
+        }
+      }
+      keys.forEach((key, index) => {
+        const x = axis.x(key.time);
+        if (x < GUTTER - KEY_RADIUS || x > width + KEY_RADIUS) return;
+        g.fillStyle = picked?.has(index) ? color('--key-selected') : color('--key');
+        g.strokeStyle = color('--key-edge');
+        g.beginPath();
+        g.moveTo(x, cy - KEY_RADIUS);
+        g.lineTo(x + KEY_RADIUS, cy);
+        g.lineTo(x, cy + KEY_RADIUS);
+        g.lineTo(x - KEY_RADIUS, cy);
+        g.closePath();
+        g.fill();
+        g.stroke();
+      });
+    });
+    g.fillStyle = color('--grid');
+    g.fillRect(GUTTER - 1, 0, 1, height);
+
+    if (this.drag?.kind === 'box') {
+      const d = this.drag;
+      g.strokeStyle = color('--key-selected');
+      g.setLineDash([4, 3]);
+      g.strokeRect(Math.min(d.x0, d.x1), Math.min(d.y0, d.y1), Math.abs(d.x1 - d.x0), Math.abs(d.y1 - d.y0));
+      g.setLineDash([]);
+    }
+
+    // The playhead: where the pointer scrubs to, or where show time is.
+    const t = this.drag?.kind === 'scrub' ? this.lastScrub : (this.state.status?.show_time ?? 0);
+    drawPlayhead(g, axis, t, GUTTER, height);
+  }
+}

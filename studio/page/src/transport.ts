@@ -1,0 +1,88 @@
+// The toolbar (play, pause, loop, undo, redo, save, the e-stop) and the status bar (connection,
+// the run's phase, show time, faults, link counters, the last refusal).
+import { formatTime } from './axis';
+import type { ConnectionState } from './connection';
+import { element } from './dom';
+import type { StudioState } from './state';
+
+export class Transport {
+  private readonly play = element<HTMLButtonElement>('play');
+  private readonly loop = element<HTMLInputElement>('loop');
+  private readonly undo = element<HTMLButtonElement>('undo');
+  private readonly redo = element<HTMLButtonElement>('redo');
+  private readonly save = element<HTMLButtonElement>('save');
+  private readonly time = element<HTMLElement>('time');
+  private readonly title = element<HTMLElement>('title');
+  private readonly connection = element<HTMLElement>('connection');
+  private readonly phase = element<HTMLElement>('phase');
+  private readonly links = element<HTMLElement>('links');
+  private readonly notice = element<HTMLElement>('notice');
+
+  constructor(private readonly state: StudioState) {
+    this.play.onclick = () => void state.ask({ type: state.status?.paused === false ? 'pause' : 'play' });
+    this.loop.onchange = () => void state.ask({ type: 'loop', on: this.loop.checked });
+    this.undo.onclick = () => void state.ask({ type: 'undo' });
+    this.redo.onclick = () => void state.ask({ type: 'redo' });
+    this.save.onclick = () => void this.saveShow();
+    element<HTMLButtonElement>('estop').onclick = () => void state.ask({ type: 'estop' });
+    document.addEventListener('keydown', (event) => {
+      if (event.target instanceof HTMLInputElement && event.target.type !== 'range') return;
+      const command = event.ctrlKey || event.metaKey;
+      if (command && event.key.toLowerCase() === 'z') {
+        void state.ask({ type: event.shiftKey ? 'redo' : 'undo' });
+      } else if (command && event.key.toLowerCase() === 'y') {
+        void state.ask({ type: 'redo' });
+      } else if (command && event.key.toLowerCase() === 's') {
+        void this.saveShow();
+      } else if (event.key === ' ' && !command) {
+        this.play.click();
+      } else {
+        return;
+      }
+      event.preventDefault();
+    });
+  }
+
+  private async saveShow(): Promise<void> {
+    const reply = await this.state.connection.request({ type: 'save' });
+    this.state.notice = reply?.type === 'error' ? reply.message : reply?.type === 'saved' ? `saved ${reply.file}` : 'not connected';
+    this.state.noticeIsProblem = reply?.type !== 'saved';
+    this.state.changed();
+  }
+
+  setConnection(state: ConnectionState): void {
+    this.connection.textContent =
+      state === 'open' ? 'connected' : state === 'connecting' ? 'connecting…' : 'disconnected: is avar studio running? (reconnecting)';
+    this.connection.className = state;
+  }
+
+  render(): void {
+    const { show, status, rig } = this.state;
+    if (show) {
+      this.title.textContent = `${show.show.name}${show.modified ? ' •' : ''}`;
+      this.title.title = show.file ?? 'no file: save is off';
+      this.undo.disabled = show.undo === '';
+      this.undo.title = show.undo ? `undo ${show.undo} (Ctrl+Z)` : 'nothing to undo';
+      this.redo.disabled = show.redo === '';
+      this.redo.title = show.redo ? `redo ${show.redo} (Ctrl+Shift+Z)` : 'nothing to redo';
+      this.save.disabled = show.file === null;
+    }
+    if (status) {
+      this.play.textContent = status.paused ? '▶ Play' : '❚❚ Pause';
+      this.time.textContent = `${formatTime(status.show_time)} / ${formatTime(status.duration, 0.1)}`;
+      const fault = status.fault ? `fault: ${status.fault.cause}` : '';
+      this.phase.textContent = [status.estop ? 'E-STOP' : status.phase, fault].filter(Boolean).join(' · ');
+      this.phase.className = status.fault || status.estop ? 'bad' : status.phase === 'running' ? 'good' : '';
+      this.links.textContent = status.links
+        .map((link) => {
+          const errors = link.crc_errors + link.timeouts + link.device_errors;
+          return `${link.name}: ${link.exchanges} exchanges, ${link.bytes_sent} B out, ${errors} errors`;
+        })
+        .join(' · ');
+    } else if (rig) {
+      this.phase.textContent = 'no status yet';
+    }
+    this.notice.textContent = this.state.notice;
+    this.notice.className = this.state.noticeIsProblem ? 'bad' : 'good';
+  }
+}

@@ -1,0 +1,239 @@
+// The studio's page in a real browser: headless Chromium from Debian, driven by Playwright,
+// against `avar studio --sim` on a copy of the bundled show. It poses the figure with a slider and
+// reads where the simulated servo went, scrubs and checks the figure follows, drags keys in the
+// dope sheet and the graph editor, undoes, redoes, saves and diffs the file, and takes the
+// screenshots the studio guide shows.
+//
+//   node studio_page_test.mjs --avar build/apps/avar --modules studio/page --out build/studio-page-test
+// Exits 77 (skipped) when Chromium is not installed.
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { after, before, test } from 'node:test';
+
+const args = process.argv.slice(2);
+const option = (name) => {
+  const at = args.indexOf(name);
+  if (at < 0 || at + 1 >= args.length) {
+    console.error(`usage: node studio_page_test.mjs --avar AVAR --modules studio/page --out DIR (missing ${name})`);
+    process.exit(2);
+  }
+  return resolve(args[at + 1]);
+};
+const avar = option('--avar');
+const modules = option('--modules');
+const out = option('--out');
+const source = resolve(import.meta.dirname, '../..');
+const CHROMIUM = process.env.AVAR_CHROMIUM ?? '/usr/bin/chromium';
+if (!existsSync(CHROMIUM)) {
+  console.log(`skipped: no Chromium at ${CHROMIUM} (apt-get install chromium; scripts/install-deps.sh does)`);
+  process.exit(77);
+}
+const { chromium } = createRequire(join(modules, 'package.json'))('playwright-core');
+
+mkdirSync(out, { recursive: true });
+const work = mkdtempSync(join(tmpdir(), 'avar-studio-page-'));
+const showFile = join(work, 'hello-head.yaml');
+copyFileSync(join(source, 'examples/shows/hello-head.yaml'), showFile);
+const original = readFileSync(showFile);
+// The bundled head, its link's watchdog widened: Chromium and the build share two cores here, and
+// a stalled simulator must not fault the figure in the middle of a test (the watchdog itself is
+// tested in the fault matrix).
+const rigFile = join(work, 'hello-head-rig.yaml');
+const rig = readFileSync(join(source, 'examples/rigs/hello-head.yaml'), 'utf8');
+assert.match(rig, /\n {4}port: sim[^\n]*\n/);
+writeFileSync(rigFile, rig.replace(/\n( {4})port: sim([^\n]*)\n/, '\n$1port: sim$2\n$1watchdog_ms: 5000\n'));
+
+let server;
+let url;
+let browser;
+let page;
+
+/// Polls `probe` (in the test) until it returns a truthy value; fails with `what` after 15 s.
+async function until(what, probe) {
+  const deadline = Date.now() + 15000;
+  for (;;) {
+    const value = await probe();
+    if (value) return value;
+    if (Date.now() > deadline) assert.fail(`timed out waiting for ${what}`);
+    await new Promise((r) => setTimeout(r, 20));
+  }
+}
+
+/// Waits until every message the page sent is answered and what the server broadcast before
+/// those answers has arrived (a last request's reply comes after them).
+const settled = () =>
+  page.evaluate(async () => {
+    const connection = window.avarStudio.state.connection;
+    while (connection.inFlight() > 0) await new Promise((r) => setTimeout(r, 5));
+    await connection.request({ type: 'curves' });
+  });
+const status = () => page.evaluate(() => window.avarStudio.state.status);
+const showState = () => page.evaluate(() => window.avarStudio.state.show);
+const channelStatus = async (name) => (await status())?.channels.find((c) => c.name === name);
+/// Client coordinates of a point of a canvas given in its CSS pixels.
+async function onCanvas(id, x, y) {
+  const box = await page.locator(`#${id}`).boundingBox();
+  return { x: box.x + x, y: box.y + y };
+}
+/// Where a key of a channel is drawn in the dope sheet (CSS pixels of its canvas).
+const keyInDopeSheet = (channel, index) =>
+  page.evaluate(
+    ([channel, index]) => {
+      const { state, dope } = window.avarStudio;
+      const row = state.rig.channels.findIndex((c) => c.name === channel);
+      return { x: dope.axis().x(state.keys(channel)[index].time), y: 24 + row * 22 + 11 };
+    },
+    [channel, index],
+  );
+
+before(async () => {
+  server = spawn(avar, ['studio', showFile, '--rig', rigFile, '--sim'], {
+    stdio: ['ignore', 'pipe', 'pipe'],
+  });
+  let printed = '';
+  server.stderr.on('data', (d) => process.stderr.write(d));
+  url = await until('avar studio to print its URL', () => {
+    const chunk = server.stdout.read();
+    if (chunk) printed += chunk.toString();
+    return printed.match(/studio: (http:\/\/\S+)/)?.[1];
+  });
+  browser = await chromium.launch({ executablePath: CHROMIUM, args: ['--no-sandbox'] });
+  page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
+  page.on('pageerror', (e) => assert.fail(`the page threw: ${e.message}`));
+  await page.goto(url);
+  await page.waitForSelector('body[data-ready="yes"]');
+  await until('the first status', status);
+  await until("the engine's curves", () => page.evaluate(() => window.avarStudio.state.engine.has('jaw')));
+});
+
+after(async () => {
+  await browser?.close();
+  if (server && server.exitCode === null) {
+    server.kill('SIGINT');
+    await new Promise((r) => server.once('exit', r));
+  }
+});
+
+test('the page shows the rig, the show and the figure, and draws the keys', async () => {
+  assert.equal(await page.textContent('#title'), 'hello-head');
+  assert.equal(await page.locator('.pose-row').count(), 8);
+  assert.equal(await page.textContent('#connection'), 'connected');
+  // The dope sheet draws the jaw's keys where their times are.
+  const key = await keyInDopeSheet('jaw', 2);
+  const pixel = await page.evaluate(([x, y]) => {
+    const canvas = document.getElementById('dopesheet');
+    const ratio = canvas.width / canvas.clientWidth;
+    return [...canvas.getContext('2d').getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data];
+  }, [key.x, key.y]);
+  assert.deepEqual(pixel.slice(0, 3), [0xd7, 0xdb, 0xe0], 'a key is drawn at its time');
+  await page.screenshot({ path: join(out, 'studio.png') });
+});
+
+test('a slider holds the channel and the simulated servo goes there; letting go hands it back', async () => {
+  const slider = page.locator('.pose-row[data-channel="jaw"] input[type="range"]');
+  const box = await slider.boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.75, box.y + box.height / 2, { steps: 5 });
+  const wanted = Number(await slider.inputValue());
+  assert.ok(wanted > 15 && wanted < 30, `the slider moved to ${wanted}`);
+  const reached = await until('the simulated jaw to reach the slider', async () => {
+    const jaw = await channelStatus('jaw');
+    return jaw.held && Math.abs(jaw.measured - wanted) < 0.2 && jaw;
+  });
+  assert.ok(reached.command <= 30 && reached.command >= 0);
+  await page.mouse.up();
+  await until('the jaw to be handed back to the show', async () => !(await channelStatus('jaw')).held);
+});
+
+test('scrubbing the ruler moves show time and the figure follows', async () => {
+  const from = await page.evaluate(() => window.avarStudio.dope.axis().x(2));
+  const to = await page.evaluate(() => window.avarStudio.dope.axis().x(3.3));
+  const start = await onCanvas('dopesheet', from, 12);
+  const end = await onCanvas('dopesheet', to, 12);
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  await page.mouse.move(end.x, end.y, { steps: 8 });
+  await page.mouse.up();
+  const s = await until('show time at the playhead', async () => {
+    const now = await status();
+    return now.paused && Math.abs(now.show_time - 3.3) < 0.02 && now;
+  });
+  const expected = await page.evaluate((t) => window.avarStudio.state.engine.sample('neck_pan', t), s.show_time);
+  await until('the neck to follow the scrub', async () => Math.abs((await channelStatus('neck_pan')).measured - expected) < 0.3);
+});
+
+test('a key dragged in the dope sheet moves; undo, redo and save write the file', async () => {
+  const before = (await showState()).show.tracks.eyes_pan[4].time;
+  const key = await keyInDopeSheet('eyes_pan', 4);
+  const start = await onCanvas('dopesheet', key.x, key.y);
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  await page.mouse.move(start.x - 40, start.y, { steps: 6 });
+  await page.mouse.up();
+  await settled();
+  const moved = await until('the moved key', async () => {
+    const s = await showState();
+    const t = s.show.tracks.eyes_pan[4].time;
+    return t < before - 0.1 && s.modified && t;
+  });
+  assert.ok(moved > 5.5, 'the key stays after its neighbour');
+  assert.deepEqual(readFileSync(showFile), original, 'nothing is written before save');
+  await page.keyboard.press('Control+z');
+  await until('the undo', async () => {
+    const s = await showState();
+    return !s.modified && s.show.tracks.eyes_pan[4].time === before;
+  });
+  await page.keyboard.press('Control+Shift+z');
+  await until('the redo', async () => (await showState()).show.tracks.eyes_pan[4].time === moved);
+  await page.click('#save');
+  await until('the save', async () => (await page.textContent('#notice')).startsWith('saved'));
+  const saved = readFileSync(showFile, 'utf8');
+  assert.notDeepEqual(Buffer.from(saved), original);
+  assert.match(saved, new RegExp(`time: ${String(moved).replace('.', '\\.')}`));
+  // Undone back to the show as opened, save writes the original bytes.
+  await page.click('#undo');
+  await until('the undo', async () => (await showState()).show.tracks.eyes_pan[4].time === before);
+  await page.evaluate(() => (window.avarStudio.state.notice = ''));
+  await page.click('#save');
+  await until('the second save', async () => (await page.textContent('#notice')).startsWith('saved'));
+  assert.ok(readFileSync(showFile).equals(original), 'the show as opened is saved as its own bytes');
+  assert.equal((await showState()).modified, false);
+});
+
+test('the graph editor draws the curve from the engine and a key dragged there changes its value', async () => {
+  await page.click('.pose-row[data-channel="neck_pan"] .channel-name');
+  await page.screenshot({ path: join(out, 'studio-graph.png') });
+  const at = await page.evaluate(() => {
+    const { state, graph } = window.avarStudio;
+    const axes = graph.axes();
+    const key = state.keys('neck_pan')[2];
+    return { x: axes.time.x(key.time), y: axes.y(key.value), value: key.value };
+  });
+  const start = await onCanvas('graph', at.x, at.y);
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  await page.mouse.move(start.x, start.y + 25, { steps: 5 });
+  await page.mouse.up();
+  await settled();
+  const value = await until('the key to take its new value', async () => {
+    const v = (await showState()).show.tracks.neck_pan[2].value;
+    return v < at.value - 1 && v;
+  });
+  // The engine now draws the curve through the new value.
+  await until('the redrawn curve', () =>
+    page.evaluate((v) => window.avarStudio.state.engine.sample('neck_pan', 3) === v, value),
+  );
+  await page.click('#undo');
+  await until('the undo', async () => (await showState()).show.tracks.neck_pan[2].value === at.value);
+});
+
+test('the e-stop button stops every actuator at once', async () => {
+  await page.click('#estop');
+  await until('the e-stop in the status', async () => (await status()).estop);
+  await until('the status bar to say so', async () => /E-STOP/.test(await page.textContent('#phase')));
+});
