@@ -25,9 +25,15 @@ void unplug_and_replug(fw::ActuatorLink& link, SimWire& wire, const char* what) 
   const std::vector<double> frame{0.5, 0.25};
   ASSERT_EQ(link.start(), Status::ok);
   ASSERT_EQ(link.send(frame), Status::ok);
+  // A write-only link counts its sends and their bytes; a send the wire did not take is not one.
+  const fw::LinkCounters first = link.counters();
+  EXPECT_EQ(first.exchanges, 1u);
+  EXPECT_GT(first.bytes_sent, 0u);
   wire.set_connected(false);
   for (int i = 0; i < 25; ++i) EXPECT_EQ(link.send(frame), Status::io_error);
   EXPECT_EQ(link.counters().reconnects, 0u);
+  EXPECT_EQ(link.counters().exchanges, 1u);
+  EXPECT_EQ(link.counters().bytes_sent, first.bytes_sent);
   wire.set_connected(true);
   Status s = Status::io_error;
   int sends = 0;
@@ -35,6 +41,8 @@ void unplug_and_replug(fw::ActuatorLink& link, SimWire& wire, const char* what) 
   EXPECT_EQ(s, Status::ok);
   EXPECT_LE(sends, 10);  // reconnect_every
   EXPECT_EQ(link.counters().reconnects, 1u);
+  EXPECT_EQ(link.counters().exchanges, 2u);
+  EXPECT_EQ(link.counters().bytes_sent, 2 * first.bytes_sent);
   EXPECT_EQ(wire.reopens(), 1u);
 }
 

@@ -112,6 +112,7 @@ Status MaestroLink::write_targets() noexcept {
   }
   if (s == Status::ok) s = transport_.write(out.first(size));
   if (s == Status::io_error) reconnector_.lost();
+  if (s == Status::ok) reconnector_.sent(size);
   return s;
 }
 

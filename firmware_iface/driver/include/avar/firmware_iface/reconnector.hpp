@@ -45,9 +45,18 @@ class Reconnector {
 
   /// Reopens that succeeded since construction. Any thread.
   std::uint64_t reconnects() const noexcept { return reconnects_.load(std::memory_order_relaxed); }
-  /// Counters of a link that counts nothing else.
+  /// A send() wrote its `bytes` (the targets' frame) to the transport. The send() thread only.
+  void sent(std::size_t bytes) noexcept {
+    exchanges_.fetch_add(1, std::memory_order_relaxed);
+    bytes_sent_.fetch_add(bytes, std::memory_order_relaxed);
+  }
+
+  /// Counters of a write-only link (it has no replies to count): the sends that reached the
+  /// transport, their bytes, and the reopens. Any thread.
   LinkCounters counters() const noexcept {
     LinkCounters k;
+    k.exchanges = exchanges_.load(std::memory_order_relaxed);
+    k.bytes_sent = bytes_sent_.load(std::memory_order_relaxed);
     k.reconnects = reconnects();
     return k;
   }
@@ -60,6 +69,7 @@ class Reconnector {
     if (ask(transport, &reopened) != Status::ok) return Status::io_error;
     const Status s = transport.write(bytes);
     if (s == Status::io_error) lost();
+    if (s == Status::ok) sent(bytes.size());
     return s;
   }
 
@@ -68,6 +78,8 @@ class Reconnector {
   std::uint32_t asks_ = 0;
   bool lost_ = false;
   std::atomic<std::uint64_t> reconnects_{0};
+  std::atomic<std::uint64_t> exchanges_{0};
+  std::atomic<std::uint64_t> bytes_sent_{0};
 };
 
 }  // namespace avar::firmware_iface
