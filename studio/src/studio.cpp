@@ -10,6 +10,7 @@
 #include "avar/core/input_error.hpp"
 #include "avar/playback/runtime/raw_curve_codec.hpp"
 #include "avar/studio/protocol.hpp"
+#include "rig_json.hpp"
 
 namespace avar::studio {
 namespace {
@@ -17,26 +18,6 @@ namespace {
 using nlohmann::json;
 
 constexpr std::size_t kMaxRefusedKept = 64;
-
-/// A measurement that may be missing (NaN): null then.
-json maybe(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
-
-json rig_json(const rig::Rig& rig) {
-  json channels = json::array();
-  for (const rig::ChannelSpec& c : rig.channels)
-    channels.push_back({{"name", c.name},
-                        {"unit", c.unit},
-                        {"kind", c.digital() ? "digital" : "analog"},
-                        {"min", c.min},
-                        {"max", c.max},
-                        {"rest", c.rest},
-                        {"max_velocity", maybe(c.max_velocity)},
-                        {"max_acceleration", maybe(c.max_acceleration)},
-                        {"max_jerk", maybe(c.max_jerk)}});
-  json links = json::array();
-  for (const rig::LinkSpec& l : rig.links) links.push_back({{"name", l.name}, {"protocol", l.protocol}, {"port", l.port}});
-  return {{"name", rig.name}, {"rate_hz", rig.rate_hz}, {"channels", channels}, {"links", links}};
-}
 
 std::string error_reply(std::string_view request, const std::string& problem) {
   return json{{"type", "error"}, {"request", request}, {"message", problem}}.dump();
@@ -88,7 +69,8 @@ std::string Studio::curves_message() const {
 }
 
 std::string Studio::hello() const {
-  std::string head = json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}}.dump();
+  std::string head =
+      json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}, {"vocabulary", curve_vocabulary_json()}}.dump();
   head.pop_back();
   const std::lock_guard lock(mutex_);
   return head + "," + show_fields() + "}";

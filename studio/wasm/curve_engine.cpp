@@ -8,11 +8,13 @@
 
 #include <cstddef>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "avar/playback/offline/handles.hpp"
 #include "avar/playback/runtime/curve.hpp"
 #include "avar/playback/runtime/raw_curve_codec.hpp"
 
@@ -63,6 +65,30 @@ double avar_curve_sample(int id, double t) {
 void avar_curve_sample_many(int id, const double* times, double* out, int count) {
   const avar::playback::Curve* curve = find(id);
   for (int i = 0; i < count; ++i) out[i] = curve ? curve->evaluate(times[i]) : 0.0;
+}
+
+/// The Bezier handles of every key of the flat keys, as the engine computes them when it builds
+/// the curve (Blender's rules for auto, auto_clamped, vector and aligned sides): 4 numbers per key
+/// written to `out` (left time, left value, right time, right value; NaN for a side without a
+/// handle). Returns the key count, or -1 (see avar_error()).
+int avar_curve_handles(const double* flat, int count, double* out) {
+  try {
+    const avar::playback::RawCurve raw =
+        avar::playback::decode_raw_curve(std::span<const double>(flat, static_cast<std::size_t>(count)));
+    const std::vector<avar::playback::ResolvedHandles> handles = avar::playback::compute_handles(raw);
+    constexpr double none = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = 0; k < handles.size(); ++k) {
+      const auto& h = handles[k];
+      out[4 * k + 0] = h.left ? h.left->time : none;
+      out[4 * k + 1] = h.left ? h.left->value : none;
+      out[4 * k + 2] = h.right ? h.right->time : none;
+      out[4 * k + 3] = h.right ? h.right->value : none;
+    }
+    return static_cast<int>(handles.size());
+  } catch (const std::exception& e) {
+    last_error = e.what();
+    return -1;
+  }
 }
 
 /// Why the last build failed.

@@ -232,6 +232,69 @@ test('the graph editor draws the curve from the engine and a key dragged there c
   await until('the undo', async () => (await showState()).show.tracks.neck_pan[2].value === at.value);
 });
 
+/// Clicks a key in the dope sheet (selecting it alone).
+async function clickKey(channel, index) {
+  const key = await keyInDopeSheet(channel, index);
+  const at = await onCanvas('dopesheet', key.x, key.y);
+  await page.mouse.click(at.x, at.y);
+}
+const keyOf = async (channel, index) => (await showState()).show.tracks[channel][index];
+/// Undoes until the show is as opened.
+async function undoAll() {
+  while ((await showState()).undo !== '') {
+    const before = (await showState()).version;
+    await page.click('#undo');
+    await until('the undo', async () => (await showState()).version > before);
+  }
+  assert.equal((await showState()).modified, false);
+}
+
+test('the key inspector sets an exact value, an interpolation and a handle type', async () => {
+  await clickKey('jaw', 3);
+  await until('the inspector to show the key', async () => (await page.textContent('#key-label')) === 'jaw key 3');
+  assert.equal(await page.inputValue('#key-value'), '4');
+  await page.fill('#key-value', '10');
+  await page.press('#key-value', 'Enter');
+  await until('the typed value', async () => (await keyOf('jaw', 3)).value === 10);
+  await page.selectOption('#key-interpolation', 'bezier');
+  await until('the interpolation', async () => (await keyOf('jaw', 3)).interpolation === 'bezier');
+  // An automatic side made free keeps the handle the engine computed, so the curve does not jump.
+  const computed = await page.evaluate(() => window.avarStudio.state.engine.handleOf('jaw', 3, 'right'));
+  assert.ok(computed, 'a Bezier key has a computed right handle');
+  await page.selectOption('#key-right-type', 'free');
+  const key = await until('the handle type', async () => {
+    const k = await keyOf('jaw', 3);
+    return k.right_type === 'free' && k;
+  });
+  assert.deepEqual(key.right, computed);
+  await page.screenshot({ path: join(out, 'studio-inspector.png') });
+  await undoAll();
+  assert.equal((await keyOf('jaw', 3)).value, 4);
+});
+
+test('copy and paste put keys at the playhead; ripple insert and delete time move every track', async () => {
+  const scrub = async (t) => {
+    await page.evaluate((time) => window.avarStudio.state.connection.send({ type: 'scrub', time }), t);
+    await until(`show time ${t}`, async () => Math.abs((await status()).show_time - t) < 1e-9);
+  };
+  await scrub(11);
+  await clickKey('eyes_pan', 1);
+  await page.keyboard.press('Control+c');
+  await page.keyboard.press('Control+v');
+  await until('the pasted key', async () => (await showState()).show.tracks.eyes_pan.length === 7);
+  assert.deepEqual(await keyOf('eyes_pan', 6), { ...(await keyOf('eyes_pan', 1)), time: 11 });
+  await scrub(2);
+  await page.fill('#time-length', '0.5');
+  await page.click('#insert-time');
+  await until('the inserted time', async () => (await showState()).show.duration === 12.5);
+  assert.equal((await keyOf('eyes_pan', 2)).time, 3.9);
+  await page.click('#delete-time');
+  await until('the deleted time', async () => (await showState()).show.duration === 12);
+  assert.equal((await keyOf('eyes_pan', 2)).time, 3.4);
+  await undoAll();
+  assert.equal((await showState()).show.tracks.eyes_pan.length, 6);
+});
+
 test('the e-stop button stops every actuator at once', async () => {
   await page.click('#estop');
   await until('the e-stop in the status', async () => (await status()).estop);

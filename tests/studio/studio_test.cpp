@@ -2,6 +2,7 @@
 // the running figure at the next tick, undo and redo, save (the original bytes when the show is
 // as opened), refusals that name what was wrong, and the status made from the tick records.
 #include "avar/studio/studio.hpp"
+#include "avar/studio/studio_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -98,6 +99,37 @@ TEST(Studio, HelloTellsTheRigAndTheShow) {
   EXPECT_EQ(hello["file"], f.path);
   EXPECT_EQ(hello["modified"], false);
   EXPECT_EQ(hello["undo"], "");
+  EXPECT_TRUE(hello["rig"]["kinematics"].is_null()) << "hello-head has no kinematics section";
+  // The editor's menus: the show file's names, in its order.
+  EXPECT_EQ(hello["vocabulary"]["interpolations"].size(), 18u);
+  EXPECT_EQ(hello["vocabulary"]["interpolations"][2], "bezier");
+  EXPECT_EQ(hello["vocabulary"]["easings"], json({"auto", "ease_in", "ease_out", "ease_in_out"}));
+  EXPECT_EQ(hello["vocabulary"]["handle_types"], json({"free", "aligned", "vector", "auto", "auto_clamped"}));
+  EXPECT_EQ(hello["vocabulary"]["extrapolations"], json({"constant", "linear"}));
+}
+
+TEST(Studio, HelloGivesTheKinematicTreeWithTheChannelDrivingEachJoint) {
+  const rig::Rig rig = config::load_rig_file(example("rigs/gaze-head.yaml"));
+  Studio studio{rig, edit::ShowDocument(new_show("look")), ""};
+  const json k = json::parse(studio.hello())["rig"]["kinematics"];
+  ASSERT_EQ(k["joints"].size(), 2u);
+  const json& pan = k["joints"][0];
+  EXPECT_EQ(pan["name"], "pan");
+  EXPECT_EQ(pan["type"], "revolute");
+  EXPECT_TRUE(pan["parent"].is_null());
+  EXPECT_EQ(pan["channel"], "neck_pan");
+  EXPECT_EQ(pan["axis"], json({0.0, 0.0, 1.0}));
+  EXPECT_EQ(pan["origin"]["xyz"], json({0.0, 0.0, 0.30}));
+  EXPECT_EQ(pan["origin"]["quaternion"], json({1.0, 0.0, 0.0, 0.0}));
+  // Degrees on the channel, radians at the joint.
+  EXPECT_NEAR(pan["scale"].get<double>(), M_PI / 180, 1e-15);
+  const json& tilt = k["joints"][1];
+  EXPECT_EQ(tilt["parent"], 0);
+  EXPECT_EQ(tilt["channel"], "neck_tilt");
+  ASSERT_EQ(k["effectors"].size(), 1u);
+  EXPECT_EQ(k["effectors"][0]["name"], "eyes");
+  EXPECT_EQ(k["effectors"][0]["joint"], 1);
+  EXPECT_EQ(k["effectors"][0]["origin"]["xyz"], json({0.09, 0.0, 0.04}));
 }
 
 TEST(Studio, AnEditReachesTheFigureAtTheNextTickAndUndoTakesItBack) {

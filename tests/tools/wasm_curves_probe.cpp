@@ -6,6 +6,7 @@
 //
 //   avar_wasm_probe OUT.json [EXAMPLES_DIR]
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/bit_cast.hpp"
 #include "avar/core/format.hpp"
+#include "avar/playback/offline/handles.hpp"
 #include "avar/playback/runtime/curve.hpp"
 #include "avar/playback/runtime/raw_curve_codec.hpp"
 
@@ -124,8 +126,19 @@ int main(int argc, char** argv) {
       bits += (bits.empty() ? "\"" : ",\"") + hex_bits(curve.evaluate(t)) + "\"";
     }
     samples += times.size();
+    // Every key's handles as the engine computes them (left time, value, right time, value; NaN
+    // for a side without one), for the page's graph editor.
+    std::string handles;
+    const auto side = [&](const std::optional<avar::playback::Handle>& h) {
+      for (double v : {h ? h->time : std::nan(""), h ? h->value : std::nan("")})
+        handles += (handles.empty() ? "\"" : ",\"") + hex_bits(v) + "\"";
+    };
+    for (const avar::playback::ResolvedHandles& h : avar::playback::compute_handles(probes[i].raw)) {
+      side(h.left);
+      side(h.right);
+    }
     out << "{\"name\": \"" << probes[i].name << "\", \"flat\": [" << flat << "], \"times\": [" << at << "], \"bits\": [" << bits
-        << "]}" << (i + 1 < probes.size() ? ",\n" : "\n");
+        << "], \"handles\": [" << handles << "]}" << (i + 1 < probes.size() ? ",\n" : "\n");
   }
   out << "]}\n";
   std::cout << "avar_wasm_probe: " << probes.size() << " curves, " << samples << " samples -> " << argv[1] << '\n';

@@ -34,6 +34,7 @@ const toHeap = (numbers) => {
 };
 
 let samples = 0;
+let handleNumbers = 0;
 const mismatches = [];
 for (const curve of probe.curves) {
   const flat = toHeap(curve.flat);
@@ -50,6 +51,20 @@ for (const curve of probe.curves) {
   engine._free(times);
   engine._free(out);
   engine._avar_curve_free(id);
+  // The handles the graph editor draws: the native engine's, bit for bit.
+  const flatAgain = toHeap(curve.flat);
+  const handlesOut = engine._malloc(Math.max(1, curve.handles.length) * 8);
+  const keys = engine._avar_curve_handles(flatAgain, curve.flat.length, handlesOut);
+  const handles = engine.HEAPF64.slice(handlesOut / 8, handlesOut / 8 + curve.handles.length);
+  engine._free(flatAgain);
+  engine._free(handlesOut);
+  if (keys * 4 !== curve.handles.length) mismatches.push(`${curve.name}: handles of ${keys} keys, native ${curve.handles.length / 4}`);
+  curve.handles.forEach((bits, i) => {
+    handleNumbers += 1;
+    // NaN marks a side without a handle: any NaN matches it.
+    if (Number.isNaN(handles[i]) && bits.startsWith('7ff')) return;
+    if (bitsOf(handles[i]) !== bits) mismatches.push(`${curve.name}: handle number ${i}: native ${bits}, WebAssembly ${bitsOf(handles[i])}`);
+  });
   curve.times.forEach((t, i) => {
     samples += 1;
     const got = bitsOf(values[i]);
@@ -57,8 +72,10 @@ for (const curve of probe.curves) {
   });
 }
 if (mismatches.length > 0) {
-  console.error(`${mismatches.length} of ${samples} samples differ:`);
+  console.error(`${mismatches.length} differences in ${samples} samples and ${handleNumbers} handle numbers:`);
   for (const m of mismatches.slice(0, 20)) console.error(`  ${m}`);
   process.exit(1);
 }
-console.log(`wasm curves: ${probe.curves.length} curves, ${samples} samples, every one bit-identical to the native engine`);
+console.log(
+  `wasm curves: ${probe.curves.length} curves, ${samples} samples and ${handleNumbers} handle numbers, every one bit-identical to the native engine`,
+);

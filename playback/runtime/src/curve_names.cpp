@@ -2,6 +2,7 @@
 #include <array>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "avar/playback/runtime/curve.hpp"
 
@@ -13,6 +14,13 @@ std::optional<E> lookup(const std::array<std::pair<std::string_view, E>, N>& tab
   for (const auto& [n, e] : table)
     if (n == name) return e;
   return std::nullopt;
+}
+template <typename E, std::size_t N>
+std::vector<std::string_view> names_in(const std::array<std::pair<std::string_view, E>, N>& table) {
+  std::vector<std::string_view> names;
+  names.reserve(N);
+  for (const auto& entry : table) names.push_back(entry.first);
+  return names;
 }
 template <typename E, std::size_t N>
 const char* name_of(const std::array<std::pair<std::string_view, E>, N>& table, E e) {
@@ -93,6 +101,11 @@ const char* interpolation_names() {
   return "constant (or step), linear, bezier, sine, quad, cubic, quart, quint, expo, circ, back, bounce, elastic, hermite, "
          "catmull_rom, cardinal, kochanek_bartels, bspline";
 }
+
+std::vector<std::string_view> interpolation_name_list() { return names_in(kInterpolations); }
+std::vector<std::string_view> easing_name_list() { return names_in(kEasings); }
+std::vector<std::string_view> handle_type_name_list() { return names_in(kHandleTypes); }
+std::vector<std::string_view> extrapolation_name_list() { return names_in(kExtrapolations); }
 
 bool is_easing_family(Interpolation i) { return i >= Interpolation::sine && i <= Interpolation::elastic; }
 

@@ -4,3 +4,15 @@ export function element<T extends HTMLElement>(id: string): T {
   if (!found) throw new Error(`the page has no #${id}`);
   return found as T;
 }
+
+/// Whether a key press belongs to a field (a number being typed, a menu): the page's shortcuts
+/// leave it alone. A slider is not a field: its arrow keys move it, the shortcuts still work.
+export function typingIn(event: KeyboardEvent): boolean {
+  const target = event.target;
+  return (
+    (target instanceof HTMLInputElement && target.type !== 'range' && target.type !== 'checkbox') ||
+    target instanceof HTMLSelectElement ||
+    target instanceof HTMLTextAreaElement ||
+    (target instanceof HTMLButtonElement && event.key === ' ')
+  );
+}

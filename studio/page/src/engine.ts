@@ -7,6 +7,7 @@ interface CurveModule {
   _avar_curve_free(id: number): void;
   _avar_curve_sample(id: number, t: number): number;
   _avar_curve_sample_many(id: number, times: number, out: number, count: number): void;
+  _avar_curve_handles(flat: number, count: number, out: number): number;
   _avar_error(): number;
   _malloc(bytes: number): number;
   _free(address: number): void;
@@ -22,6 +23,8 @@ declare global {
 
 export class CurveEngine {
   private curves = new Map<string, number>();
+  private flats = new Map<string, number[]>();
+  private handleCache = new Map<string, Float64Array>();
   private constructor(private readonly module: CurveModule) {}
 
   static async load(): Promise<CurveEngine> {
@@ -34,6 +37,8 @@ export class CurveEngine {
   setTracks(tracks: Record<string, number[]>): string[] {
     for (const id of this.curves.values()) this.module._avar_curve_free(id);
     this.curves.clear();
+    this.flats = new Map(Object.entries(tracks));
+    this.handleCache.clear();
     const problems: string[] = [];
     for (const [channel, flat] of Object.entries(tracks)) {
       const address = this.toHeap(flat);
@@ -65,6 +70,32 @@ export class CurveEngine {
     this.module._free(input);
     this.module._free(out);
     return values;
+  }
+
+  /// Every key's Bezier handles as the engine computes them (4 numbers a key: left time, left
+  /// value, right time, right value; NaN for none), or null when the channel has no curve.
+  handles(channel: string): Float64Array | null {
+    const cached = this.handleCache.get(channel);
+    if (cached) return cached;
+    const flat = this.flats.get(channel);
+    if (!flat || !this.curves.has(channel)) return null;
+    const keys = Math.max(0, (flat.length - 8) / 22);
+    const input = this.toHeap(flat);
+    const out = this.module._malloc(Math.max(1, keys * 4) * 8);
+    const count = this.module._avar_curve_handles(input, flat.length, out);
+    const handles = count < 0 ? null : this.module.HEAPF64.slice(out / 8, out / 8 + count * 4);
+    this.module._free(input);
+    this.module._free(out);
+    if (handles) this.handleCache.set(channel, handles);
+    return handles;
+  }
+
+  /// One key's handle on one side as the engine computes it, or null (no curve, no handle).
+  handleOf(channel: string, index: number, side: 'left' | 'right'): [number, number] | null {
+    const handles = this.handles(channel);
+    const t = handles?.[4 * index + (side === 'left' ? 0 : 2)];
+    const v = handles?.[4 * index + (side === 'left' ? 1 : 3)];
+    return t === undefined || v === undefined || Number.isNaN(t) || Number.isNaN(v) ? null : [t, v];
   }
 
   private toHeap(numbers: ArrayLike<number>): number {

@@ -55,6 +55,15 @@ export class GraphEditor {
     };
   }
 
+  /// A key's handle on one side as the engine computes it, where a Bezier segment uses it: the
+  /// left handle shapes the segment from the previous key, the right one the segment to the next.
+  private handle(channel: string, index: number, side: 'left' | 'right'): [number, number] | null {
+    const keys = this.state.keys(channel);
+    const owner = side === 'left' ? keys[index - 1] : keys[index];
+    if (!owner || owner.interpolation !== 'bezier' || (side === 'right' && index + 1 >= keys.length)) return null;
+    return this.state.engine.handleOf(channel, index, side);
+  }
+
   private hit(x: number, y: number): Drag | null {
     const a = this.axes();
     const channel = this.state.channel;
@@ -62,7 +71,7 @@ export class GraphEditor {
     const keys = this.state.keys(channel);
     for (const [index, key] of keys.entries()) {
       for (const side of ['left', 'right'] as const) {
-        const handle = key[side];
+        const handle = this.handle(channel, index, side);
         if (handle && Math.hypot(a.time.x(handle[0]) - x, a.y(handle[1]) - y) < 6)
           return { kind: 'handle', index, side, busy: false, started: false, pending: null };
       }
@@ -129,10 +138,10 @@ export class GraphEditor {
       const key = this.state.keys(channel)[drag.index];
       if (!key) break;
       const typeField = drag.side === 'left' ? 'left_type' : 'right_type';
-      const type = key[typeField];
+      // The side's type as the show file defaults it: free where a handle is given.
+      const type = key[typeField] ?? (key[drag.side] ? 'free' : 'auto_clamped');
       const changed: Key = { ...key, [drag.side]: point };
-      if (type === undefined || type === 'auto' || type === 'auto_clamped' || type === 'vector')
-        changed[typeField] = type === 'vector' ? 'free' : 'aligned';
+      if (type === 'auto' || type === 'auto_clamped' || type === 'vector') changed[typeField] = type === 'vector' ? 'free' : 'aligned';
       if (await this.state.edit([{ op: 'set', channel, key: drag.index, value: changed }], drag.started)) drag.started = true;
     }
     drag.busy = false;
@@ -200,7 +209,7 @@ export class GraphEditor {
       const kx = a.time.x(key.time);
       const ky = a.y(numericValue(key));
       for (const side of ['left', 'right'] as const) {
-        const handle = key[side];
+        const handle = this.handle(channel, index, side);
         if (!handle) continue;
         g.strokeStyle = color('--handle');
         g.beginPath();

@@ -3,6 +3,7 @@ import { Connection } from './connection';
 import { element } from './dom';
 import { CurveEngine } from './engine';
 import { GraphEditor } from './graph';
+import { Inspector } from './inspector';
 import { PosePanel } from './pose';
 import type { ServerMessage } from './protocol';
 import { StudioState } from './state';
@@ -49,11 +50,13 @@ async function main(): Promise<void> {
   const pose = new PosePanel(element('pose'), state);
   const dope = new DopeSheet(element<HTMLCanvasElement>('dopesheet'), state);
   const graph = new GraphEditor(element<HTMLCanvasElement>('graph'), state);
+  const inspector = new Inspector(state);
   state.onChange(() => {
     transport?.render();
     pose.render();
     dope.render();
     graph.render();
+    inspector.render();
   });
   window.avarStudio = { state, dope, graph };
   connection.open();

@@ -19,11 +19,36 @@ export interface RigLink {
   port: string;
 }
 
+/// A rigid transform: metres, and a unit quaternion [w, x, y, z].
+export interface Transform {
+  xyz: [number, number, number];
+  quaternion: [number, number, number, number];
+}
+
+/// A joint of the rig's kinematic tree; a movable one names the channel that drives it:
+/// joint value (rad or m) = (channel value - offset) * scale.
+export interface KinematicJoint {
+  name: string;
+  type: 'revolute' | 'prismatic' | 'fixed';
+  parent: number | null;
+  origin: Transform;
+  axis: [number, number, number];
+  channel: string | null;
+  scale?: number;
+  offset?: number;
+}
+
+export interface Kinematics {
+  joints: KinematicJoint[];
+  effectors: { name: string; joint: number; origin: Transform }[];
+}
+
 export interface Rig {
   name: string;
   rate_hz: number;
   channels: RigChannel[];
   links: RigLink[];
+  kinematics: Kinematics | null;
 }
 
 /// A key as the show file writes it; fields the page does not read pass through unchanged.
@@ -69,10 +94,19 @@ export interface ShowState {
   show: ShowJson;
 }
 
+/// The show file's names for the curve vocabulary, in order (the editor's menus).
+export interface Vocabulary {
+  interpolations: string[];
+  easings: string[];
+  handle_types: string[];
+  extrapolations: string[];
+}
+
 export interface Hello extends ShowState {
   type: 'hello';
   protocol: number;
   rig: Rig;
+  vocabulary: Vocabulary;
 }
 
 export interface ChannelStatus {

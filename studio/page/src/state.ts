@@ -3,7 +3,7 @@
 // ask for a redraw; only messages from the server change the show.
 import type { Connection } from './connection';
 import type { CurveEngine } from './engine';
-import type { Edit, Hello, Rig, ShowState, Status } from './protocol';
+import type { Edit, Hello, Key, Rig, ShowState, Status, Vocabulary } from './protocol';
 import { trackKeys } from './protocol';
 
 /// Keys picked, per channel (indices into the channel's track, in time order).
@@ -11,6 +11,9 @@ export type Selection = Map<string, Set<number>>;
 
 export class StudioState {
   rig: Rig | null = null;
+  vocabulary: Vocabulary = { interpolations: [], easings: [], handle_types: [], extrapolations: [] };
+  /// Keys copied (Ctrl+C), per channel, their times from the earliest copied key.
+  clipboard: Map<string, Key[]> = new Map();
   show: ShowState | null = null;
   status: Status | null = null;
   /// The channel the graph editor and the pose panel point at.
@@ -47,6 +50,7 @@ export class StudioState {
   takeHello(hello: Hello): void {
     const first = this.rig === null;
     this.rig = hello.rig;
+    this.vocabulary = hello.vocabulary;
     this.takeShow(hello);
     if (first) {
       // The whole show, with a margin so the first and last keys are not cut.

@@ -3,6 +3,7 @@
 // drag a box to select many, drag selected keys to move them in time, double-click a row to add a
 // key there with the curve's value, Delete removes the selection. Wheel zooms, Shift+wheel pans.
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
+import { typingIn } from './dom';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -29,7 +30,7 @@ export class DopeSheet {
     canvas.addEventListener('dblclick', (e) => void this.addKey(e));
     canvas.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
     window.addEventListener('keydown', (e) => {
-      if (e.target instanceof HTMLInputElement && e.target.type !== 'range') return;
+      if (typingIn(e)) return;
       if (e.key === 'Delete' || e.key === 'Backspace') void this.deleteSelection();
     });
     new ResizeObserver(() => state.changed()).observe(canvas);

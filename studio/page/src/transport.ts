@@ -2,7 +2,7 @@
 // the run's phase, show time, faults, link counters, the last refusal).
 import { formatTime } from './axis';
 import type { ConnectionState } from './connection';
-import { element } from './dom';
+import { element, typingIn } from './dom';
 import type { StudioState } from './state';
 
 export class Transport {
@@ -26,7 +26,7 @@ export class Transport {
     this.save.onclick = () => void this.saveShow();
     element<HTMLButtonElement>('estop').onclick = () => void state.ask({ type: 'estop' });
     document.addEventListener('keydown', (event) => {
-      if (event.target instanceof HTMLInputElement && event.target.type !== 'range') return;
+      if (typingIn(event)) return;
       const command = event.ctrlKey || event.metaKey;
       if (command && event.key.toLowerCase() === 'z') {
         void state.ask({ type: event.shiftKey ? 'redo' : 'undo' });

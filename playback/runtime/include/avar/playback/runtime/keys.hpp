@@ -70,6 +70,11 @@ const char* to_string(AutoSmoothing smoothing);
 const char* to_string(CycleMode mode);
 /// Every accepted name, comma separated, for error messages.
 const char* interpolation_names();
+/// The canonical names, in the show file's order (an editor's menus).
+std::vector<std::string_view> interpolation_name_list();
+std::vector<std::string_view> easing_name_list();
+std::vector<std::string_view> handle_type_name_list();
+std::vector<std::string_view> extrapolation_name_list();
 bool is_easing_family(Interpolation interpolation);
 
 /// A Bezier handle, absolute: (seconds, channel units).

@@ -1,0 +1,85 @@
+#include "rig_json.hpp"
+
+#include <Eigen/Geometry>
+
+#include "avar/playback/runtime/keys.hpp"
+
+namespace avar::studio {
+namespace {
+
+using nlohmann::json;
+
+/// A rigid transform as `{xyz: [m], quaternion: [w, x, y, z]}`.
+json transform_json(const Eigen::Isometry3d& t) {
+  const Eigen::Quaterniond q(t.rotation());
+  const Eigen::Vector3d p = t.translation();
+  return {{"xyz", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+const char* joint_type_name(kinematics::JointType type) {
+  switch (type) {
+    case kinematics::JointType::revolute: return "revolute";
+    case kinematics::JointType::prismatic: return "prismatic";
+    case kinematics::JointType::fixed: return "fixed";
+  }
+  return "fixed";
+}
+
+/// The joint tree in topological order (a parent before its children). A movable joint names the
+/// channel that drives it: joint value (rad or m) = (channel value - offset) * scale.
+json kinematics_json(const rig::Rig& rig) {
+  if (!rig.kinematics) return nullptr;
+  const kinematics::Model& model = rig.kinematics->model;
+  json joints = json::array();
+  for (const kinematics::Joint& j : model.joints()) {
+    json joint = {{"name", j.name},
+                  {"type", joint_type_name(j.type)},
+                  {"parent", j.on_base() ? json(nullptr) : json(j.parent)},
+                  {"origin", transform_json(j.origin)},
+                  {"axis", {j.axis.x(), j.axis.y(), j.axis.z()}},
+                  {"channel", nullptr}};
+    for (const rig::JointBinding& b : rig.kinematics->bindings)
+      if (j.movable() && b.q_index == j.q_index) {
+        joint["channel"] = rig.channels[b.channel].name;
+        joint["scale"] = b.scale;
+        joint["offset"] = b.offset;
+      }
+    joints.push_back(std::move(joint));
+  }
+  json effectors = json::array();
+  for (const kinematics::Effector& e : model.effectors())
+    effectors.push_back({{"name", e.name}, {"joint", e.joint}, {"origin", transform_json(e.tool)}});
+  return {{"joints", joints}, {"effectors", effectors}};
+}
+
+}  // namespace
+
+json rig_json(const rig::Rig& rig) {
+  json channels = json::array();
+  for (const rig::ChannelSpec& c : rig.channels)
+    channels.push_back({{"name", c.name},
+                        {"unit", c.unit},
+                        {"kind", c.digital() ? "digital" : "analog"},
+                        {"min", c.min},
+                        {"max", c.max},
+                        {"rest", c.rest},
+                        {"max_velocity", maybe(c.max_velocity)},
+                        {"max_acceleration", maybe(c.max_acceleration)},
+                        {"max_jerk", maybe(c.max_jerk)}});
+  json links = json::array();
+  for (const rig::LinkSpec& l : rig.links) links.push_back({{"name", l.name}, {"protocol", l.protocol}, {"port", l.port}});
+  return {{"name", rig.name},
+          {"rate_hz", rig.rate_hz},
+          {"channels", channels},
+          {"links", links},
+          {"kinematics", kinematics_json(rig)}};
+}
+
+json curve_vocabulary_json() {
+  return {{"interpolations", playback::interpolation_name_list()},
+          {"easings", playback::easing_name_list()},
+          {"handle_types", playback::handle_type_name_list()},
+          {"extrapolations", playback::extrapolation_name_list()}};
+}
+
+}  // namespace avar::studio
