@@ -1,67 +1,18 @@
-// The studio's page in a real browser: headless Chromium from Debian, driven by Playwright,
-// against `avar studio --sim` on a copy of the bundled show. It poses the figure with a slider and
-// reads where the simulated servo went, scrubs and checks the figure follows, drags keys in the
-// dope sheet and the graph editor, undoes, redoes, saves and diffs the file, and takes the
-// screenshots the studio guide shows.
-//
-//   node studio_page_test.mjs --avar build/apps/avar --modules studio/page --out build/studio-page-test
-// Exits 77 (skipped) when Chromium is not installed.
+// The studio's page in a real browser (tests/browser/studio_harness.mjs) against
+// `avar studio --sim` on a copy of the bundled show. It poses the figure with a slider and reads
+// where the simulated servo went, scrubs and checks the figure follows, drags keys in the dope
+// sheet and the graph editor, edits a key in the inspector, copies, pastes and ripples time,
+// undoes, redoes, saves and diffs the file, and takes the screenshots the studio guide shows.
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
-import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { after, before, test } from 'node:test';
+import { onCanvas, openStudio, out, until } from './studio_harness.mjs';
 
-const args = process.argv.slice(2);
-const option = (name) => {
-  const at = args.indexOf(name);
-  if (at < 0 || at + 1 >= args.length) {
-    console.error(`usage: node studio_page_test.mjs --avar AVAR --modules studio/page --out DIR (missing ${name})`);
-    process.exit(2);
-  }
-  return resolve(args[at + 1]);
-};
-const avar = option('--avar');
-const modules = option('--modules');
-const out = option('--out');
-const source = resolve(import.meta.dirname, '../..');
-const CHROMIUM = process.env.AVAR_CHROMIUM ?? '/usr/bin/chromium';
-if (!existsSync(CHROMIUM)) {
-  console.log(`skipped: no Chromium at ${CHROMIUM} (apt-get install chromium; scripts/install-deps.sh does)`);
-  process.exit(77);
-}
-const { chromium } = createRequire(join(modules, 'package.json'))('playwright-core');
-
-mkdirSync(out, { recursive: true });
-const work = mkdtempSync(join(tmpdir(), 'avar-studio-page-'));
-const showFile = join(work, 'hello-head.yaml');
-copyFileSync(join(source, 'examples/shows/hello-head.yaml'), showFile);
-const original = readFileSync(showFile);
-// The bundled head, its link's watchdog widened: Chromium and the build share two cores here, and
-// a stalled simulator must not fault the figure in the middle of a test (the watchdog itself is
-// tested in the fault matrix).
-const rigFile = join(work, 'hello-head-rig.yaml');
-const rig = readFileSync(join(source, 'examples/rigs/hello-head.yaml'), 'utf8');
-assert.match(rig, /\n {4}port: sim[^\n]*\n/);
-writeFileSync(rigFile, rig.replace(/\n( {4})port: sim([^\n]*)\n/, '\n$1port: sim$2\n$1watchdog_ms: 5000\n'));
-
-let server;
-let url;
-let browser;
 let page;
-
-/// Polls `probe` (in the test) until it returns a truthy value; fails with `what` after 15 s.
-async function until(what, probe) {
-  const deadline = Date.now() + 15000;
-  for (;;) {
-    const value = await probe();
-    if (value) return value;
-    if (Date.now() > deadline) assert.fail(`timed out waiting for ${what}`);
-    await new Promise((r) => setTimeout(r, 20));
-  }
-}
+let showFile;
+let original;
+let close;
 
 /// Waits until every message the page sent is answered and what the server broadcast before
 /// those answers has arrived (a last request's reply comes after them).
@@ -74,11 +25,6 @@ const settled = () =>
 const status = () => page.evaluate(() => window.avarStudio.state.status);
 const showState = () => page.evaluate(() => window.avarStudio.state.show);
 const channelStatus = async (name) => (await status())?.channels.find((c) => c.name === name);
-/// Client coordinates of a point of a canvas given in its CSS pixels.
-async function onCanvas(id, x, y) {
-  const box = await page.locator(`#${id}`).boundingBox();
-  return { x: box.x + x, y: box.y + y };
-}
 /// Where a key of a channel is drawn in the dope sheet (CSS pixels of its canvas).
 const keyInDopeSheet = (channel, index) =>
   page.evaluate(
@@ -91,31 +37,11 @@ const keyInDopeSheet = (channel, index) =>
   );
 
 before(async () => {
-  server = spawn(avar, ['studio', showFile, '--rig', rigFile, '--sim'], {
-    stdio: ['ignore', 'pipe', 'pipe'],
-  });
-  let printed = '';
-  server.stderr.on('data', (d) => process.stderr.write(d));
-  url = await until('avar studio to print its URL', () => {
-    const chunk = server.stdout.read();
-    if (chunk) printed += chunk.toString();
-    return printed.match(/studio: (http:\/\/\S+)/)?.[1];
-  });
-  browser = await chromium.launch({ executablePath: CHROMIUM, args: ['--no-sandbox'] });
-  page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
-  page.on('pageerror', (e) => assert.fail(`the page threw: ${e.message}`));
-  await page.goto(url);
-  await page.waitForSelector('body[data-ready="yes"]');
-  await until('the first status', status);
-  await until("the engine's curves", () => page.evaluate(() => window.avarStudio.state.engine.has('jaw')));
+  ({ page, showFile, original, close } = await openStudio({ show: 'hello-head.yaml', rig: 'hello-head.yaml', channel: 'jaw' }));
 });
 
 after(async () => {
-  await browser?.close();
-  if (server && server.exitCode === null) {
-    server.kill('SIGINT');
-    await new Promise((r) => server.once('exit', r));
-  }
+  await close?.();
 });
 
 test('the page shows the rig, the show and the figure, and draws the keys', async () => {
@@ -153,8 +79,8 @@ test('a slider holds the channel and the simulated servo goes there; letting go 
 test('scrubbing the ruler moves show time and the figure follows', async () => {
   const from = await page.evaluate(() => window.avarStudio.dope.axis().x(2));
   const to = await page.evaluate(() => window.avarStudio.dope.axis().x(3.3));
-  const start = await onCanvas('dopesheet', from, 12);
-  const end = await onCanvas('dopesheet', to, 12);
+  const start = await onCanvas(page, 'dopesheet', from, 12);
+  const end = await onCanvas(page, 'dopesheet', to, 12);
   await page.mouse.move(start.x, start.y);
   await page.mouse.down();
   await page.mouse.move(end.x, end.y, { steps: 8 });
@@ -170,7 +96,7 @@ test('scrubbing the ruler moves show time and the figure follows', async () => {
 test('a key dragged in the dope sheet moves; undo, redo and save write the file', async () => {
   const before = (await showState()).show.tracks.eyes_pan[4].time;
   const key = await keyInDopeSheet('eyes_pan', 4);
-  const start = await onCanvas('dopesheet', key.x, key.y);
+  const start = await onCanvas(page, 'dopesheet', key.x, key.y);
   await page.mouse.move(start.x, start.y);
   await page.mouse.down();
   await page.mouse.move(start.x - 40, start.y, { steps: 6 });
@@ -214,7 +140,7 @@ test('the graph editor draws the curve from the engine and a key dragged there c
     const key = state.keys('neck_pan')[2];
     return { x: axes.time.x(key.time), y: axes.y(key.value), value: key.value };
   });
-  const start = await onCanvas('graph', at.x, at.y);
+  const start = await onCanvas(page, 'graph', at.x, at.y);
   await page.mouse.move(start.x, start.y);
   await page.mouse.down();
   await page.mouse.move(start.x, start.y + 25, { steps: 5 });
@@ -235,7 +161,7 @@ test('the graph editor draws the curve from the engine and a key dragged there c
 /// Clicks a key in the dope sheet (selecting it alone).
 async function clickKey(channel, index) {
   const key = await keyInDopeSheet(channel, index);
-  const at = await onCanvas('dopesheet', key.x, key.y);
+  const at = await onCanvas(page, 'dopesheet', key.x, key.y);
   await page.mouse.click(at.x, at.y);
 }
 const keyOf = async (channel, index) => (await showState()).show.tracks[channel][index];

@@ -5,6 +5,7 @@ import { CurveEngine } from './engine';
 import { GraphEditor } from './graph';
 import { Inspector } from './inspector';
 import { PosePanel } from './pose';
+import { Preview } from './preview';
 import type { ServerMessage } from './protocol';
 import { StudioState } from './state';
 import { DopeSheet } from './timeline';
@@ -13,7 +14,7 @@ import { Transport } from './transport';
 declare global {
   interface Window {
     /// The page's state and views, for the browser's console and the page's tests.
-    avarStudio?: { state: StudioState; dope: DopeSheet; graph: GraphEditor };
+    avarStudio?: { state: StudioState; dope: DopeSheet; graph: GraphEditor; preview: Preview };
   }
 }
 
@@ -51,14 +52,16 @@ async function main(): Promise<void> {
   const dope = new DopeSheet(element<HTMLCanvasElement>('dopesheet'), state);
   const graph = new GraphEditor(element<HTMLCanvasElement>('graph'), state);
   const inspector = new Inspector(state);
+  const preview = new Preview(element<HTMLCanvasElement>('preview'), element('preview-message'), state);
   state.onChange(() => {
     transport?.render();
     pose.render();
     dope.render();
     graph.render();
     inspector.render();
+    preview.render();
   });
-  window.avarStudio = { state, dope, graph };
+  window.avarStudio = { state, dope, graph, preview };
   connection.open();
 }
 

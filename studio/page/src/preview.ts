@@ -1,0 +1,183 @@
+// The 3-D preview: the rig's kinematic tree drawn as simple link shapes (a sphere at each joint,
+// a rod to the next, a marker at each effector), posed every status by where the device says
+// each joint's channel is (what was sent, where the device reports nothing). Orbit with the left
+// button, zoom with the wheel, pan with the right button; click a joint to select its channel's
+// track. A rig without a kinematics section has no preview: its gauges show every channel.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { KinematicJoint, Kinematics, Transform } from './protocol';
+import type { StudioState } from './state';
+
+interface EffectorView {
+  name: string;
+  frame: THREE.Group;
+}
+
+interface JointView {
+  joint: KinematicJoint;
+  /// The joint's frame at zero in its parent's (origin), and the motion about its axis inside it.
+  motion: THREE.Group;
+  ball: THREE.Mesh;
+}
+
+function placed(transform: Transform): THREE.Group {
+  const group = new THREE.Group();
+  const [x, y, z] = transform.xyz;
+  const [w, qx, qy, qz] = transform.quaternion;
+  group.position.set(x, y, z);
+  group.quaternion.set(qx, qy, qz, w);
+  return group;
+}
+
+/// A rod from the frame's origin to `to` (in that frame), `radius` thick.
+function rod(to: THREE.Vector3, radius: number, material: THREE.Material): THREE.Mesh | null {
+  const length = to.length();
+  if (length < 1e-6) return null;
+  const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, length, 16), material);
+  mesh.position.copy(to).multiplyScalar(0.5);
+  mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), to.clone().normalize());
+  return mesh;
+}
+
+export class Preview {
+  private renderer: THREE.WebGLRenderer | null = null;
+  private readonly scene = new THREE.Scene();
+  private readonly camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
+  private controls: OrbitControls | null = null;
+  private joints: JointView[] = [];
+  private effectors: EffectorView[] = [];
+  private built: Kinematics | null = null;
+  private readonly selectedMaterial = new THREE.MeshStandardMaterial({ color: 0xffb13b });
+  private readonly jointMaterial = new THREE.MeshStandardMaterial({ color: 0x5fb3f9 });
+  private readonly linkMaterial = new THREE.MeshStandardMaterial({ color: 0xb8c0cc, metalness: 0.2, roughness: 0.6 });
+
+  constructor(
+    private readonly canvas: HTMLCanvasElement,
+    private readonly message: HTMLElement,
+    private readonly state: StudioState,
+  ) {
+    try {
+      this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    } catch {
+      this.renderer = null;
+    }
+    this.scene.background = new THREE.Color(0x181b20);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x30343c, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+    sun.position.set(2, 3, 4);
+    this.scene.add(sun);
+    if (this.renderer) {
+      this.controls = new OrbitControls(this.camera, canvas);
+      this.controls.addEventListener('change', () => this.draw());
+      canvas.addEventListener('click', (e) => this.pick(e));
+      new ResizeObserver(() => this.draw()).observe(canvas);
+    }
+  }
+
+  private build(kinematics: Kinematics): void {
+    this.built = kinematics;
+    const figure = new THREE.Group();
+    // The rig's frame is z-up (x forward, y left); three.js draws y-up.
+    figure.rotation.x = -Math.PI / 2;
+    this.scene.add(figure);
+    const grid = new THREE.GridHelper(2, 20, 0x3d4654, 0x2a2f37);
+    this.scene.add(grid);
+
+    // Size the shapes to the figure: a tenth of its longest offset, at least a centimetre.
+    const reach = Math.max(0.05, ...kinematics.joints.map((j) => Math.hypot(...j.origin.xyz)));
+    const radius = Math.max(0.004, reach * 0.06);
+    this.joints = [];
+    this.effectors = [];
+    for (const joint of kinematics.joints) {
+      const parent = joint.parent === null ? figure : (this.joints[joint.parent]?.motion ?? figure);
+      const frame = placed(joint.origin);
+      const link = rod(frame.position.clone(), radius * 0.5, this.linkMaterial);
+      if (link) parent.add(link);
+      parent.add(frame);
+      const motion = new THREE.Group();
+      frame.add(motion);
+      const ball = new THREE.Mesh(new THREE.SphereGeometry(radius, 24, 16), this.jointMaterial);
+      ball.userData.joint = this.joints.length;
+      motion.add(ball);
+      this.joints.push({ joint, motion, ball });
+    }
+    for (const effector of kinematics.effectors) {
+      const parent = this.joints[effector.joint]?.motion ?? figure;
+      const frame = placed(effector.origin);
+      const link = rod(frame.position.clone(), radius * 0.35, this.linkMaterial);
+      if (link) parent.add(link);
+      parent.add(frame);
+      frame.add(new THREE.AxesHelper(radius * 4));
+      this.effectors.push({ name: effector.name, frame });
+    }
+    // Frame the figure: look at its middle from the front-left, above.
+    const box = new THREE.Box3().setFromObject(figure);
+    const centre = box.getCenter(new THREE.Vector3());
+    const size = Math.max(0.1, box.getSize(new THREE.Vector3()).length());
+    this.camera.position.set(centre.x + size * 1.2, centre.y + size * 0.8, centre.z + size * 1.4);
+    this.controls?.target.copy(centre);
+    this.controls?.update();
+  }
+
+  /// A joint's value (rad or m) from where its channel is, as the status says.
+  jointValue(name: string): number | null {
+    const view = this.joints.find((j) => j.joint.name === name);
+    if (!view?.joint.channel) return null;
+    const index = this.state.rig?.channels.findIndex((c) => c.name === view.joint.channel) ?? -1;
+    const channel = this.state.status?.channels[index];
+    if (!channel) return null;
+    const at = channel.measured ?? channel.command;
+    return (at - (view.joint.offset ?? 0)) * (view.joint.scale ?? 1);
+  }
+
+  /// Where a joint or an effector is drawn, in the canvas's CSS pixels (for tests and tooltips).
+  screenPosition(name: string): { x: number; y: number } | null {
+    const object = this.joints.find((j) => j.joint.name === name)?.ball ?? this.effectors.find((e) => e.name === name)?.frame;
+    if (!object) return null;
+    const p = object.getWorldPosition(new THREE.Vector3()).project(this.camera);
+    return { x: ((p.x + 1) / 2) * this.canvas.clientWidth, y: ((1 - p.y) / 2) * this.canvas.clientHeight };
+  }
+
+  private pick(event: MouseEvent): void {
+    const ray = new THREE.Raycaster();
+    const at = new THREE.Vector2((event.offsetX / this.canvas.clientWidth) * 2 - 1, -(event.offsetY / this.canvas.clientHeight) * 2 + 1);
+    ray.setFromCamera(at, this.camera);
+    const hit = ray.intersectObjects(this.joints.map((j) => j.ball))[0];
+    const index = hit?.object.userData.joint as number | undefined;
+    const channel = index === undefined ? null : this.joints[index]?.joint.channel;
+    if (!channel) return;
+    this.state.channel = channel;
+    this.state.changed();
+  }
+
+  render(): void {
+    const kinematics = this.state.rig?.kinematics ?? null;
+    const usable = kinematics !== null && this.renderer !== null;
+    this.canvas.hidden = !usable;
+    this.message.hidden = usable;
+    if (!this.renderer) this.message.textContent = 'no 3-D preview: this browser gives no WebGL';
+    else if (!kinematics) this.message.textContent = 'this rig has no kinematics section: the gauges below show every channel';
+    if (!usable) return;
+    if (this.built !== kinematics) this.build(kinematics);
+    for (const view of this.joints) {
+      const q = this.jointValue(view.joint.name) ?? 0;
+      const axis = new THREE.Vector3(...view.joint.axis);
+      if (view.joint.type === 'revolute') view.motion.quaternion.setFromAxisAngle(axis, q);
+      else if (view.joint.type === 'prismatic') view.motion.position.copy(axis.multiplyScalar(q));
+      view.ball.material = view.joint.channel !== null && view.joint.channel === this.state.channel ? this.selectedMaterial : this.jointMaterial;
+    }
+    this.draw();
+  }
+
+  private draw(): void {
+    if (!this.renderer || this.canvas.hidden) return;
+    const width = this.canvas.clientWidth;
+    const height = this.canvas.clientHeight;
+    if (width === 0 || height === 0) return;
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.renderer.render(this.scene, this.camera);
+  }
+}

@@ -1,0 +1,95 @@
+// What the studio's browser tests share: `avar studio --sim` started on a copy of an example show
+// (its rig's link watchdog widened: Chromium and the build share two cores here, and a stalled
+// simulator must not fault the figure in the middle of a test; the watchdog itself is tested in
+// the fault matrix), headless Chromium from Debian driven by Playwright (npm), and waiting on
+// conditions rather than on time.
+//
+// A test file is run as: node FILE --avar build/apps/avar --modules studio/page --out DIR
+// It exits 77 (skipped) when Chromium is not installed.
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import { basename, join, resolve } from 'node:path';
+
+const args = process.argv.slice(2);
+const option = (name) => {
+  const at = args.indexOf(name);
+  if (at < 0 || at + 1 >= args.length) {
+    console.error(`usage: node ${basename(process.argv[1])} --avar AVAR --modules studio/page --out DIR (missing ${name})`);
+    process.exit(2);
+  }
+  return resolve(args[at + 1]);
+};
+const avar = option('--avar');
+const modules = option('--modules');
+export const out = option('--out');
+const source = resolve(import.meta.dirname, '../..');
+const CHROMIUM = process.env.AVAR_CHROMIUM ?? '/usr/bin/chromium';
+if (!existsSync(CHROMIUM)) {
+  console.log(`skipped: no Chromium at ${CHROMIUM} (apt-get install chromium; scripts/install-deps.sh does)`);
+  process.exit(77);
+}
+const { chromium } = createRequire(join(modules, 'package.json'))('playwright-core');
+mkdirSync(out, { recursive: true });
+
+/// Polls `probe` until it returns a truthy value, which it returns; fails with `what` after 15 s.
+export async function until(what, probe) {
+  const deadline = Date.now() + 15000;
+  for (;;) {
+    const value = await probe();
+    if (value) return value;
+    if (Date.now() > deadline) assert.fail(`timed out waiting for ${what}`);
+    await new Promise((r) => setTimeout(r, 20));
+  }
+}
+
+/// Starts `avar studio` on a copy of examples/shows/SHOW with examples/rigs/RIG on the simulator,
+/// opens its page in Chromium and waits for the first status and the engine's curves of
+/// `channel`. Returns {page, showFile, original (the show's bytes), close()}.
+export async function openStudio({ show, rig, channel }) {
+  const work = mkdtempSync(join(tmpdir(), 'avar-studio-page-'));
+  const showFile = join(work, show);
+  copyFileSync(join(source, 'examples/shows', show), showFile);
+  const original = readFileSync(showFile);
+  const rigFile = join(work, `rig-${rig}`);
+  const rigText = readFileSync(join(source, 'examples/rigs', rig), 'utf8');
+  // A link written as a block (port: sim on a line of its own) or in flow style ({port: sim, ...}).
+  const widened = rigText
+    .replace(/\n( +)port: sim([^\n]*)\n/g, '\n$1port: sim$2\n$1watchdog_ms: 5000\n')
+    .replace(/\{port: sim,/g, '{port: sim, watchdog_ms: 5000,');
+  assert.notEqual(widened, rigText, `${rig} has a simulated link`);
+  writeFileSync(rigFile, widened);
+
+  const server = spawn(avar, ['studio', showFile, '--rig', rigFile, '--sim'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  let printed = '';
+  server.stderr.on('data', (d) => process.stderr.write(d));
+  const url = await until('avar studio to print its URL', () => {
+    const chunk = server.stdout.read();
+    if (chunk) printed += chunk.toString();
+    return printed.match(/studio: (http:\/\/\S+)/)?.[1];
+  });
+  // WebGL in headless Chromium without a GPU: SwiftShader, which Chromium asks to be allowed.
+  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ['--no-sandbox', '--enable-unsafe-swiftshader'] });
+  const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
+  page.on('pageerror', (e) => assert.fail(`the page threw: ${e.message}`));
+  await page.goto(url);
+  await page.waitForSelector('body[data-ready="yes"]');
+  await until('the first status', () => page.evaluate(() => window.avarStudio.state.status));
+  await until("the engine's curves", () => page.evaluate((c) => window.avarStudio.state.engine.has(c), channel));
+  const close = async () => {
+    await browser.close();
+    if (server.exitCode === null) {
+      server.kill('SIGINT');
+      await new Promise((r) => server.once('exit', r));
+    }
+  };
+  return { page, showFile, original, close };
+}
+
+/// Client coordinates of a point of a canvas (#id) given in its CSS pixels.
+export async function onCanvas(page, id, x, y) {
+  const box = await page.locator(`#${id}`).boundingBox();
+  return { x: box.x + x, y: box.y + y };
+}

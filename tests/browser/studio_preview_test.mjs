@@ -1,0 +1,77 @@
+// The studio's 3-D preview in a real browser (tests/browser/studio_harness.mjs): the gaze head's
+// kinematic tree drawn with WebGL, posed by where the simulated servos are, and a click on a
+// joint selecting its channel's track.
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { onCanvas, openStudio, out, until } from './studio_harness.mjs';
+
+let page;
+let close;
+
+before(async () => {
+  ({ page, close } = await openStudio({ show: 'look-around.yaml', rig: 'gaze-head.yaml', channel: 'jaw' }));
+});
+
+after(async () => {
+  await close?.();
+});
+
+const measured = (name) =>
+  page.evaluate((n) => window.avarStudio.state.status.channels.find((c) => c.name === n).measured, name);
+/// Holds a channel at a value and waits until the simulated servo is there.
+async function holdAt(channel, value) {
+  await page.evaluate(([c, v]) => window.avarStudio.state.connection.send({ type: 'hold', channel: c, value: v }), [channel, value]);
+  // Within half a degree: the simulated hobby servo has a deadband, as real ones do.
+  await until(`${channel} at ${value}`, async () => Math.abs((await measured(channel)) - value) < 0.5);
+}
+/// The colour drawn at a point of the 3-D view (its CSS pixels).
+const pixelAt = (x, y) =>
+  page.evaluate(
+    ([x, y]) => {
+      const view = document.getElementById('preview');
+      const copy = document.createElement('canvas');
+      copy.width = view.width;
+      copy.height = view.height;
+      const g = copy.getContext('2d');
+      g.drawImage(view, 0, 0);
+      const ratio = view.width / view.clientWidth;
+      return [...g.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data].slice(0, 3);
+    },
+    [x, y],
+  );
+const drawnAt = (name) => page.evaluate((n) => window.avarStudio.preview.screenPosition(n), name);
+
+test('the 3-D view draws the joints and turns with the simulated servos', async () => {
+  assert.equal(await page.isVisible('#preview'), true);
+  assert.equal(await page.isVisible('#preview-message'), false);
+  await holdAt('neck_pan', -40);
+  // The joint takes the angle of where the servo is: degrees on the channel, radians at the joint.
+  await until('the view to take the pose', async () => {
+    const [angle, at] = await page.evaluate(() => [
+      window.avarStudio.preview.jointValue('pan'),
+      window.avarStudio.state.status.channels.find((c) => c.name === 'neck_pan').measured,
+    ]);
+    return Math.abs(angle - (at * Math.PI) / 180) < 1e-12 && Math.abs(at + 40) < 0.5;
+  });
+  const left = await drawnAt('eyes');
+  await holdAt('neck_pan', 40);
+  const right = await until('the eyes to move in the view', async () => {
+    const p = await drawnAt('eyes');
+    return Math.hypot(p.x - left.x, p.y - left.y) > 15 && p;
+  });
+  assert.ok(right, 'the effector moved on screen');
+  // The joint is drawn where the view says it is: not the background.
+  const pan = await drawnAt('pan');
+  assert.notDeepEqual(await pixelAt(pan.x, pan.y), [0x18, 0x1b, 0x20]);
+  await page.screenshot({ path: join(out, 'studio-preview.png') });
+  await page.evaluate(() => window.avarStudio.state.connection.send({ type: 'release', channel: 'neck_pan' }));
+});
+
+test('a click on a joint selects its channel', async () => {
+  const tilt = await drawnAt('tilt');
+  const at = await onCanvas(page, 'preview', tilt.x, tilt.y);
+  await page.mouse.click(at.x, at.y);
+  await until('the tilt channel to be selected', () => page.evaluate(() => window.avarStudio.state.channel === 'neck_tilt'));
+  await until('its row to show it', () => page.isVisible('.pose-row.selected[data-channel="neck_tilt"]'));
+});
