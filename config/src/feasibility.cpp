@@ -1,6 +1,5 @@
 #include "avar/config/feasibility.hpp"
 
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -15,7 +14,7 @@
 namespace avar::config {
 namespace {
 
-constexpr int kSamples = 400;  // per segment, for the speed and acceleration measurements
+constexpr int kSamples = 400;             // per segment, for the speed and acceleration measurements
 constexpr double kBehaviourPiece = 0.25;  // s: behaviour layers are measured in pieces this long
 // s: a time this far from a key is not that key's time for the curves (Curve::kKeySnap): the
 // probes that look just before a key, or either side of a breakpoint, stand this far off.
@@ -55,7 +54,8 @@ std::vector<Demand> measure_values(std::size_t n, Fill fill, double t0, double t
 }
 
 Demand measure(const playback::Curve& curve, double t0, double t1) {
-  return measure_values(1, [&](double t, std::vector<double>& v) { v[0] = curve.evaluate(t); }, t0, t1)[0];
+  return measure_values(
+      1, [&](double t, std::vector<double>& v) { v[0] = curve.evaluate(t); }, t0, t1)[0];
 }
 
 /// The findings of one segment's demand against its channel's limits.
@@ -153,7 +153,7 @@ void add_merged(const Infeasible& f, std::vector<Infeasible>& found) {
     if (g.kind == f.kind && g.channel == f.channel && g.t1 == f.t0 && to_string(g.where) == to_string(f.where)) {
       g.t1 = f.t1;
       g.required = f.kind == Infeasible::Kind::range && f.required < f.allowed ? std::min(g.required, f.required)
-                                                                                : std::max(g.required, f.required);
+                                                                               : std::max(g.required, f.required);
       return;
     }
   }
@@ -207,7 +207,13 @@ std::vector<Infeasible> check_composed_feasibility(const playback::Show& given, 
     for (std::size_t c = 0; c < n; ++c) {
       if (rig.channels[c].digital()) continue;
       std::vector<Infeasible> piece;
-      const Infeasible base{Infeasible::Kind::speed, names[c], rig.channels[c].unit, t0, t1, 0, 0,
+      const Infeasible base{Infeasible::Kind::speed,
+                            names[c],
+                            rig.channels[c].unit,
+                            t0,
+                            t1,
+                            0,
+                            0,
                             composed_source(show, names[c], 0.5 * (t0 + t1))};
       report(demand[c], base, rig.channels[c], piece);
       for (const Infeasible& f : piece) add_merged(f, found);
@@ -343,9 +349,11 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig:
 
 playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
   if (show.layered())
-    throw InputError(show.where, "show '" + show.name + "' has layers of clips, which retiming cannot stretch honestly (a stretch would "
-                                 "change where clips overlap and fade); expected a show without layers (slow a placement with its "
-                                 "speed instead)");
+    throw InputError(show.where,
+                     "show '" + show.name +
+                         "' has layers of clips, which retiming cannot stretch honestly (a stretch would "
+                         "change where clips overlap and fade); expected a show without layers (slow a placement with its "
+                         "speed instead)");
   playback::Show out = show;
   // Stretching one span can change the demand of a segment that crosses its edge, so repeat
   // until nothing needs more time (a few rounds at most in practice).
@@ -381,6 +389,8 @@ playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
       }
       track.curve = playback::Curve::build(track.raw);
     }
+    // Cues move with the time around them, as the keys do.
+    for (playback::Cue& cue : out.cues) cue.time = warp(cue.time);
     out.duration = warp(out.duration);
   }
   return out;

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "avar/config/feasibility.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/config/show_writer.hpp"
 #include "avar/core/format.hpp"
@@ -132,10 +133,40 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
     last.label = std::move(step.label);
     return;
   }
+  push_step(std::move(step));
+}
+
+void ShowDocument::push_step(Step step) {
   history_.resize(position_);
   if (saved_position_ && *saved_position_ > position_) saved_position_.reset();
   history_.push_back(std::move(step));
   ++position_;
+}
+
+void ShowDocument::retime(const rig::Rig& rig) {
+  if (show_.layered() || !show_.targets.empty())
+    throw EditError(
+        std::string("retime: this show has ") + (show_.layered() ? "layers" : "targets") +
+        ", whose times a stretch would leave behind (retime with avar check --retime, or edit those times in the file)");
+  const auto asks_too_much = [](const config::Infeasible& f) {
+    return f.kind == config::Infeasible::Kind::speed || f.kind == config::Infeasible::Kind::acceleration;
+  };
+  const std::vector<config::Infeasible> found = config::check_feasibility(show_, rig);
+  const auto spans = std::count_if(found.begin(), found.end(), asks_too_much);
+  if (spans == 0) throw EditError("retime: no span asks more speed or acceleration than its channel allows");
+  playback::Show retimed = config::retime(show_, rig);
+  Step step{"retime " + std::to_string(spans) + " span" + (spans == 1 ? "" : "s") + " to the rig's limits (+" +
+                format_number(retimed.duration - show_.duration) + " s)",
+            {},
+            Times{show_.duration, show_.cues},
+            Times{retimed.duration, retimed.cues}};
+  // config::retime keeps the tracks and their order: every track is a change, its curve built.
+  for (std::size_t i = 0; i < show_.tracks.size(); ++i) {
+    step.changes.push_back({show_.tracks[i].channel, i, show_.tracks[i].raw, retimed.tracks[i].raw});
+    put(step.changes.back(), step.changes.back().after, std::move(retimed.tracks[i].curve));
+  }
+  put(step.times_after);
+  push_step(std::move(step));
 }
 
 void ShowDocument::put(const TrackChange& change, const std::optional<playback::RawCurve>& raw,

@@ -170,6 +170,8 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
   if (type == "redo") return plain(Redo{});
   if (type == "save") return plain(Save{});
   if (type == "curves") return plain(Curves{});
+  if (type == "check") return plain(Check{});
+  if (type == "retime") return plain(Retime{});
   if (type == "seek" || type == "scrub") {
     f.expect_only({"type", "time"});
     return Command{type == "seek" ? CommandKind::seek : CommandKind::scrub, 0, f.number("time", "show time in seconds")};

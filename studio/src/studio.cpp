@@ -6,6 +6,7 @@
 #include <utility>
 #include <variant>
 
+#include "avar/config/feasibility.hpp"
 #include "avar/config/show_writer.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/playback/runtime/raw_curve_codec.hpp"
@@ -68,6 +69,25 @@ std::string Studio::curves_message() const {
   return json{{"type", "curves"}, {"version", version_}, {"format", playback::kRawCurveFormat}, {"tracks", tracks}}.dump();
 }
 
+std::string Studio::check_message() const {
+  json findings = json::array();
+  for (const config::Infeasible& f : config::check_feasibility(document_.show(), rig_)) {
+    const char* kind = f.kind == config::Infeasible::Kind::speed          ? "speed"
+                       : f.kind == config::Infeasible::Kind::acceleration ? "acceleration"
+                       : f.kind == config::Infeasible::Kind::range        ? "range"
+                                                                          : "jump";
+    findings.push_back({{"kind", kind},
+                        {"channel", f.channel},
+                        {"unit", f.unit},
+                        {"t0", f.t0},
+                        {"t1", f.t1},
+                        {"required", f.required},
+                        {"allowed", f.allowed},
+                        {"text", f.to_string()}});
+  }
+  return json{{"type", "check"}, {"version", version_}, {"findings", findings}}.dump();
+}
+
 std::string Studio::hello() const {
   std::string head =
       json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}, {"vocabulary", curve_vocabulary_json()}}.dump();
@@ -114,6 +134,13 @@ Replies Studio::handle(std::string_view message) {
             out.to_all.push_back(show_message());
           } else if constexpr (std::is_same_v<M, Curves>) {
             out.to_sender = curves_message();
+          } else if constexpr (std::is_same_v<M, Check>) {
+            out.to_sender = check_message();
+          } else if constexpr (std::is_same_v<M, Retime>) {
+            document_.retime(rig_);
+            play_document();
+            out.to_sender = ok_reply(type);
+            out.to_all.push_back(show_message());
           } else {
             static_assert(std::is_same_v<M, Save>);
             if (show_path_.empty())

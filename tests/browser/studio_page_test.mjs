@@ -221,6 +221,44 @@ test('copy and paste put keys at the playhead; ripple insert and delete time mov
   assert.equal((await showState()).show.tracks.eyes_pan.length, 6);
 });
 
+test('what asks too much is drawn red with what it asks, and Retime stretches it', async () => {
+  await page.click('.pose-row[data-channel="jaw"] .channel-name');
+  // The jaw's 25 deg key 0.05 s after its 2 deg key: 460 deg/s, and the jaw allows 300.
+  assert.ok(
+    await page.evaluate(() =>
+      window.avarStudio.state.edit([{ op: 'move', channel: 'jaw', keys: [8], dt: -0.15, dv: 0 }]),
+    ),
+  );
+  await until('the check to find it', async () => (await page.textContent('#retime')) === 'Retime (1)');
+  const finding = await page.evaluate(() => window.avarStudio.state.findings.find((f) => f.kind === 'speed'));
+  assert.equal(finding.channel, 'jaw');
+  assert.ok(Math.abs(finding.required - 460) < 1e-6 && finding.allowed === 300);
+  // The dope sheet's row is red over the span.
+  const x = await page.evaluate((t) => window.avarStudio.dope.axis().x(t), (finding.t0 + finding.t1) / 2);
+  const y = 24 + 0 * 22 + 4;
+  const [r, g] = await page.evaluate(([x, y]) => {
+    const canvas = document.getElementById('dopesheet');
+    const ratio = canvas.width / canvas.clientWidth;
+    return [...canvas.getContext('2d').getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data];
+  }, [x, y]);
+  assert.ok(r > g + 20, `red over the span (${r}, ${g})`);
+  await page.evaluate((t) => {
+    const { state } = window.avarStudio;
+    state.view = { t0: t - 1.2, t1: t + 1.2 };
+    state.changed();
+  }, finding.t0);
+  await page.screenshot({ path: join(out, 'studio-feasibility.png') });
+  await page.click('#retime');
+  await until('the retime', async () => (await page.textContent('#retime')) === 'Retime');
+  assert.match((await showState()).undo, /^retime 1 span/);
+  await page.evaluate(() => {
+    const { state } = window.avarStudio;
+    state.view = { t0: -0.24, t1: 12.36 };
+    state.changed();
+  });
+  await undoAll();
+});
+
 test('the e-stop button stops every actuator at once', async () => {
   await page.click('#estop');
   await until('the e-stop in the status', async () => (await status()).estop);

@@ -13,8 +13,16 @@ rig::Rig rig() {
   rig::Rig r;
   r.name = "r";
   for (const char* name : {"jaw", "pan"})
-    r.channels.push_back({.name = name, .unit = "deg", .min = -30, .max = 30, .rest = 0, .max_velocity = 10,
-                          .max_acceleration = 100, .max_jerk = 1000, .ramp_velocity = 5, .where = {}});
+    r.channels.push_back({.name = name,
+                          .unit = "deg",
+                          .min = -30,
+                          .max = 30,
+                          .rest = 0,
+                          .max_velocity = 10,
+                          .max_acceleration = 100,
+                          .max_jerk = 1000,
+                          .ramp_velocity = 5,
+                          .where = {}});
   return r;
 }
 
@@ -101,6 +109,21 @@ TEST(Feasibility, RetimeStretchesJustEnoughAndKeepsTheRestOfTheTiming) {
   EXPECT_NEAR(pan[1].time, 3.0, 1e-4);
   EXPECT_NEAR(pan[3].time, 5.0, 1e-4);
   EXPECT_DOUBLE_EQ(jaw[1].value, 20);
+}
+
+TEST(Feasibility, RetimeMovesCuesWithTheTimeAroundThem) {
+  playback::Show s = show();
+  for (double t : {0.5, 4.0}) {
+    s.cues.emplace_back();
+    s.cues.back().time = t;
+    s.cues.back().osc_host = "127.0.0.1";
+    s.cues.back().osc_port = 9000;
+    s.cues.back().osc_address = "/cue";
+  }
+  const playback::Show retimed = retime(s, rig());
+  ASSERT_EQ(retimed.cues.size(), 2u);
+  EXPECT_NEAR(retimed.cues[0].time, 1.0, 1e-4);  // inside the stretched second: stretched with it
+  EXPECT_NEAR(retimed.cues[1].time, 5.0, 1e-4);  // after it: later by the added second
 }
 
 TEST(Feasibility, RetimedShowWritesAndReadsBack) {

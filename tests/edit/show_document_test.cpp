@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "avar/config/feasibility.hpp"
+#include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "support/random_show_edits.hpp"
 #include "support/temp_file.hpp"
@@ -284,6 +286,31 @@ TEST(ShowDocument, ATimeEditIsRefusedWhereItWouldLeaveLayersOrTargetsBehind) {
     EXPECT_NE(std::string(e.what()).find("this show also has targets"), std::string::npos) << e.what();
   }
   EXPECT_EQ(doc.undo_steps(), 0u);
+}
+
+TEST(ShowDocument, RetimeStretchesWhatAsksTooMuchAsOneUndoStep) {
+  ShowDocument doc = ShowDocument::open(kHelloHead);
+  const rig::Rig rig = config::load_rig_file(AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml");
+  // Nothing in the bundled show asks too much of the head.
+  EXPECT_THROW(doc.retime(rig), EditError);
+  EXPECT_EQ(doc.undo_steps(), 0u);
+  // The jaw's key at 8 s (25 deg) moved to 7.85 s, 0.05 s after its 2 deg key: 460 deg/s, and
+  // the jaw allows 300.
+  doc.apply(MoveKeys{"jaw", {8}, -0.15, 0});
+  const double duration = doc.show().duration;
+  const auto before = keys_of(doc);
+  ASSERT_FALSE(config::check_feasibility(doc.show(), rig).empty());
+  doc.retime(rig);
+  EXPECT_EQ(doc.undo_steps(), 2u);
+  EXPECT_EQ(doc.undo_label().rfind("retime ", 0), 0u) << doc.undo_label();
+  EXPECT_GT(doc.show().duration, duration);
+  for (const config::Infeasible& f : config::check_feasibility(doc.show(), rig))
+    EXPECT_TRUE(f.kind == config::Infeasible::Kind::jump || f.kind == config::Infeasible::Kind::range) << f.to_string();
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(keys_of(doc), before);
+  EXPECT_EQ(doc.show().duration, duration);
+  ASSERT_TRUE(doc.redo());
+  EXPECT_GT(doc.show().duration, duration);
 }
 
 TEST(ShowDocument, RandomEditsUndoneAndRedoneSaveTheSameBytesAtEachEnd) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
@@ -244,6 +245,39 @@ TEST(Studio, CurvesAreTheTracksAsTheEnginesFlatKeysAndFollowEdits) {
     for (int i = -10; i <= 1300; ++i) ASSERT_EQ(rebuilt.evaluate(i * 0.01), track.curve.evaluate(i * 0.01)) << track.channel;
   }
   EXPECT_EQ(reply(f.studio.handle(R"({"type": "curves", "channels": ["jaw"]})"))["type"], "error");
+}
+
+TEST(Studio, CheckFindsWhatAsksTooMuchAndRetimeStretchesItAsOneStep) {
+  StudioFigure f;
+  const auto speed_findings = [&] {
+    const json check = reply(f.studio.handle(R"({"type": "check"})"));
+    EXPECT_EQ(check["type"], "check");
+    std::vector<json> speed;
+    for (const json& finding : check["findings"])
+      if (finding["kind"] == "speed") speed.push_back(finding);
+    return speed;
+  };
+  EXPECT_TRUE(speed_findings().empty());
+  EXPECT_EQ(reply(f.studio.handle(R"({"type": "retime"})"))["type"], "error");
+  // The jaw's 25 deg key moved to 0.05 s after its 2 deg key: 460 deg/s, allowed 300.
+  ASSERT_EQ(reply(f.studio.handle(
+                R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [8], "dt": -0.15, "dv": 0}]})"))["type"],
+            "ok");
+  const std::vector<json> found = speed_findings();
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0]["channel"], "jaw");
+  EXPECT_EQ(found[0]["unit"], "deg");
+  EXPECT_NEAR(found[0]["t0"].get<double>(), 7.8, 1e-9);
+  EXPECT_NEAR(found[0]["t1"].get<double>(), 7.85, 1e-9);
+  EXPECT_NEAR(found[0]["required"].get<double>(), 460, 1e-6);
+  EXPECT_EQ(found[0]["allowed"], 300);
+  const Replies retimed = f.studio.handle(R"({"type": "retime"})");
+  EXPECT_EQ(reply(retimed)["type"], "ok");
+  ASSERT_EQ(retimed.to_all.size(), 1u);
+  EXPECT_EQ(json::parse(retimed.to_all[0])["undo"].get<std::string>().rfind("retime 1 span", 0), 0u);
+  EXPECT_TRUE(speed_findings().empty());
+  EXPECT_EQ(reply(f.studio.handle(R"({"type": "undo"})"))["type"], "ok");
+  EXPECT_EQ(speed_findings().size(), 1u);
 }
 
 TEST(Studio, CommandsWaitForAFigureButEditsDoNot) {

@@ -3,6 +3,7 @@
 // range is drawn, and where the curve asks for more than the channel's speed limit the line is
 // red. Drag a key to move it in time and value; drag a handle the show gives to reshape it.
 import { drawPlayhead, fitCanvas, themeColor, TimeAxis } from './axis';
+import { describeFinding } from './findings';
 import type { Key } from './protocol';
 import { numericValue } from './protocol';
 import type { StudioState } from './state';
@@ -177,6 +178,19 @@ export class GraphEditor {
       g.fillText(`${v} ${spec.unit}`, GUTTER - 60, y + 4);
     }
     g.setLineDash([]);
+
+    // The check's findings on this channel: a band over the span, what it asks and what is allowed.
+    let label = 0;
+    for (const f of this.state.findings) {
+      if (f.channel !== channel) continue;
+      const xa = Math.max(GUTTER, a.time.x(f.t0));
+      const xb = Math.max(xa + 3, a.time.x(f.t1));
+      if (xb <= GUTTER || xa >= width) continue;
+      g.fillStyle = color('--over-span');
+      g.fillRect(xa, 0, xb - xa, height);
+      g.fillStyle = color('--over');
+      g.fillText(describeFinding(f), Math.min(xa + 4, width - 260), 30 + 14 * (label++ % 4));
+    }
 
     // The curve, two pixels a sample, from the engine; red where it is faster than allowed.
     const n = Math.max(2, Math.floor((width - GUTTER) / 2));

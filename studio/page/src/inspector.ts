@@ -125,6 +125,8 @@ export class Inspector {
       control.disabled = at === null;
     if (!at) {
       this.label.textContent = 'no key selected';
+      for (const input of [this.time, this.value]) input.value = '';
+      for (const select of [this.interpolation, this.easing, this.leftType, this.rightType]) select.selectedIndex = -1;
       return;
     }
     this.label.textContent = `${at.channel} key ${at.index}`;

@@ -154,7 +154,26 @@ export interface Curves {
   tracks: Record<string, number[]>;
 }
 
+/// A span of a track that asks more than its channel allows (`avar check`'s findings).
+export interface Finding {
+  kind: 'speed' | 'acceleration' | 'range' | 'jump';
+  channel: string;
+  unit: string;
+  t0: number;
+  t1: number;
+  required: number;
+  allowed: number;
+  text: string;
+}
+
+export interface Check {
+  type: 'check';
+  version: number;
+  findings: Finding[];
+}
+
 export type ServerMessage =
+  | Check
   | Hello
   | Status
   | Curves

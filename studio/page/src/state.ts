@@ -3,7 +3,7 @@
 // ask for a redraw; only messages from the server change the show.
 import type { Connection } from './connection';
 import type { CurveEngine } from './engine';
-import type { Edit, Hello, Key, Rig, ShowState, Status, Vocabulary } from './protocol';
+import type { Edit, Finding, Hello, Key, Rig, ShowState, Status, Vocabulary } from './protocol';
 import { trackKeys } from './protocol';
 
 /// Keys picked, per channel (indices into the channel's track, in time order).
@@ -12,6 +12,8 @@ export type Selection = Map<string, Set<number>>;
 export class StudioState {
   rig: Rig | null = null;
   vocabulary: Vocabulary = { interpolations: [], easings: [], handle_types: [], extrapolations: [] };
+  /// What the show asks beyond the rig's limits, as the studio's check found it.
+  findings: Finding[] = [];
   /// Keys copied (Ctrl+C), per channel, their times from the earliest copied key.
   clipboard: Map<string, Key[]> = new Map();
   show: ShowState | null = null;
@@ -76,7 +78,29 @@ export class StudioState {
       if (problems.length > 0) this.notice = `the page's engine refused: ${problems.join('; ')}`;
       this.changed();
     });
+    this.requestCheck();
     this.changed();
+  }
+
+  /// Asks for the feasibility check of the newest show, once no drag is in flight (a drag sends a
+  /// move per pointer event; the check of its last position is the one that matters).
+  private checkWanted = false;
+  private requestCheck(): void {
+    if (this.checkWanted) return;
+    this.checkWanted = true;
+    const ask = () => {
+      if (this.connection.inFlight() > 0) {
+        setTimeout(ask, 50);
+        return;
+      }
+      this.checkWanted = false;
+      void this.connection.request({ type: 'check' })?.then((reply) => {
+        if (reply?.type !== 'check') return;
+        this.findings = reply.findings;
+        this.changed();
+      });
+    };
+    setTimeout(ask, 0);
   }
 
   keys(channel: string) {

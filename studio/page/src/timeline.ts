@@ -4,6 +4,7 @@
 // key there with the curve's value, Delete removes the selection. Wheel zooms, Shift+wheel pans.
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
 import { typingIn } from './dom';
+import { describeFinding } from './findings';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -62,6 +63,17 @@ export class DopeSheet {
     return best;
   }
 
+  /// What the check found under the pointer ("" where nothing), for the tooltip.
+  private findingAt(x: number, y: number): string {
+    const channel = this.channelAt(y);
+    const t = this.axis().t(x);
+    const slack = 4 * this.axis().secondsPerPixel();
+    return this.state.findings
+      .filter((f) => f.channel === channel && t >= f.t0 - slack && t <= f.t1 + slack)
+      .map((f) => describeFinding(f))
+      .join('\n');
+  }
+
   private scrubTo(x: number): void {
     const t = Math.min(this.state.duration(), Math.max(0, this.axis().t(x)));
     this.state.connection.send({ type: 'scrub', time: t });
@@ -103,7 +115,10 @@ export class DopeSheet {
 
   private move(e: PointerEvent): void {
     const drag = this.drag;
-    if (!drag) return;
+    if (!drag) {
+      this.canvas.title = this.findingAt(e.offsetX, e.offsetY);
+      return;
+    }
     const { offsetX: x, offsetY: y } = e;
     if (drag.kind === 'scrub') {
       this.scrubTo(x);
@@ -262,6 +277,14 @@ export class DopeSheet {
       g.fillText(channel.name, 8, cy + 4);
       const keys = this.state.keys(channel.name);
       const picked = this.state.selection.get(channel.name);
+      // Spans that ask more than the channel allows, under everything else of the row.
+      g.fillStyle = color('--over-span');
+      for (const f of this.state.findings) {
+        if (f.channel !== channel.name) continue;
+        const xa = Math.max(GUTTER, axis.x(f.t0));
+        const xb = Math.max(xa + 3, axis.x(f.t1));
+        if (xb > GUTTER) g.fillRect(xa, y + 2, xb - xa, ROW - 4);
+      }
       // A bar under the keys shows the track's span.
       if (keys.length > 1) {
         const first = keys[0];

@@ -11,6 +11,7 @@ export class Transport {
   private readonly undo = element<HTMLButtonElement>('undo');
   private readonly redo = element<HTMLButtonElement>('redo');
   private readonly save = element<HTMLButtonElement>('save');
+  private readonly retime = element<HTMLButtonElement>('retime');
   private readonly time = element<HTMLElement>('time');
   private readonly title = element<HTMLElement>('title');
   private readonly connection = element<HTMLElement>('connection');
@@ -24,6 +25,7 @@ export class Transport {
     this.undo.onclick = () => void state.ask({ type: 'undo' });
     this.redo.onclick = () => void state.ask({ type: 'redo' });
     this.save.onclick = () => void this.saveShow();
+    this.retime.onclick = () => void state.ask({ type: 'retime' });
     element<HTMLButtonElement>('estop').onclick = () => void state.ask({ type: 'estop' });
     document.addEventListener('keydown', (event) => {
       if (typingIn(event)) return;
@@ -67,6 +69,14 @@ export class Transport {
       this.redo.title = show.redo ? `redo ${show.redo} (Ctrl+Shift+Z)` : 'nothing to redo';
       this.save.disabled = show.file === null;
     }
+    const tooMuch = this.state.findings.filter((f) => f.kind === 'speed' || f.kind === 'acceleration').length;
+    this.retime.disabled = tooMuch === 0;
+    this.retime.textContent = tooMuch === 0 ? 'Retime' : `Retime (${tooMuch})`;
+    this.retime.title =
+      tooMuch === 0
+        ? 'every span is within its channel’s speed and acceleration'
+        : `stretch the ${tooMuch} span${tooMuch === 1 ? '' : 's'} drawn red to the rig’s limits (one undo step)`;
+    this.retime.classList.toggle('warn', tooMuch > 0);
     if (status) {
       this.play.textContent = status.paused ? '▶ Play' : '❚❚ Pause';
       this.time.textContent = `${formatTime(status.show_time)} / ${formatTime(status.duration, 0.1)}`;

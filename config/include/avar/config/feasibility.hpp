@@ -16,10 +16,10 @@ struct Infeasible {
   Kind kind = Kind::speed;
   std::string channel;
   std::string unit;
-  double t0 = 0, t1 = 0;   ///< the segment, seconds
-  double required = 0;     ///< what the segment asks (units/s, units/s², or the value reached)
-  double allowed = 0;      ///< the channel's limit
-  SourceLocation where;    ///< the key that starts the segment
+  double t0 = 0, t1 = 0;  ///< the segment, seconds
+  double required = 0;    ///< what the segment asks (units/s, units/s², or the value reached)
+  double allowed = 0;     ///< the channel's limit
+  SourceLocation where;   ///< the key that starts the segment
 
   std::string to_string() const;  ///< "file:line:col: jaw 6.8-7 s: speed 150 deg/s, allowed 120 deg/s"
 };
@@ -65,7 +65,7 @@ std::vector<Infeasible> check_feasibility(const playback::Show& show, const rig:
 
 /// A copy of the show whose offending spans are stretched in time just enough for the speed and
 /// acceleration limits, every track alike so that they stay in step, all other timing kept
-/// (later keys shift by the added time). Jumps and range problems are left as they are. Throws
+/// (later keys and cues shift by the added time). Jumps and range problems are left as they are. Throws
 /// InputError for a layered show: stretching show time would move where its clips overlap and
 /// fade, so it is refused rather than retimed dishonestly.
 playback::Show retime(const playback::Show& show, const rig::Rig& rig);

@@ -31,6 +31,7 @@
 
 #include "avar/edit/key_edit.hpp"
 #include "avar/playback/runtime/show.hpp"
+#include "avar/rig/rig.hpp"
 
 namespace avar::edit {
 
@@ -59,6 +60,12 @@ class ShowDocument {
   void continue_last(std::initializer_list<KeyEdit> edits) {
     continue_last(std::span<const KeyEdit>(edits.begin(), edits.size()));
   }
+
+  /// Stretches the spans that ask more speed or acceleration than `rig`'s channels allow
+  /// (config::retime: every track alike, later keys and cues moved by the added time), as one
+  /// undo step. EditError, nothing changed, when no span asks too much, or the show has layers or
+  /// targets (whose times a stretch would leave behind).
+  void retime(const rig::Rig& rig);
 
   /// Steps back or forward one undo step; false when there is none.
   bool undo();
@@ -104,6 +111,8 @@ class ShowDocument {
   Times rippled(const Times& times, const KeyEdit& edit) const;
   std::optional<std::size_t> track_of(const std::string& channel) const;
   void apply(std::span<const KeyEdit> edits, bool continuing);
+  /// Makes `step` (applied already) the newest undo step, dropping what could have been redone.
+  void push_step(Step step);
   /// Whether `step` may be folded into the last step (see continue_last).
   bool continues_last(const Step& step) const;
 

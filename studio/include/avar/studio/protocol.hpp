@@ -2,9 +2,9 @@
 // The studio's protocol (docs/reference/studio-protocol.md): one JSON object per message, with a
 // "type". What a client (the studio's page, or any program) sends is parsed here, whole, into a
 // session command (play, pause, seek, scrub, loop, hold, release, stop), an e-stop, a group of key
-// edits, undo, redo, save, or a request for the curves; channels are named and resolved against the rig's. Keys in edits are
-// the show file's key maps written in JSON, checked by the show reader's own rules. Pure: no I/O.
-// Not real-time: allocates and throws.
+// edits, undo, redo, save, a retime, or a request for the curves or the feasibility check; channels are named and resolved
+// against the rig's. Keys in edits are the show file's key maps written in JSON, checked by the show reader's own rules. Pure: no
+// I/O. Not real-time: allocates and throws.
 
 #include <stdexcept>
 #include <string>
@@ -35,7 +35,12 @@ struct Save {};
 /// evaluates curves itself (the page's WebAssembly engine).
 struct Curves {};
 
-using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves>;
+/// What the show asks of the rig beyond its limits (config::check_feasibility), for the page's
+/// timeline.
+struct Check {};
+/// Stretch what asks too much to the rig's limits (edit::ShowDocument::retime): one undo step.
+struct Retime {};
+using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves, Check, Retime>;
 
 /// Parses one message. `channels`: the rig's channel names, in the rig's order (a hold's channel
 /// index is its place there; an edit may name only these). Throws ProtocolError: not JSON, not

@@ -68,6 +68,8 @@ class Studio final : public session::SessionObserver {
   std::string show_message() const;
   /// The "curves" reply: every track's keys, flat.
   std::string curves_message() const;
+  /// The "check" reply: what the show asks beyond the rig's limits.
+  std::string check_message() const;
   /// Hands the document's show to the session.
   void play_document();
 
