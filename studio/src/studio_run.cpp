@@ -29,7 +29,7 @@ StudioFiles open_studio_files(const std::string& rig_path, const std::optional<s
 
 std::string built_page_dir() {
 #ifdef AVAR_STUDIO_PAGE_DIR
-  const std::string dir = AVAR_STUDIO_PAGE_DIR;
+  std::string dir = AVAR_STUDIO_PAGE_DIR;
   std::error_code ignored;
   if (std::filesystem::is_regular_file(std::filesystem::path(dir) / "index.html", ignored)) return dir;
 #endif
