@@ -58,7 +58,7 @@ void IkStage::reseed(std::span<const double> frame) noexcept {
   cold_ = true;
 }
 
-kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept {
+kinematics::IkResult IkStage::apply(double t, std::span<double> frame, const TargetAims* aims) noexcept {
   if (goals_.empty()) return {kinematics::IkStatus::converged, 0, 0, 0};
   const double local = show_.local_time(t);
   double rpy[3] = {0, 0, 0};
@@ -80,8 +80,11 @@ kinematics::IkResult IkStage::apply(double t, std::span<double> frame) noexcept 
       if (angle_curves) rpy[a] = target.rpy[a].evaluate(local, cursors_[6 * i + 3 + a]);
     }
     if (angle_curves)
-      goals_[i].orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+      goals_[i].orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                              Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
                               Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
+    // A target held by hand: its point, the show's orientation.
+    if (aims && aims->held(i)) goals_[i].position = aims->point(i);
   }
   const kinematics::IkOptions options = cold_ ? kinematics::cold_start_ik_options() : kinematics::default_ik_options();
   const kinematics::IkResult result = kinematics::solve_ik(kinematics_.model, workspace_, goals_, q_, q_next_, options);

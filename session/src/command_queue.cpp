@@ -14,6 +14,8 @@ const char* to_string(CommandKind kind) noexcept {
     case CommandKind::hold: return "hold";
     case CommandKind::release: return "release";
     case CommandKind::stop: return "stop";
+    case CommandKind::aim: return "aim";
+    case CommandKind::unaim: return "unaim";
   }
   return "?";
 }
@@ -25,6 +27,7 @@ const char* to_string(CommandOutcome outcome) noexcept {
     case CommandOutcome::external_clock: return "show time follows an external clock";
     case CommandOutcome::bad_channel: return "no such channel";
     case CommandOutcome::bad_value: return "value not finite";
+    case CommandOutcome::bad_target: return "no such target";
   }
   return "?";
 }

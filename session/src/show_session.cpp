@@ -107,6 +107,7 @@ void ShowSession::begin() {
   if (show_->loop) options.loops = config_.loops;
   options.positions = figure_.get();  // the simulator's ground truth, for simulated links
   options.live = &holds_;
+  options.aims = &aims_;
   options.lead_in_s = config_.lead_in_s;
   options.lead_out_s = config_.hold_at_end ? std::numeric_limits<double>::infinity() : config_.lead_out_s;
   options.show_clock = &clock_;
@@ -180,6 +181,17 @@ CommandOutcome ShowSession::apply(const Command& c, double now_s, control::Contr
       if (c.channel >= holds_.channel_count()) return CommandOutcome::bad_channel;
       holds_.release(c.channel);
       return CommandOutcome::applied;
+    case CommandKind::aim:
+    case CommandKind::unaim: {
+      const control::IkStage* ik = controller.ik();
+      if (!ik || c.channel >= ik->goal_count() || c.channel >= control::TargetAims::kCapacity) return CommandOutcome::bad_target;
+      if (c.kind == CommandKind::unaim) {
+        aims_.release(c.channel);
+        return CommandOutcome::applied;
+      }
+      const Eigen::Vector3d point(c.point[0], c.point[1], c.point[2]);
+      return aims_.aim(c.channel, point) ? CommandOutcome::applied : CommandOutcome::bad_value;
+    }
     case CommandKind::stop:
       if (!live) return CommandOutcome::not_running;
       controller.request_stop(now_s);
@@ -222,6 +234,12 @@ void ShowSession::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
     r->faults_seen = controller.faults_seen();
     r->command_count = taken_count_;
     for (std::size_t i = 0; i < taken_count_; ++i) r->commands[i] = taken_[i];
+    const control::IkStage* ik = controller.ik();
+    r->target_count = ik ? std::min(ik->goal_count(), r->targets.size()) : 0;
+    for (std::size_t i = 0; i < r->target_count; ++i) {
+      const Eigen::Vector3d& p = ik->goal_position(i);
+      r->targets[i] = {{p.x(), p.y(), p.z()}, aims_.held(i)};
+    }
     const auto target = controller.target();
     const auto command = controller.commanded();
     const auto measured = controller.measured();

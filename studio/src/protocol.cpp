@@ -1,6 +1,7 @@
 #include "avar/studio/protocol.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -84,6 +85,28 @@ std::size_t channel_index(const Fields& f, const std::string& name, const std::v
   f.fail("no channel '" + name + "' in the rig; expected one of: " + list);
 }
 
+std::uint32_t target_index(const Fields& f, const std::string& name, const std::vector<std::string>& targets) {
+  const auto found = std::find(targets.begin(), targets.end(), name);
+  if (found != targets.end()) return static_cast<std::uint32_t>(found - targets.begin());
+  if (targets.empty()) f.fail("field 'target': the show has no targets to aim ('" + name + "' asked)");
+  std::string list;
+  for (const std::string& t : targets) list += (list.empty() ? "" : ", ") + t;
+  f.fail("no target '" + name + "' in the show; expected one of: " + list);
+}
+
+/// "point": [x, y, z], metres.
+std::array<double, 3> point(const Fields& f) {
+  const json& v = f.array("point", "[x, y, z] in metres, the rig's base frame");
+  if (v.size() != 3) f.fail("field 'point': expected [x, y, z] in metres, three numbers; found " + std::to_string(v.size()));
+  std::array<double, 3> p{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!v[a].is_number() || !std::isfinite(v[a].get<double>()))
+      f.fail("field 'point': expected [x, y, z] in metres, finite numbers; found " + Fields::kind(v[a]));
+    p[a] = v[a].get<double>();
+  }
+  return p;
+}
+
 std::string channel(const Fields& f, const std::vector<std::string>& channels) {
   std::string name = f.text("channel", "a channel of the rig");
   channel_index(f, name, channels);
@@ -146,7 +169,8 @@ edit::KeyEdit key_edit(const json& v, std::size_t n, const std::vector<std::stri
 
 }  // namespace
 
-ClientMessage parse_client_message(std::string_view text, const std::vector<std::string>& channels) {
+ClientMessage parse_client_message(std::string_view text, const std::vector<std::string>& channels,
+                                   const std::vector<std::string>& targets) {
   json message;
   try {
     message = json::parse(text);
@@ -187,6 +211,16 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
     if (type == "release") return Command{CommandKind::release, c, 0};
     return Command{CommandKind::hold, c, f.number("value", "the channel's value in its units")};
   }
+  if (type == "aim" || type == "release_aim") {
+    if (type == "aim") f.expect_only({"type", "target", "point"});
+    else f.expect_only({"type", "target"});
+    Command c{type == "aim" ? CommandKind::aim : CommandKind::unaim,
+              target_index(f, f.text("target", "a target of the show, by its effector's name"), targets),
+              0,
+              {}};
+    if (type == "aim") c.point = point(f);
+    return c;
+  }
   if (type == "edit") {
     f.expect_only({"type", "edits", "continues"});
     const json& list = f.array("edits", "the edits, applied as one undo step");
@@ -197,7 +231,9 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
     return e;
   }
   f.fail("unknown type \"" + type +
-         "\"; expected one of: play, pause, seek, scrub, loop, hold, release, stop, estop, edit, undo, redo, save, curves");
+         "\"; expected one of: play, pause, seek, scrub, loop, hold, release, aim, release_aim, stop, estop, edit, undo, redo, "
+         "save, "
+         "retime, curves, check");
 }
 
 }  // namespace avar::studio

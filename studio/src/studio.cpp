@@ -108,7 +108,9 @@ Replies Studio::handle(std::string_view message) {
   Replies out;
   const std::lock_guard lock(mutex_);
   try {
-    const ClientMessage parsed = parse_client_message(message, channel_names_);
+    std::vector<std::string> targets;
+    for (const playback::TargetTrack& t : document_.show().targets) targets.push_back(t.effector);
+    const ClientMessage parsed = parse_client_message(message, channel_names_, targets);
     std::visit(
         [&](const auto& m) {
           using M = std::decay_t<decltype(m)>;
@@ -172,6 +174,7 @@ void Studio::on_tick(const session::TickRecord& record) {
   newest_.fault = record.fault;
   newest_.channels.assign(record.channels.begin(), record.channels.end());
   newest_.links.assign(record.links.begin(), record.links.end());
+  newest_.targets.assign(record.targets.begin(), record.targets.begin() + static_cast<std::ptrdiff_t>(record.target_count));
   for (std::size_t i = 0; i < record.command_count; ++i)
     if (record.commands[i].outcome != session::CommandOutcome::applied && refused_.size() < kMaxRefusedKept)
       refused_.push_back(record.commands[i]);
@@ -202,6 +205,8 @@ std::vector<std::string> Studio::take_status() {
     json m = {{"type", "refused"}, {"command", session::to_string(r.command.kind)}, {"outcome", session::to_string(r.outcome)}};
     if (r.command.kind == session::CommandKind::hold || r.command.kind == session::CommandKind::release)
       m["channel"] = r.command.channel < channel_names_.size() ? json(channel_names_[r.command.channel]) : json(nullptr);
+    if (r.command.kind == session::CommandKind::aim || r.command.kind == session::CommandKind::unaim)
+      m["target"] = r.command.channel;
     out.push_back(m.dump());
   }
   out.push_back(status_json(s));
@@ -239,9 +244,14 @@ std::string Studio::status_json(const Snapshot& s) const {
   if (s.fault.cause != control::FaultCause::none)
     fault = {{"cause", control::to_string(s.fault.cause)}, {"index", s.fault.index}, {"value", maybe(s.fault.value)}};
   double duration = 0;
+  json targets = json::array();
   {
     const std::lock_guard lock(mutex_);
     duration = playing_->duration;
+    for (std::size_t i = 0; i < s.targets.size() && i < playing_->targets.size(); ++i)
+      targets.push_back({{"name", playing_->targets[i].effector},
+                         {"point", {s.targets[i].point[0], s.targets[i].point[1], s.targets[i].point[2]}},
+                         {"held", s.targets[i].held}});
   }
   return json{{"type", "status"},
               {"tick", s.tick},
@@ -253,6 +263,7 @@ std::string Studio::status_json(const Snapshot& s) const {
               {"stopping", s.stop_requested},
               {"fault", fault},
               {"channels", channels},
+              {"targets", targets},
               {"links", links}}
       .dump();
 }

@@ -58,14 +58,43 @@ test('the 3-D view draws the joints and turns with the simulated servos', async 
   await holdAt('neck_pan', 40);
   const right = await until('the eyes to move in the view', async () => {
     const p = await drawnAt('eyes');
-    return Math.hypot(p.x - left.x, p.y - left.y) > 15 && p;
+    return Math.hypot(p.x - left.x, p.y - left.y) > 5 && p;
   });
   assert.ok(right, 'the effector moved on screen');
   // The joint is drawn where the view says it is: not the background.
   const pan = await drawnAt('pan');
   assert.notDeepEqual(await pixelAt(pan.x, pan.y), [0x18, 0x1b, 0x20]);
   await page.screenshot({ path: join(out, 'studio-preview.png') });
+});
+
+test('letting the neck go hands it back to the show', async () => {
   await page.evaluate(() => window.avarStudio.state.connection.send({ type: 'release', channel: 'neck_pan' }));
+  await until('the neck to follow the show', () =>
+    page.evaluate(() => !window.avarStudio.state.status.channels.find((c) => c.name === 'neck_pan').held),
+  );
+});
+
+test("dragging the show's target holds it there and the neck follows; letting go hands it back", async () => {
+  const status = () => page.evaluate(() => window.avarStudio.state.status);
+  const before = (await status()).targets[0];
+  assert.equal(before.name, 'eyes');
+  assert.equal(before.held, false);
+  const drawn = await until('the target drawn', () => page.evaluate(() => window.avarStudio.preview.targetScreenPosition(0)));
+  const start = await onCanvas(page, 'preview', drawn.x, drawn.y);
+  const panBefore = await measured('neck_pan');
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  // Across the view: the fly starts to the figure's right; dragged toward its left.
+  await page.mouse.move(start.x + 90, start.y, { steps: 10 });
+  const held = await until('the target held where it was dragged', async () => {
+    const t = (await status()).targets[0];
+    return t.held && Math.hypot(t.point[0] - before.point[0], t.point[1] - before.point[1], t.point[2] - before.point[2]) > 0.05 && t;
+  });
+  await until('the neck to turn toward it', async () => Math.abs((await measured('neck_pan')) - panBefore) > 5);
+  await page.screenshot({ path: join(out, 'studio-aim.png') });
+  await page.mouse.up();
+  await until('the target handed back to the show', async () => !(await status()).targets[0].held);
+  assert.ok(held.point.every(Number.isFinite));
 });
 
 test('a click on a joint selects its channel', async () => {

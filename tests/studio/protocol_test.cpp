@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -62,6 +64,34 @@ TEST(StudioProtocol, TransportMessagesBecomeSessionCommands) {
   EXPECT_TRUE(std::holds_alternative<Save>(parse_client_message(R"({"type": "save"})", kChannels)));
 }
 
+TEST(StudioProtocol, AimHoldsATargetOfTheShowByItsEffectorsName) {
+  const std::vector<std::string> targets = {"eyes", "hand"};
+  const auto parse = [&](const std::string& text) { return std::get<Command>(parse_client_message(text, kChannels, targets)); };
+  const Command aim = parse(R"({"type": "aim", "target": "hand", "point": [0.5, -0.25, 1]})");
+  EXPECT_EQ(aim.kind, CommandKind::aim);
+  EXPECT_EQ(aim.channel, 1u);
+  EXPECT_EQ(aim.point, (std::array<double, 3>{0.5, -0.25, 1}));
+  const Command release = parse(R"({"type": "release_aim", "target": "eyes"})");
+  EXPECT_EQ(release.kind, CommandKind::unaim);
+  EXPECT_EQ(release.channel, 0u);
+  const auto refused = [&](const std::string& text) {
+    try {
+      parse_client_message(text, kChannels, targets);
+    } catch (const ProtocolError& e) {
+      return std::string(e.what());
+    }
+    return std::string("taken");
+  };
+  EXPECT_EQ(refused(R"({"type": "aim", "target": "tail", "point": [0, 0, 0]})"),
+            "message 'aim': no target 'tail' in the show; expected one of: eyes, hand");
+  EXPECT_EQ(refused(R"({"type": "aim", "target": "eyes", "point": [0, 0]})"),
+            "message 'aim': field 'point': expected [x, y, z] in metres, three numbers; found 2");
+  EXPECT_EQ(refused(R"({"type": "aim", "target": "eyes", "point": [0, "1", 0]})"),
+            "message 'aim': field 'point': expected [x, y, z] in metres, finite numbers; found the string \"1\"");
+  EXPECT_EQ(refusal(R"({"type": "aim", "target": "eyes", "point": [0, 0, 0]})"),
+            "message 'aim': field 'target': the show has no targets to aim ('eyes' asked)");
+}
+
 TEST(StudioProtocol, AnEditMessageIsAGroupOfKeyEdits) {
   const ClientMessage m = parse_client_message(R"({"type": "edit", "edits": [
       {"op": "add", "channel": "jaw", "keys": [{"time": 1.5, "value": 10, "interpolation": "bezier", "right": [1.7, 12],
@@ -113,10 +143,9 @@ TEST(StudioProtocol, AMalformedMessageIsRefusedNamingTheFieldAndWhatWasExpected)
   EXPECT_NE(refusal("{type: play}").find("a message that is not JSON"), std::string::npos);
   EXPECT_EQ(refusal("[1, 2]"), "a message: expected a JSON object, found a list");
   EXPECT_EQ(refusal(R"({"time": 1})"), "a message: missing field 'type' (what the message asks)");
-  EXPECT_EQ(
-      refusal(R"({"type": "jump"})"),
-      "message 'jump': unknown type \"jump\"; expected one of: play, pause, seek, scrub, loop, hold, release, stop, estop, edit, "
-      "undo, redo, save, curves");
+  EXPECT_EQ(refusal(R"({"type": "jump"})"),
+            "message 'jump': unknown type \"jump\"; expected one of: play, pause, seek, scrub, loop, hold, release, aim, "
+            "release_aim, stop, estop, edit, undo, redo, save, retime, curves, check");
   EXPECT_EQ(refusal(R"({"type": "seek"})"), "message 'seek': missing field 'time' (show time in seconds)");
   EXPECT_EQ(refusal(R"({"type": "seek", "time": "1"})"),
             "message 'seek': field 'time': expected show time in seconds, a finite number; found the string \"1\"");

@@ -2,7 +2,10 @@
 // a rod to the next, a marker at each effector), posed every status by where the device says
 // each joint's channel is (what was sent, where the device reports nothing). Orbit with the left
 // button, zoom with the wheel, pan with the right button; click a joint to select its channel's
-// track. A rig without a kinematics section has no preview: its gauges show every channel.
+// track. The show's inverse-kinematics targets are drawn as yellow balls where the figure is
+// asked to reach or look; drag one and the target is held there (the joints follow through the
+// rig's IK, within their limits) until it is let go, when the show's path takes it back. A rig
+// without a kinematics section has no preview: its gauges show every channel.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { KinematicJoint, Kinematics, Transform } from './protocol';
@@ -45,6 +48,15 @@ export class Preview {
   private readonly camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
   private controls: OrbitControls | null = null;
   private joints: JointView[] = [];
+  private figure: THREE.Group | null = null;
+  private targets: THREE.Mesh[] = [];
+  /// A line from each target's effector to the target: what the figure looks at or reaches for.
+  private sightLines: THREE.Line[] = [];
+  private readonly sightMaterial = new THREE.LineDashedMaterial({ color: 0xffd54f, dashSize: 0.02, gapSize: 0.015 });
+  private targetRadius = 0.02;
+  private aiming: { index: number; plane: THREE.Plane; busy: boolean; pending: THREE.Vector3 | null } | null = null;
+  private readonly targetMaterial = new THREE.MeshStandardMaterial({ color: 0xffd54f, emissive: 0x443300 });
+  private readonly heldMaterial = new THREE.MeshStandardMaterial({ color: 0xff8a3d, emissive: 0x552200 });
   private effectors: EffectorView[] = [];
   private built: Kinematics | null = null;
   private readonly selectedMaterial = new THREE.MeshStandardMaterial({ color: 0xffb13b });
@@ -70,6 +82,10 @@ export class Preview {
       this.controls = new OrbitControls(this.camera, canvas);
       this.controls.addEventListener('change', () => this.draw());
       canvas.addEventListener('click', (e) => this.pick(e));
+      // Capture: before OrbitControls' own pointerdown, so that a press on a target does not orbit.
+      canvas.addEventListener('pointerdown', (e) => this.startAim(e), { capture: true });
+      canvas.addEventListener('pointermove', (e) => this.moveAim(e));
+      canvas.addEventListener('pointerup', (e) => this.endAim(e));
       new ResizeObserver(() => this.draw()).observe(canvas);
     }
   }
@@ -80,12 +96,16 @@ export class Preview {
     // The rig's frame is z-up (x forward, y left); three.js draws y-up.
     figure.rotation.x = -Math.PI / 2;
     this.scene.add(figure);
+    this.figure = figure;
+    this.targets = [];
+    this.sightLines = [];
     const grid = new THREE.GridHelper(2, 20, 0x3d4654, 0x2a2f37);
     this.scene.add(grid);
 
     // Size the shapes to the figure: a tenth of its longest offset, at least a centimetre.
     const reach = Math.max(0.05, ...kinematics.joints.map((j) => Math.hypot(...j.origin.xyz)));
     const radius = Math.max(0.004, reach * 0.06);
+    this.targetRadius = radius * 1.3;
     this.joints = [];
     this.effectors = [];
     for (const joint of kinematics.joints) {
@@ -110,11 +130,16 @@ export class Preview {
       frame.add(new THREE.AxesHelper(radius * 4));
       this.effectors.push({ name: effector.name, frame });
     }
-    // Frame the figure: look at its middle from the front-left, above.
-    const box = new THREE.Box3().setFromObject(figure);
+    this.frame();
+  }
+
+  /// Frames the figure and its targets: looks at their middle from the front-left, above.
+  private frame(): void {
+    if (!this.figure) return;
+    const box = new THREE.Box3().setFromObject(this.figure);
     const centre = box.getCenter(new THREE.Vector3());
     const size = Math.max(0.1, box.getSize(new THREE.Vector3()).length());
-    this.camera.position.set(centre.x + size * 1.2, centre.y + size * 0.8, centre.z + size * 1.4);
+    this.camera.position.set(centre.x + size * 0.55, centre.y + size * 0.4, centre.z + size * 0.7);
     this.controls?.target.copy(centre);
     this.controls?.update();
   }
@@ -138,10 +163,73 @@ export class Preview {
     return { x: ((p.x + 1) / 2) * this.canvas.clientWidth, y: ((1 - p.y) / 2) * this.canvas.clientHeight };
   }
 
-  private pick(event: MouseEvent): void {
+  private ray(event: MouseEvent): THREE.Raycaster {
     const ray = new THREE.Raycaster();
     const at = new THREE.Vector2((event.offsetX / this.canvas.clientWidth) * 2 - 1, -(event.offsetY / this.canvas.clientHeight) * 2 + 1);
     ray.setFromCamera(at, this.camera);
+    return ray;
+  }
+
+  /// A press on a target starts holding it: the pointer drags it over the plane through it that
+  /// faces the camera.
+  private startAim(event: PointerEvent): void {
+    const hit = this.ray(event).intersectObjects(this.targets)[0];
+    if (!hit) return;
+    const index = hit.object.userData.target as number;
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    this.aiming = { index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.object.getWorldPosition(new THREE.Vector3())), busy: false, pending: null };
+    if (this.controls) this.controls.enabled = false;
+    this.canvas.setPointerCapture(event.pointerId);
+    event.stopPropagation();
+  }
+
+  private moveAim(event: PointerEvent): void {
+    const aiming = this.aiming;
+    if (!aiming || !this.figure) return;
+    const world = this.ray(event).ray.intersectPlane(aiming.plane, new THREE.Vector3());
+    if (!world) return;
+    aiming.pending = this.figure.worldToLocal(world);
+    void this.sendAim(aiming);
+  }
+
+  /// One aim in flight at a time; the newest pointer position is sent when it is answered.
+  private async sendAim(aiming: NonNullable<Preview['aiming']>): Promise<void> {
+    if (aiming.busy) return;
+    aiming.busy = true;
+    while (aiming.pending) {
+      const p = aiming.pending;
+      aiming.pending = null;
+      const name = this.state.status?.targets[aiming.index]?.name;
+      if (name) await this.state.ask({ type: 'aim', target: name, point: [p.x, p.y, p.z] });
+    }
+    aiming.busy = false;
+  }
+
+  /// Letting go hands the target back to the show.
+  private endAim(event: PointerEvent): void {
+    const aiming = this.aiming;
+    if (!aiming) return;
+    this.aiming = null;
+    if (this.controls) this.controls.enabled = true;
+    this.canvas.releasePointerCapture(event.pointerId);
+    const name = this.state.status?.targets[aiming.index]?.name;
+    const release = async () => {
+      while (aiming.busy) await new Promise((r) => setTimeout(r, 5));
+      if (name) await this.state.ask({ type: 'release_aim', target: name });
+    };
+    void release();
+  }
+
+  /// Where a target is drawn, in the canvas's CSS pixels.
+  targetScreenPosition(index: number): { x: number; y: number } | null {
+    const ball = this.targets[index];
+    if (!ball) return null;
+    const p = ball.getWorldPosition(new THREE.Vector3()).project(this.camera);
+    return { x: ((p.x + 1) / 2) * this.canvas.clientWidth, y: ((1 - p.y) / 2) * this.canvas.clientHeight };
+  }
+
+  private pick(event: MouseEvent): void {
+    const ray = this.ray(event);
     const hit = ray.intersectObjects(this.joints.map((j) => j.ball))[0];
     const index = hit?.object.userData.joint as number | undefined;
     const channel = index === undefined ? null : this.joints[index]?.joint.channel;
@@ -166,6 +254,37 @@ export class Preview {
       else if (view.joint.type === 'prismatic') view.motion.position.copy(axis.multiplyScalar(q));
       view.ball.material = view.joint.channel !== null && view.joint.channel === this.state.channel ? this.selectedMaterial : this.jointMaterial;
     }
+    // The show's targets where the status says they are.
+    const targets = this.state.status?.targets ?? [];
+    const framed = this.targets.length;
+    while (this.targets.length < targets.length && this.figure) {
+      const ball = new THREE.Mesh(new THREE.SphereGeometry(this.targetRadius, 20, 14), this.targetMaterial);
+      ball.userData.target = this.targets.length;
+      this.figure.add(ball);
+      this.targets.push(ball);
+      const line = new THREE.Line(new THREE.BufferGeometry(), this.sightMaterial);
+      this.scene.add(line);
+      this.sightLines.push(line);
+    }
+    this.targets.forEach((ball, i) => {
+      const target = targets[i];
+      ball.visible = target !== undefined;
+      if (!target) return;
+      ball.position.set(...target.point);
+      ball.material = target.held ? this.heldMaterial : this.targetMaterial;
+    });
+    this.sightLines.forEach((line, i) => {
+      const target = targets[i];
+      const from = target ? this.effectors.find((e) => e.name === target.name)?.frame : undefined;
+      const ball = this.targets[i];
+      line.visible = from !== undefined && ball !== undefined && ball.visible;
+      if (!line.visible || !from || !ball) return;
+      this.scene.updateMatrixWorld();
+      line.geometry.setFromPoints([from.getWorldPosition(new THREE.Vector3()), ball.getWorldPosition(new THREE.Vector3())]);
+      line.computeLineDistances();
+    });
+    // The first time targets appear, the view takes them in.
+    if (framed === 0 && this.targets.length > 0) this.frame();
     this.draw();
   }
 

@@ -144,6 +144,9 @@ export interface Status {
   stopping: boolean;
   fault: { cause: string; index: number; value: number } | null;
   channels: ChannelStatus[];
+  /// The show's inverse-kinematics targets: where each was asked to be this tick (metres, the
+  /// rig's base frame), held by an aim or following the show.
+  targets: { name: string; point: [number, number, number]; held: boolean }[];
   links: LinkStatus[];
 }
 

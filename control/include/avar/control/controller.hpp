@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "avar/control/ik_stage.hpp"
+#include "avar/control/target_aims.hpp"
 #include "avar/control/limiter.hpp"
 #include "avar/control/live_layer.hpp"
 #include "avar/control/plant.hpp"
@@ -76,6 +77,9 @@ struct ControllerOptions {
   /// Show time while running (a timecode chase); borrowed, must outlive the controller, read on
   /// the loop thread. nullptr: loop time since the show started.
   ShowClock* show_clock = nullptr;
+  /// Targets held by hand, solved for instead of the show's (TargetAims); borrowed, must outlive
+  /// the controller, read on the loop thread. nullptr: none.
+  const TargetAims* aims = nullptr;
 };
 
 /// A show bound to a rig's channels, ready for a controller to sample: its sampler and, when the

@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "avar/control/target_aims.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/kinematics/ik_goal.hpp"
 #include "avar/kinematics/ik_result.hpp"
@@ -42,8 +43,14 @@ class IkStage {
   IkStage(const rig::RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame);
 
   /// Solves for the targets at playing time t (seconds; wrapped like the tracks) and writes the
-  /// driven channels' targets into frame (indexed by channel). Real-time safe.
-  kinematics::IkResult apply(double t, std::span<double> frame) noexcept;
+  /// driven channels' targets into frame (indexed by channel). A target `aims` holds is solved for
+  /// its held point instead of the show's. Real-time safe.
+  kinematics::IkResult apply(double t, std::span<double> frame, const TargetAims* aims = nullptr) noexcept;
+
+  /// Where target `index` was last asked to be (metres, the rig's base frame): the show's point,
+  /// or the held one. Before the first apply(): the origin.
+  const Eigen::Vector3d& goal_position(std::size_t index) const noexcept { return goals_[index].position; }
+  std::size_t goal_count() const noexcept { return goals_.size(); }
 
   /// Seeds the next solve from a frame of channel values (the pose the figure is in), and makes
   /// it a cold start (random restarts allowed). Real-time safe.

@@ -4,6 +4,7 @@
 // bounded multi-producer array queue (a sequence number per cell): no lock, no allocation after
 // construction; a full queue refuses the push, it never blocks.
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -20,13 +21,16 @@ enum class CommandKind : std::uint8_t {
   hold,     ///< channel `channel` goes to `value` (channel units) over the show, within its limits
   release,  ///< channel `channel` follows the show again
   stop,     ///< ease to rest and end the run
+  aim,      ///< the show's target `channel` (its index among the show's targets) is held at `point`
+  unaim,    ///< target `channel` follows the show again
 };
 const char* to_string(CommandKind kind) noexcept;
 
 struct Command {
   CommandKind kind = CommandKind::play;
-  std::uint32_t channel = 0;  ///< hold, release: the rig's channel index
-  double value = 0;           ///< seek, scrub: seconds; hold: channel units; loop: on (!= 0) / off
+  std::uint32_t channel = 0;      ///< hold, release: the rig's channel index; aim, unaim: the show's target index
+  double value = 0;               ///< seek, scrub: seconds; hold: channel units; loop: on (!= 0) / off
+  std::array<double, 3> point{};  ///< aim: metres in the rig's base frame
 };
 
 /// What became of a command: applied, or refused and why (kept in the tick record that took it).
@@ -36,6 +40,7 @@ enum class CommandOutcome : std::uint8_t {
   external_clock,  ///< show time follows a timecode source or a control surface: not the session's
   bad_channel,     ///< no such channel
   bad_value,       ///< not finite
+  bad_target,      ///< the show has no such target (or the rig no kinematics)
 };
 const char* to_string(CommandOutcome outcome) noexcept;
 

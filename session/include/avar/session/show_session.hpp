@@ -174,6 +174,7 @@ class ShowSession final : private control::TickObserver {
   std::vector<firmware_iface::ActuatorLink*> links_;
   SessionClock clock_;
   HoldLayer holds_;
+  control::TargetAims aims_;  ///< targets held by aim commands; the loop thread only
   std::unique_ptr<control::Controller> controller_;
   CommandQueue queue_;
   TickRing ring_;

@@ -37,6 +37,12 @@ struct CommandRecord {
 
 inline constexpr std::size_t kMaxCommandsPerTick = 8;
 
+/// Where one of the show's inverse-kinematics targets was asked to be this tick.
+struct TargetRecord {
+  std::array<double, 3> point{};  ///< metres, the rig's base frame
+  bool held = false;              ///< held by an aim command rather than following the show
+};
+
 struct TickRecord {
   std::uint64_t tick = 0;
   double now_s = 0;       ///< loop time
@@ -53,6 +59,9 @@ struct TickRecord {
   /// What each stage of this tick cost, nanoseconds, by control::Stage (0: not timed, as on
   /// the stepped clock).
   std::array<std::int64_t, control::kStageCount> stage_ns{};
+  /// The show's targets, in its order (the first control::TargetAims::kCapacity of them).
+  std::size_t target_count = 0;
+  std::array<TargetRecord, control::TargetAims::kCapacity> targets{};
   std::span<ChannelRecord> channels;              ///< one per rig channel
   std::span<firmware_iface::LinkCounters> links;  ///< one per rig link, as of this tick
   /// Each live control's raw value as the tick read it, NaN before it first moved

@@ -43,9 +43,11 @@ struct Retime {};
 using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves, Check, Retime>;
 
 /// Parses one message. `channels`: the rig's channel names, in the rig's order (a hold's channel
-/// index is its place there; an edit may name only these). Throws ProtocolError: not JSON, not
+/// index is its place there; an edit may name only these). `targets`: the show's targets' names
+/// (their effectors), in the show's order (an aim's index is the place there). Throws ProtocolError: not JSON, not
 /// an object, an unknown type or field, a missing field, a field of the wrong kind, a number that
 /// is not finite, an unknown channel, a key the show reader refuses (its words).
-ClientMessage parse_client_message(std::string_view text, const std::vector<std::string>& channels);
+ClientMessage parse_client_message(std::string_view text, const std::vector<std::string>& channels,
+                                   const std::vector<std::string>& targets = {});
 
 }  // namespace avar::studio

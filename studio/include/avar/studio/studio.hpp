@@ -94,6 +94,7 @@ class Studio final : public session::SessionObserver {
     control::Fault fault;
     std::vector<session::ChannelRecord> channels;
     std::vector<firmware_iface::LinkCounters> links;
+    std::vector<session::TargetRecord> targets;
   };
   std::string status_json(const Snapshot& s) const;
 
