@@ -29,6 +29,9 @@ using namespace avar::playback;
 struct Probe {
   std::string name;
   RawCurve raw;
+  std::string show;  ///< the example show file the track is from (a plain one, not layered); "" otherwise
+  std::string channel;
+  double duration = 0;
 };
 
 /// Random keys of every kind; nullopt-free: the caller keeps those that build.
@@ -97,8 +100,11 @@ int main(int argc, char** argv) {
       if (entry.path().extension() != ".yaml") continue;
       try {
         const Show show = avar::config::load_show_file(entry.path().string());
+        // `avar sample` prints a plain show's tracks as they are; a layered one composed.
+        const std::string plain = show.layered() ? "" : entry.path().string();
         for (const Track& track : show.tracks)
-          probes.push_back({entry.path().filename().string() + ":" + track.channel, track.raw});
+          probes.push_back(
+              {entry.path().filename().string() + ":" + track.channel, track.raw, plain, track.channel, show.duration});
       } catch (const std::exception& e) {
         std::cerr << "skipped " << entry.path() << ": " << e.what() << '\n';
       }
@@ -111,7 +117,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception&) {
       continue;  // keys the builder refuses: not a curve to compare
     }
-    probes.push_back({"random " + std::to_string(made++), std::move(raw)});
+    probes.push_back({"random " + std::to_string(made++), std::move(raw), "", "", 0});
   }
   std::ofstream out(argv[1]);
   std::size_t samples = 0;
@@ -138,7 +144,8 @@ int main(int argc, char** argv) {
       side(h.right);
     }
     out << "{\"name\": \"" << probes[i].name << "\", \"flat\": [" << flat << "], \"times\": [" << at << "], \"bits\": [" << bits
-        << "], \"handles\": [" << handles << "]}" << (i + 1 < probes.size() ? ",\n" : "\n");
+        << "], \"handles\": [" << handles << "], \"show\": \"" << probes[i].show << "\", \"channel\": \"" << probes[i].channel
+        << "\", \"duration\": " << probes[i].duration << "}" << (i + 1 < probes.size() ? ",\n" : "\n");
   }
   out << "]}\n";
   std::cout << "avar_wasm_probe: " << probes.size() << " curves, " << samples << " samples -> " << argv[1] << '\n';
