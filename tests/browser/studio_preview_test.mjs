@@ -97,6 +97,11 @@ test("dragging the show's target holds it there and the neck follows; letting go
   assert.ok(held.point.every(Number.isFinite));
 });
 
+test("the dope sheet shows the target's keys under the channels", async () => {
+  const rows = await page.evaluate(() => window.avarStudio.dope.extraRows().map((r) => `${r.name}.${r.axis}:${r.keys.length}`));
+  assert.deepEqual(rows, ['eyes.x:3', 'eyes.y:5', 'eyes.z:4']);
+});
+
 test('a click on a joint selects its channel', async () => {
   const tilt = await drawnAt('tilt');
   const at = await onCanvas(page, 'preview', tilt.x, tilt.y);

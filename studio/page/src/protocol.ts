@@ -75,12 +75,34 @@ export interface Cue {
   [field: string]: unknown;
 }
 
+/// A clip placed on a layer: show time start..end, fading in and out (seconds).
+export interface Placement {
+  clip: string;
+  start: number;
+  end: number;
+  fade_in: number;
+  fade_out: number;
+  [field: string]: unknown;
+}
+
+export interface Layer {
+  name: string;
+  blend: string;
+  clips: Placement[];
+  [field: string]: unknown;
+}
+
+/// An inverse-kinematics target: x, y, z (and roll, pitch, yaw) tracks, or a path.
+export type TargetJson = Record<string, unknown> & { x?: Track; y?: Track; z?: Track };
+
 export interface ShowJson {
   name: string;
   duration: number;
   loop: boolean;
   tracks: Record<string, Track>;
   cues?: Cue[];
+  layers?: Layer[];
+  targets?: Record<string, TargetJson>;
   [field: string]: unknown;
 }
 

@@ -5,6 +5,8 @@
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
 import { typingIn } from './dom';
 import { describeFinding } from './findings';
+import type { Key, Layer } from './protocol';
+import { trackKeys } from './protocol';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -220,9 +222,71 @@ export class DopeSheet {
     this.state.changed();
   }
 
+  /// Rows under the channels, drawn but not edited here: each layer's clip placements, and each
+  /// inverse-kinematics target's x, y and z keys (edit those in the show file).
+  private extraRows(): ({ kind: 'layer'; layer: Layer } | { kind: 'target'; name: string; axis: 'x' | 'y' | 'z'; keys: Key[] })[] {
+    const show = this.state.show?.show;
+    const rows: ReturnType<DopeSheet['extraRows']> = [];
+    for (const layer of show?.layers ?? []) rows.push({ kind: 'layer', layer });
+    for (const [name, target] of Object.entries(show?.targets ?? {}))
+      for (const axis of ['x', 'y', 'z'] as const) {
+        const keys = trackKeys(target[axis]);
+        if (keys.length > 0) rows.push({ kind: 'target', name, axis, keys });
+      }
+    return rows;
+  }
+
+  private drawExtraRows(
+    g: CanvasRenderingContext2D,
+    axis: TimeAxis,
+    rows: ReturnType<DopeSheet['extraRows']>,
+    top: number,
+    width: number,
+  ): void {
+    rows.forEach((row, i) => {
+      const y = top + i * ROW;
+      const cy = y + ROW / 2;
+      g.fillStyle = i % 2 ? themeColor('--row-odd') : themeColor('--row-even');
+      g.fillRect(0, y, width, ROW);
+      g.fillStyle = themeColor('--muted');
+      if (row.kind === 'layer') {
+        g.fillText(`layer ${row.layer.name}`, 8, cy + 4);
+        for (const p of row.layer.clips) {
+          // A placement as a bar, its fades as slopes.
+          const xa = axis.x(p.start);
+          const xb = axis.x(p.end);
+          if (xb < GUTTER || xa > width) continue;
+          const fadeIn = axis.x(p.start + p.fade_in) - xa;
+          const fadeOut = xb - axis.x(p.end - p.fade_out);
+          g.fillStyle = themeColor('--clip');
+          g.beginPath();
+          g.moveTo(Math.max(GUTTER, xa), y + ROW - 3);
+          g.lineTo(Math.max(GUTTER, xa + fadeIn), y + 3);
+          g.lineTo(Math.max(GUTTER, xb - fadeOut), y + 3);
+          g.lineTo(Math.max(GUTTER, xb), y + ROW - 3);
+          g.closePath();
+          g.fill();
+          g.fillStyle = themeColor('--text');
+          g.fillText(p.clip, Math.max(GUTTER, xa) + 4, cy + 4);
+        }
+      } else {
+        g.fillText(`target ${row.name}.${row.axis}`, 8, cy + 4);
+        g.fillStyle = themeColor('--target-key');
+        for (const key of row.keys) {
+          const x = axis.x(key.time);
+          if (x < GUTTER - KEY_RADIUS || x > width + KEY_RADIUS) continue;
+          g.beginPath();
+          g.arc(x, cy, KEY_RADIUS - 1, 0, 2 * Math.PI);
+          g.fill();
+        }
+      }
+    });
+  }
+
   render(): void {
     const rig = this.state.rig;
-    const rows = rig?.channels.length ?? 0;
+    const extra = this.extraRows();
+    const rows = (rig?.channels.length ?? 0) + extra.length;
     this.canvas.style.height = `${RULER + rows * ROW + 4}px`;
     const g = fitCanvas(this.canvas);
     const width = this.canvas.clientWidth;
@@ -311,6 +375,7 @@ export class DopeSheet {
         g.stroke();
       });
     });
+    this.drawExtraRows(g, axis, extra, RULER + (rig?.channels.length ?? 0) * ROW, width);
     g.fillStyle = color('--grid');
     g.fillRect(GUTTER - 1, 0, 1, height);
 
