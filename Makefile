@@ -35,11 +35,16 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# The demo builds the avar binary and what it needs, no test suite.
+# The demo builds the avar binary and what it needs, no test suite, plays the show, then builds
+# the studio's page where it can (it needs node, npm and emscripten, and npm's registry the first
+# time; without them the demo has played all the same).
 demo: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target avar
 	$(AVAR) play examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml \
 	  --plot $(BUILD)/hello-head.svg --trace $(BUILD)/hello-head.csv
+	@cmake --build $(BUILD) -j $(JOBS) --target avar_studio_page >/dev/null 2>&1 \
+	  && echo "demo: the studio is ready: $(AVAR) studio examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --sim" \
+	  || echo "demo: the studio's page was not built (it needs node, npm and emscripten, and npm's registry the first time)"
 
 # The talking skull: its voice is made here with espeak-ng (a build product, not committed); the
 # show's jaw follows it, its lips follow the mouth shapes of examples/shows/talking-skull.tsv.

@@ -110,8 +110,8 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
       << "  the protocol: /ws (WebSocket), /api/hello and /api/status (GET); see the studio protocol in the manual\n"
       << "  Ctrl-C eases the figure to rest and stops; Ctrl-\\ is the e-stop" << std::endl;
   if (setup.server.assets_dir.empty())
-    err << "warning: this avar was built without the studio's page (it needs node, npm and emscripten: "
-           "scripts/install-deps.sh); /ws and /api still serve\n";
+    err << "warning: the studio's page is not built (make demo or make build builds it; it needs node, npm and "
+           "emscripten); /ws and /api still serve\n";
   if (o.open_browser && !open_in_browser(run->url())) err << "could not open a browser (xdg-open); open the URL above\n";
 
   InterruptCounter interrupts;
