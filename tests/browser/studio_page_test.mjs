@@ -221,6 +221,28 @@ test('copy and paste put keys at the playhead; ripple insert and delete time mov
   assert.equal((await showState()).show.tracks.eyes_pan.length, 6);
 });
 
+test('arrow keys nudge the selected keys by a tick of the rig; Home shows the whole show', async () => {
+  await clickKey('neck_roll', 1);
+  const before = (await keyOf('neck_roll', 1)).time;
+  await page.keyboard.press('ArrowRight');
+  await until('the nudge', async () => (await keyOf('neck_roll', 1)).time !== before);
+  assert.ok(Math.abs((await keyOf('neck_roll', 1)).time - (before + 0.02)) < 1e-9, 'one tick at 50 Hz');
+  await page.keyboard.press('Shift+ArrowLeft');
+  await until('the ten-tick nudge', async () => Math.abs((await keyOf('neck_roll', 1)).time - (before - 0.18)) < 1e-9);
+  await page.evaluate(() => {
+    const { state } = window.avarStudio;
+    state.view = { t0: 5, t1: 6 };
+  });
+  await page.keyboard.press('Home');
+  await until('the whole show in view', () =>
+    page.evaluate(() => {
+      const { view } = window.avarStudio.state;
+      return view.t0 < 0 && view.t1 > 12;
+    }),
+  );
+  await undoAll();
+});
+
 test('what asks too much is drawn red with what it asks, and Retime stretches it', async () => {
   await page.click('.pose-row[data-channel="jaw"] .channel-name');
   // The jaw's 25 deg key 0.05 s after its 2 deg key: 460 deg/s, and the jaw allows 300.

@@ -33,8 +33,12 @@ export class DopeSheet {
     canvas.addEventListener('dblclick', (e) => void this.addKey(e));
     canvas.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
     window.addEventListener('keydown', (e) => {
-      if (typingIn(e)) return;
+      if (typingIn(e) || (e.target instanceof HTMLInputElement && e.target.type === 'range')) return;
       if (e.key === 'Delete' || e.key === 'Backspace') void this.deleteSelection();
+      else if (e.key === 'Home') this.viewWholeShow();
+      else if ((e.key === 'ArrowLeft' || e.key === 'ArrowRight') && !e.ctrlKey && !e.metaKey) void this.nudge(e);
+      else return;
+      e.preventDefault();
     });
     new ResizeObserver(() => state.changed()).observe(canvas);
   }
@@ -197,6 +201,23 @@ export class DopeSheet {
     const keys = this.state.keys(channel);
     const interpolation = keys.length > 0 ? (keys[0]?.interpolation ?? 'bezier') : 'bezier';
     await this.state.edit([{ op: 'add', channel, keys: [{ time, value, interpolation }] }]);
+  }
+
+  /// The whole show in view, with a margin (Home).
+  viewWholeShow(): void {
+    const d = Math.max(0.01, this.state.duration());
+    this.state.view = { t0: -0.02 * d, t1: 1.03 * d };
+    this.state.changed();
+  }
+
+  /// Moves the selected keys one tick of the rig (Shift: ten) earlier or later: one edit.
+  private async nudge(e: KeyboardEvent): Promise<void> {
+    const tick = 1 / (this.state.rig?.rate_hz ?? 50);
+    const dt = (e.key === 'ArrowLeft' ? -tick : tick) * (e.shiftKey ? 10 : 1);
+    const edits = [...this.state.selection]
+      .filter(([, keys]) => keys.size > 0)
+      .map(([channel, keys]) => ({ op: 'move' as const, channel, keys: [...keys].sort((a, b) => a - b), dt, dv: 0 }));
+    if (edits.length > 0) await this.state.edit(edits);
   }
 
   private async deleteSelection(): Promise<void> {
