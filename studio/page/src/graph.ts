@@ -198,9 +198,16 @@ export class GraphEditor {
     for (let i = 0; i < n; i++) times[i] = a.time.t(GUTTER + (i * (width - 8 - GUTTER)) / (n - 1));
     const values = this.state.engine.sampleMany(channel, times);
     if (values) {
+      // Before the first key and after the last the curve is its extrapolation (held, sloped or
+      // cycled): drawn dashed, one path a side so that the dashes run on.
+      const keys = this.state.keys(channel);
+      const first = keys[0]?.time ?? 0;
+      const last = keys[keys.length - 1]?.time ?? 0;
+      const extrapolated = (t0: number, t1: number) => t1 <= first || t0 >= last;
       for (let i = 1; i < n; i++) {
         const t0 = times[i - 1] ?? 0;
         const t1 = times[i] ?? 0;
+        if (extrapolated(t0, t1)) continue;
         const v0 = values[i - 1] ?? 0;
         const v1 = values[i] ?? 0;
         const fast = Math.abs(v1 - v0) / (t1 - t0) > spec.max_velocity;
@@ -212,6 +219,24 @@ export class GraphEditor {
         g.lineTo(a.time.x(t1), a.y(v1));
         g.stroke();
       }
+      g.strokeStyle = color('--curve');
+      g.lineWidth = 2;
+      g.setLineDash([5, 4]);
+      for (const side of [(t: number) => t <= first, (t: number) => t >= last]) {
+        g.beginPath();
+        let drawing = false;
+        for (let i = 0; i < n; i++) {
+          const t = times[i] ?? 0;
+          if (!side(t)) continue;
+          const x = a.time.x(t);
+          const y = a.y(values[i] ?? 0);
+          if (drawing) g.lineTo(x, y);
+          else g.moveTo(x, y);
+          drawing = true;
+        }
+        g.stroke();
+      }
+      g.setLineDash([]);
     } else {
       g.fillStyle = color('--muted');
       g.fillText('no track: double-click its row in the dope sheet to add a key', GUTTER + 8, height / 2);
