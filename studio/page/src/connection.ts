@@ -13,6 +13,7 @@ export class Connection {
   private socket: WebSocket | null = null;
   private retry = 0;
   private waiting: ((reply: Reply | null) => void)[] = [];
+  private idleWaiters: (() => void)[] = [];
 
   constructor(
     private readonly onMessage: (message: ServerMessage) => void,
@@ -35,10 +36,12 @@ export class Connection {
       const message = JSON.parse(event.data) as ServerMessage;
       if (isReply(message)) this.waiting.shift()?.(message);
       this.onMessage(message);
+      if (this.waiting.length === 0) for (const resume of this.idleWaiters.splice(0)) resume();
     };
     socket.onclose = () => {
       this.socket = null;
       for (const answer of this.waiting.splice(0)) answer(null);
+      for (const resume of this.idleWaiters.splice(0)) resume();
       this.onState('closed');
       // The studio was stopped or restarted: try again, less and less often (at most every 5 s).
       this.retry = Math.min(this.retry + 1, 10);
@@ -55,6 +58,12 @@ export class Connection {
   /// Messages sent and not answered yet.
   inFlight(): number {
     return this.waiting.length;
+  }
+
+  /// Resolves once every message sent so far is answered (at once when none is waiting).
+  whenIdle(): Promise<void> {
+    if (this.waiting.length === 0) return Promise.resolve();
+    return new Promise((resume) => this.idleWaiters.push(resume));
   }
 
   /// Sends one message and resolves with its reply (null: the connection closed first); null at

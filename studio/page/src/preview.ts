@@ -54,7 +54,7 @@ export class Preview {
   private sightLines: THREE.Line[] = [];
   private readonly sightMaterial = new THREE.LineDashedMaterial({ color: 0xffd54f, dashSize: 0.02, gapSize: 0.015 });
   private targetRadius = 0.02;
-  private aiming: { index: number; plane: THREE.Plane; busy: boolean; pending: THREE.Vector3 | null } | null = null;
+  private aiming: { index: number; plane: THREE.Plane; sending: Promise<void> | null; pending: THREE.Vector3 | null } | null = null;
   private readonly targetMaterial = new THREE.MeshStandardMaterial({ color: 0xffd54f, emissive: 0x443300 });
   private readonly heldMaterial = new THREE.MeshStandardMaterial({ color: 0xff8a3d, emissive: 0x552200 });
   private effectors: EffectorView[] = [];
@@ -177,7 +177,12 @@ export class Preview {
     if (!hit) return;
     const index = hit.object.userData.target as number;
     const normal = this.camera.getWorldDirection(new THREE.Vector3());
-    this.aiming = { index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.object.getWorldPosition(new THREE.Vector3())), busy: false, pending: null };
+    this.aiming = {
+      index,
+      plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.object.getWorldPosition(new THREE.Vector3())),
+      sending: null,
+      pending: null,
+    };
     if (this.controls) this.controls.enabled = false;
     this.canvas.setPointerCapture(event.pointerId);
     event.stopPropagation();
@@ -189,23 +194,23 @@ export class Preview {
     const world = this.ray(event).ray.intersectPlane(aiming.plane, new THREE.Vector3());
     if (!world) return;
     aiming.pending = this.figure.worldToLocal(world);
-    void this.sendAim(aiming);
+    if (!aiming.sending)
+      aiming.sending = this.sendAim(aiming).finally(() => {
+        aiming.sending = null;
+      });
   }
 
   /// One aim in flight at a time; the newest pointer position is sent when it is answered.
   private async sendAim(aiming: NonNullable<Preview['aiming']>): Promise<void> {
-    if (aiming.busy) return;
-    aiming.busy = true;
     while (aiming.pending) {
       const p = aiming.pending;
       aiming.pending = null;
       const name = this.state.status?.targets[aiming.index]?.name;
       if (name) await this.state.ask({ type: 'aim', target: name, point: [p.x, p.y, p.z] });
     }
-    aiming.busy = false;
   }
 
-  /// Letting go hands the target back to the show.
+  /// Letting go hands the target back to the show, after the last aim.
   private endAim(event: PointerEvent): void {
     const aiming = this.aiming;
     if (!aiming) return;
@@ -213,11 +218,9 @@ export class Preview {
     if (this.controls) this.controls.enabled = true;
     this.canvas.releasePointerCapture(event.pointerId);
     const name = this.state.status?.targets[aiming.index]?.name;
-    const release = async () => {
-      while (aiming.busy) await new Promise((r) => setTimeout(r, 5));
-      if (name) await this.state.ask({ type: 'release_aim', target: name });
-    };
-    void release();
+    void (aiming.sending ?? Promise.resolve()).then(() => {
+      if (name) void this.state.ask({ type: 'release_aim', target: name });
+    });
   }
 
   /// Where a target is drawn, in the canvas's CSS pixels.

@@ -82,25 +82,20 @@ export class StudioState {
     this.changed();
   }
 
-  /// Asks for the feasibility check of the newest show, once no drag is in flight (a drag sends a
-  /// move per pointer event; the check of its last position is the one that matters).
+  /// Asks for the feasibility check of the newest show once every message in flight is answered
+  /// (a drag sends a move per pointer event; the check of its last position is the one that
+  /// matters), once however many shows arrive meanwhile.
   private checkWanted = false;
   private requestCheck(): void {
     if (this.checkWanted) return;
     this.checkWanted = true;
-    const ask = () => {
-      if (this.connection.inFlight() > 0) {
-        setTimeout(ask, 50);
-        return;
-      }
+    void this.connection.whenIdle().then(async () => {
       this.checkWanted = false;
-      void this.connection.request({ type: 'check' })?.then((reply) => {
-        if (reply?.type !== 'check') return;
-        this.findings = reply.findings;
-        this.changed();
-      });
-    };
-    setTimeout(ask, 0);
+      const reply = await this.connection.request({ type: 'check' });
+      if (reply?.type !== 'check') return;
+      this.findings = reply.findings;
+      this.changed();
+    });
   }
 
   keys(channel: string) {
