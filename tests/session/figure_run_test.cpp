@@ -16,6 +16,7 @@
 #include "avar/assembly/gpio_chips.hpp"
 #include "avar/config/input_map.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/edit/show_document.hpp"
 #include "avar/session/figure_run.hpp"
 #include "avar/session/play_recorder.hpp"
 #include "avar/session/take.hpp"
@@ -181,6 +182,12 @@ TEST(FigureRunTake, APerformedChannelIsFittedWrittenAndReadBackWithinTheToleranc
   EXPECT_EQ(written.tracks[0].curve.key_count(), report.tracks[0].keys);
   // The jaw opened under the performance: the take's curve ends well away from rest.
   EXPECT_GT(written.tracks[0].curve.evaluate(report.duration_s), 5.0);
+  // The take opens for editing (the studio's document) like any show: its keys are editable keys.
+  edit::ShowDocument document = edit::ShowDocument::open(path);
+  document.apply(edit::MoveKeys{"jaw", {1}, 0, 2.0});
+  EXPECT_EQ(document.show().tracks[0].raw.keys[1].value, written.tracks[0].raw.keys[1].value + 2.0);
+  ASSERT_TRUE(document.undo());
+  EXPECT_FALSE(document.modified());
 }
 
 TEST(FigureRunTake, AMergedTakeIsALayerOverTheShowThatPlayed) {
