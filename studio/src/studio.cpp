@@ -42,6 +42,8 @@ Studio::Studio(const rig::Rig& rig, edit::ShowDocument document, std::string sho
       initial_(std::make_shared<const playback::Show>(document_.show())),
       playing_(initial_) {
   for (const rig::ChannelSpec& c : rig.channels) channel_names_.push_back(c.name);
+  // No edit adds, removes or reorders targets (time edits and retime refuse a show with them).
+  for (const playback::TargetTrack& t : document_.show().targets) target_names_.push_back(t.effector);
 }
 
 void Studio::attach(session::ShowSession* session) {
@@ -108,9 +110,7 @@ Replies Studio::handle(std::string_view message) {
   Replies out;
   const std::lock_guard lock(mutex_);
   try {
-    std::vector<std::string> targets;
-    for (const playback::TargetTrack& t : document_.show().targets) targets.push_back(t.effector);
-    const ClientMessage parsed = parse_client_message(message, channel_names_, targets);
+    const ClientMessage parsed = parse_client_message(message, channel_names_, target_names_);
     std::visit(
         [&](const auto& m) {
           using M = std::decay_t<decltype(m)>;

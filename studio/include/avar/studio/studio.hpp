@@ -79,6 +79,7 @@ class Studio final : public session::SessionObserver {
   std::string show_path_;
   session::ShowSession* session_ = nullptr;
   std::vector<std::string> channel_names_;
+  std::vector<std::string> target_names_;  ///< the show's targets, by effector, in its order
   /// The show the session was made with: it borrows it, so it lives as long as the studio.
   std::shared_ptr<const playback::Show> initial_;
   /// The show handed to the session last (its binding shares it).
