@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "avar/edit/show_document.hpp"
+#include "avar/rig/rig.hpp"
+#include "avar/studio/studio.hpp"
 #include "support/random_show_edits.hpp"
 
 namespace {
@@ -80,6 +82,40 @@ void BM_DragThousandKeys(benchmark::State& state) {
   state.counters["keys_in_show"] = kChannels * kKeysPerChannel;
 }
 
+/// The studio's whole answer to one pointer move of the drag, as the page sends it: the message
+/// read, the edit applied, the show handed on, and what every client is sent back (bytes_out).
+void BM_StudioDragStep(benchmark::State& state) {
+  avar::rig::Rig rig;
+  rig.name = "big";
+  for (int c = 0; c < kChannels; ++c) {
+    avar::rig::ChannelSpec spec;
+    spec.name = "ch" + std::to_string(c);
+    spec.min = -1000, spec.max = 1000, spec.rest = 0;
+    rig.channels.push_back(spec);
+  }
+  avar::studio::Studio studio(rig, big_show(), "");
+  const auto message = [](double sign) {
+    std::string edits;
+    for (int c = 0; c < kDraggedChannels; ++c) {
+      std::string keys;
+      for (int k = 0; k < kDraggedPerChannel; ++k) keys += (k ? "," : "") + std::to_string(500 + k);
+      edits += std::string(c ? "," : "") + R"({"op":"move","channel":"ch)" + std::to_string(c * 4) + R"(","keys":[)" + keys +
+               R"(],"dt":)" + std::to_string(sign * 0.001) + R"(,"dv":)" + std::to_string(sign * 0.1) + "}";
+    }
+    return R"({"type":"edit","continues":true,"edits":[)" + edits + "]}";
+  };
+  const std::string there = message(1), back = message(-1);
+  bool forth = true;
+  double bytes = 0;
+  for (auto _ : state) {
+    const avar::studio::Replies r = studio.handle(forth ? there : back);
+    if (r.to_sender.find("\"ok\"") == std::string::npos) state.SkipWithError(r.to_sender.c_str());
+    for (const std::string& m : r.to_all) bytes = static_cast<double>(m.size());
+    forth = !forth;
+  }
+  state.counters["bytes_out"] = bytes;
+}
+
 void BM_UndoDragStep(benchmark::State& state) {
   ShowDocument doc = big_show();
   const std::vector<KeyEdit> there = drag_step(1);
@@ -138,6 +174,7 @@ void BM_RandomEditsUndoneAndRedone(benchmark::State& state) {
 double worst(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
 
 BENCHMARK(BM_DragThousandKeys)->Repetitions(10)->ComputeStatistics("worst", worst)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StudioDragStep)->Repetitions(5)->ComputeStatistics("worst", worst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UndoDragStep)->Repetitions(10)->ComputeStatistics("worst", worst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RandomEditsUndoneAndRedone)->Iterations(1)->Unit(benchmark::kMillisecond);
 

@@ -20,6 +20,9 @@ namespace {
 
 using playback::Interpolation;
 
+/// Enough digits for every double to read back to itself.
+constexpr int kDoublePrecision = 17;
+
 bool is_easing(Interpolation i) { return i >= Interpolation::sine && i <= Interpolation::elastic; }
 
 void write_key(YAML::Emitter& y, const playback::RawKey& key, const playback::RawKey* previous) {
@@ -123,9 +126,10 @@ void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
   y << YAML::Key << "speed" << YAML::Value;
   if (speed.shape() == playback::DistanceTimeShape::user) {
     write_curve(y, speed.user_keys());
-  } else if (speed.shape() == playback::DistanceTimeShape::sine_constant_middle || speed.shape() == playback::DistanceTimeShape::parabolic) {
-    y << YAML::Flow << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << playback::to_string(speed.shape()) << YAML::Key << "k1"
-      << YAML::Value << speed.k1() << YAML::Key << "k2" << YAML::Value << speed.k2() << YAML::EndMap;
+  } else if (speed.shape() == playback::DistanceTimeShape::sine_constant_middle ||
+             speed.shape() == playback::DistanceTimeShape::parabolic) {
+    y << YAML::Flow << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << playback::to_string(speed.shape()) << YAML::Key
+      << "k1" << YAML::Value << speed.k1() << YAML::Key << "k2" << YAML::Value << speed.k2() << YAML::EndMap;
   } else {
     y << playback::to_string(speed.shape());
   }
@@ -133,8 +137,8 @@ void write_path(YAML::Emitter& y, const playback::PathSpec& path) {
     case playback::PathOrientation::none: break;
     case playback::PathOrientation::frenet: y << YAML::Key << "orient" << YAML::Value << "frenet"; break;
     case playback::PathOrientation::tangent:
-      y << YAML::Key << "orient" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "along" << YAML::Value << "tangent"
-        << YAML::Key << "up" << YAML::Value;
+      y << YAML::Key << "orient" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "along" << YAML::Value
+        << "tangent" << YAML::Key << "up" << YAML::Value;
       write_vector(y, path.up);
       y << YAML::EndMap;
       break;
@@ -249,7 +253,7 @@ void write_osc_cues(YAML::Emitter& y, const std::vector<playback::Cue>& cues) {
 
 std::string show_text(const playback::Show& show, const std::string& comment) {
   YAML::Emitter y;
-  y.SetDoublePrecision(17);
+  y.SetDoublePrecision(kDoublePrecision);
   y << YAML::BeginMap;
   y << YAML::Key << "name" << YAML::Value << show.name;
   y << YAML::Key << "duration" << YAML::Value << show.duration;
@@ -281,7 +285,8 @@ std::string show_text(const playback::Show& show, const std::string& comment) {
         y << YAML::Key << axes[i] << YAML::Value;
         write_curve(y, target.raw[i]);
       }
-      const bool orientation_curves = target.has_orientation() && !target.orientation_keys && !(target.path && target.path->orients());
+      const bool orientation_curves =
+          target.has_orientation() && !target.orientation_keys && !(target.path && target.path->orients());
       for (std::size_t i = 0; i < 3 && orientation_curves; ++i) {
         y << YAML::Key << angles[i] << YAML::Value;
         write_curve(y, target.raw_rpy[i]);
@@ -333,6 +338,15 @@ nlohmann::json to_json(const YAML::Node& node) {
 std::string show_json(const playback::Show& show) {
   // One description of the file's fields: the writer's own text, read back as a tree.
   return to_json(YAML::Load(show_text(show, "json"))).dump();
+}
+
+std::string keys_json(const playback::RawCurve& raw, std::size_t from, std::size_t count) {
+  YAML::Emitter y;
+  y.SetDoublePrecision(kDoublePrecision);
+  y << YAML::BeginSeq;
+  for (std::size_t i = from; i < from + count; ++i) write_key(y, raw.keys[i], i > 0 ? &raw.keys[i - 1] : nullptr);
+  y << YAML::EndSeq;
+  return to_json(YAML::Load(y.c_str())).dump();
 }
 
 void write_show_file(const std::string& path, const playback::Show& show, const std::string& comment) {

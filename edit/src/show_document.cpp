@@ -5,9 +5,12 @@
 #include <iterator>
 #include <sstream>
 
+#include <cstdint>
+
 #include "avar/config/feasibility.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/config/show_writer.hpp"
+#include "avar/core/bit_cast.hpp"
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 
@@ -30,6 +33,45 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 std::string group_label(std::span<const KeyEdit> edits) {
   if (edits.size() == 1) return describe(edits.front());
   return std::to_string(edits.size()) + " edits: " + describe(edits.front()) + ", ...";
+}
+
+bool same_optional(const std::optional<double>& a, const std::optional<double>& b) noexcept {
+  return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
+}
+
+bool same_handle(const std::optional<playback::Handle>& a, const std::optional<playback::Handle>& b) noexcept {
+  return a.has_value() == b.has_value() && (!a || (same_bits(a->time, b->time) && same_bits(a->value, b->value)));
+}
+
+/// Every field the show file writes (not where it was read).
+bool same_key(const playback::RawKey& a, const playback::RawKey& b) noexcept {
+  return same_bits(a.time, b.time) && same_bits(a.value, b.value) && a.interpolation == b.interpolation &&
+         same_handle(a.left, b.left) && same_handle(a.right, b.right) && a.left_type == b.left_type &&
+         a.right_type == b.right_type && a.easing == b.easing && same_bits(a.back, b.back) &&
+         same_bits(a.amplitude, b.amplitude) && same_bits(a.period, b.period) && same_optional(a.in_slope, b.in_slope) &&
+         same_optional(a.out_slope, b.out_slope) && same_bits(a.tension, b.tension) && same_bits(a.continuity, b.continuity) &&
+         same_bits(a.bias, b.bias);
+}
+
+/// Whether the curve-wide settings (written apart from the keys) are the same.
+bool same_settings(const playback::RawCurve& a, const playback::RawCurve& b) noexcept {
+  return a.extrapolation == b.extrapolation && a.auto_smoothing == b.auto_smoothing && a.cycles.before == b.cycles.before &&
+         a.cycles.after == b.cycles.after && a.cycles.before_count == b.cycles.before_count &&
+         a.cycles.after_count == b.cycles.after_count;
+}
+
+/// The stretch of keys that differs between `before` and `after`, with the key after it.
+KeySplice splice_of(const std::string& channel, const std::vector<playback::RawKey>& before,
+                    const std::vector<playback::RawKey>& after) {
+  std::size_t head = 0;
+  while (head < before.size() && head < after.size() && same_key(before[head], after[head])) ++head;
+  std::size_t tail = 0;
+  while (tail < before.size() - head && tail < after.size() - head &&
+         same_key(before[before.size() - 1 - tail], after[after.size() - 1 - tail]))
+    ++tail;
+  if (head == before.size() && head == after.size()) return {channel, head, 0, 0};
+  if (tail > 0) --tail;  // the first unchanged key after the stretch may be written differently
+  return {channel, head, before.size() - head - tail, after.size() - head - tail};
 }
 
 }  // namespace
@@ -68,6 +110,7 @@ bool ShowDocument::continues_last(const Step& step) const {
 }
 
 void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
+  last_change_ = {};
   if (edits.empty()) throw EditError("no edit given");
   // Every edit applied in order to working copies of the keys of the channels it touches.
   struct Working {
@@ -108,7 +151,9 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
       playback::RawCurve raw = w.before ? *w.before : playback::RawCurve({}, {show_.where.file, 0, 0});
       raw.keys = std::move(w.keys);
       try {
-        built.back() = playback::Curve::build(raw);
+        const std::optional<std::size_t> track = track_of(w.channel);
+        built.back() = track ? playback::Curve::build(raw, show_.tracks[*track].curve, show_.tracks[*track].raw)
+                             : playback::Curve::build(raw);
       } catch (const InputError& e) {
         throw EditError(step.label + ": " + w.channel + ": " + e.problem());
       }
@@ -144,6 +189,7 @@ void ShowDocument::push_step(Step step) {
 }
 
 void ShowDocument::retime(const rig::Rig& rig) {
+  last_change_ = {};
   if (show_.layered() || !show_.targets.empty())
     throw EditError(
         std::string("retime: this show has ") + (show_.layered() ? "layers" : "targets") +
@@ -175,10 +221,17 @@ void ShowDocument::put(const TrackChange& change, const std::optional<playback::
   const bool exists = change.position < show_.tracks.size() && show_.tracks[change.position].channel == change.channel;
   if (!raw) {
     if (exists) show_.tracks.erase(at);
+    last_change_.whole = true;
     return;
   }
-  // Undo and redo build again what built when the step was applied (history keeps keys only).
-  playback::Curve curve = built ? std::move(*built) : playback::Curve::build(*raw);
+  if (!exists || !same_settings(show_.tracks[change.position].raw, *raw)) last_change_.whole = true;
+  else last_change_.splices.push_back(splice_of(change.channel, show_.tracks[change.position].raw.keys, raw->keys));
+  // Undo and redo build again what built when the step was applied (history keeps keys only),
+  // from the segments the step left alone.
+  playback::Curve curve =
+      built    ? std::move(*built)
+      : exists ? playback::Curve::build(*raw, show_.tracks[change.position].curve, show_.tracks[change.position].raw)
+               : playback::Curve::build(*raw);
   if (exists) {
     show_.tracks[change.position].raw = *raw;
     show_.tracks[change.position].curve = std::move(curve);
@@ -189,6 +242,7 @@ void ShowDocument::put(const TrackChange& change, const std::optional<playback::
 
 void ShowDocument::put(const std::optional<Times>& times) {
   if (!times) return;
+  last_change_.whole = true;
   show_.duration = times->duration;
   show_.cues = times->cues;
 }
@@ -219,6 +273,7 @@ ShowDocument::Times ShowDocument::rippled(const Times& times, const KeyEdit& edi
 
 bool ShowDocument::undo() {
   if (position_ == 0) return false;
+  last_change_ = {};
   const Step& step = history_[--position_];
   for (auto c = step.changes.rbegin(); c != step.changes.rend(); ++c) put(*c, c->before);
   put(step.times_before);
@@ -227,6 +282,7 @@ bool ShowDocument::undo() {
 
 bool ShowDocument::redo() {
   if (position_ == history_.size()) return false;
+  last_change_ = {};
   const Step& step = history_[position_++];
   for (const TrackChange& c : step.changes) put(c, c.after);
   put(step.times_after);

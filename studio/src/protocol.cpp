@@ -193,7 +193,19 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
   if (type == "undo") return plain(Undo{});
   if (type == "redo") return plain(Redo{});
   if (type == "save") return plain(Save{});
-  if (type == "curves") return plain(Curves{});
+  if (type == "curves") {
+    f.expect_only({"type", "channels"});
+    Curves c;
+    if (message.contains("channels")) {
+      c.channels.emplace();
+      for (const json& name : f.array("channels", "the channels whose curves to send")) {
+        if (!name.is_string()) f.fail("field 'channels': expected channel names, found " + Fields::kind(name));
+        channel_index(f, name.get<std::string>(), channels);
+        c.channels->push_back(name.get<std::string>());
+      }
+    }
+    return c;
+  }
   if (type == "check") return plain(Check{});
   if (type == "retime") return plain(Retime{});
   if (type == "seek" || type == "scrub") {

@@ -76,8 +76,9 @@ struct ServerCallbacks {
     if ((bits & 0x80) == 0) return 1;  // more frames of this message to come
     const Replies replies = server.studio_.handle(partial->text);
     partial->text.clear();
-    server.send(conn, replies.to_sender);
+    // The change first: a client that hears its "ok" already holds the show it made.
     for (const std::string& m : replies.to_all) server.broadcast(m);
+    server.send(conn, replies.to_sender);
     return 1;
   }
 

@@ -1,5 +1,6 @@
 #include "avar/studio/studio.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <type_traits>
@@ -65,9 +66,35 @@ std::string Studio::show_fields() const {
 
 std::string Studio::show_message() const { return "{\"type\":\"show\"," + show_fields() + "}"; }
 
-std::string Studio::curves_message() const {
+std::string Studio::change_message() const {
+  const edit::DocumentChange& change = document_.last_change();
+  if (change.whole) return show_message();
+  std::string head = json{{"type", "keys"},
+                          {"version", version_},
+                          {"file", show_path_.empty() ? json(nullptr) : json(show_path_)},
+                          {"modified", document_.modified()},
+                          {"undo", document_.undo_label()},
+                          {"redo", document_.redo_label()}}
+                         .dump();
+  head.pop_back();
+  // The keys are spliced in as the show writer writes them (numbers that read back the same).
+  std::string splices;
+  for (const edit::KeySplice& k : change.splices) {
+    const playback::Show& show = document_.show();
+    const auto track =
+        std::find_if(show.tracks.begin(), show.tracks.end(), [&](const playback::Track& t) { return t.channel == k.channel; });
+    std::string fields = json{{"channel", k.channel}, {"from", k.from}, {"remove", k.removed}}.dump();
+    fields.pop_back();
+    splices += (splices.empty() ? "" : ",") + fields + ",\"keys\":" + config::keys_json(track->raw, k.from, k.added) + "}";
+  }
+  return head + ",\"tracks\":[" + splices + "]}";
+}
+
+std::string Studio::curves_message(const std::optional<std::vector<std::string>>& channels) const {
   json tracks = json::object();
-  for (const playback::Track& t : document_.show().tracks) tracks[t.channel] = playback::encode_raw_curve(t.raw);
+  for (const playback::Track& t : document_.show().tracks)
+    if (!channels || std::find(channels->begin(), channels->end(), t.channel) != channels->end())
+      tracks[t.channel] = playback::encode_raw_curve(t.raw);
   return json{{"type", "curves"}, {"version", version_}, {"format", playback::kRawCurveFormat}, {"tracks", tracks}}.dump();
 }
 
@@ -127,15 +154,15 @@ Replies Studio::handle(std::string_view message) {
             else document_.apply(m.edits);
             play_document();
             out.to_sender = ok_reply(type);
-            out.to_all.push_back(show_message());
+            out.to_all.push_back(change_message());
           } else if constexpr (std::is_same_v<M, Undo> || std::is_same_v<M, Redo>) {
             const bool done = std::is_same_v<M, Undo> ? document_.undo() : document_.redo();
             if (!done) throw ProtocolError("message '" + type + "': there is nothing to " + type);
             play_document();
             out.to_sender = ok_reply(type);
-            out.to_all.push_back(show_message());
+            out.to_all.push_back(change_message());
           } else if constexpr (std::is_same_v<M, Curves>) {
-            out.to_sender = curves_message();
+            out.to_sender = curves_message(m.channels);
           } else if constexpr (std::is_same_v<M, Check>) {
             out.to_sender = check_message();
           } else if constexpr (std::is_same_v<M, Retime>) {

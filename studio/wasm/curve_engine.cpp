@@ -20,12 +20,22 @@
 
 namespace {
 
-std::vector<std::unique_ptr<avar::playback::Curve>> curves;
+/// A built curve and the keys it was built from (what a rebuild reuses segments of).
+struct Built {
+  avar::playback::Curve curve;
+  avar::playback::RawCurve raw;
+};
+
+std::vector<std::unique_ptr<Built>> curves;
 std::string last_error;
 
 const avar::playback::Curve* find(int id) {
-  if (id < 0 || static_cast<std::size_t>(id) >= curves.size()) return nullptr;
-  return curves[static_cast<std::size_t>(id)].get();
+  if (id < 0 || static_cast<std::size_t>(id) >= curves.size() || !curves[static_cast<std::size_t>(id)]) return nullptr;
+  return &curves[static_cast<std::size_t>(id)]->curve;
+}
+
+avar::playback::RawCurve decoded(const double* flat, int count) {
+  return avar::playback::decode_raw_curve(std::span<const double>(flat, static_cast<std::size_t>(count)));
 }
 
 }  // namespace
@@ -35,15 +45,35 @@ extern "C" {
 /// Builds a curve from `count` numbers at `flat`; its number, or -1 (see avar_error()).
 int avar_curve_build(const double* flat, int count) {
   try {
-    auto curve = std::make_unique<avar::playback::Curve>(avar::playback::Curve::build(
-        avar::playback::decode_raw_curve(std::span<const double>(flat, static_cast<std::size_t>(count)))));
+    avar::playback::RawCurve raw = decoded(flat, count);
+    auto built = std::make_unique<Built>(Built{avar::playback::Curve::build(raw), std::move(raw)});
     for (std::size_t i = 0; i < curves.size(); ++i)
       if (!curves[i]) {
-        curves[i] = std::move(curve);
+        curves[i] = std::move(built);
         return static_cast<int>(i);
       }
-    curves.push_back(std::move(curve));
+    curves.push_back(std::move(built));
     return static_cast<int>(curves.size()) - 1;
+  } catch (const std::exception& e) {
+    last_error = e.what();
+    return -1;
+  }
+}
+
+/// Builds curve `id` again from new keys (an edit of them), reusing the segments the edit left
+/// alone (Curve::build's rebuild: the same bits as a fresh build). 0, or -1 with the curve
+/// unchanged (see avar_error()).
+int avar_curve_rebuild(int id, const double* flat, int count) {
+  if (!find(id)) {
+    last_error = "no curve " + std::to_string(id);
+    return -1;
+  }
+  try {
+    Built& old = *curves[static_cast<std::size_t>(id)];
+    avar::playback::RawCurve raw = decoded(flat, count);
+    avar::playback::Curve curve = avar::playback::Curve::build(raw, old.curve, old.raw);
+    old = Built{std::move(curve), std::move(raw)};
+    return 0;
   } catch (const std::exception& e) {
     last_error = e.what();
     return -1;
@@ -73,8 +103,7 @@ void avar_curve_sample_many(int id, const double* times, double* out, int count)
 /// handle). Returns the key count, or -1 (see avar_error()).
 int avar_curve_handles(const double* flat, int count, double* out) {
   try {
-    const avar::playback::RawCurve raw =
-        avar::playback::decode_raw_curve(std::span<const double>(flat, static_cast<std::size_t>(count)));
+    const avar::playback::RawCurve raw = decoded(flat, count);
     const std::vector<avar::playback::ResolvedHandles> handles = avar::playback::compute_handles(raw);
     constexpr double none = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t k = 0; k < handles.size(); ++k) {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -347,6 +348,65 @@ TEST(ShowDocument, RandomEditsUndoneAndRedoneSaveTheSameBytesAtEachEnd) {
   doc.save(again);
   EXPECT_EQ(bytes_of(again), bytes_of(edited));
   std::cout << "seed " << seed << ": " << applied << " edits applied, " << refused << " refused\n";
+}
+
+/// A copy of every track's keys: what a client holds.
+std::map<std::string, std::vector<RawKey>> client_copy(const ShowDocument& doc) {
+  std::map<std::string, std::vector<RawKey>> copy;
+  for (const playback::Track& t : doc.show().tracks) copy[t.channel] = t.raw.keys;
+  return copy;
+}
+
+TEST(ShowDocument, EachChangeNamesTheKeysItChangedAndTheCurvesStayFreshBuilds) {
+  // A client that applies every change's splices (or takes the whole show when told) holds the
+  // document's keys at every step, edits, undos and redos alike; and the curves the document
+  // rebuilt from their unchanged segments sample as Curve::build's.
+  const unsigned seed = 1206;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  ShowDocument doc = ShowDocument::open(kHelloHead);
+  auto client = client_copy(doc);
+  std::size_t spliced = 0, whole = 0;
+  const auto follow = [&] {
+    const DocumentChange& change = doc.last_change();
+    if (change.whole) {
+      client = client_copy(doc), ++whole;
+      return;
+    }
+    for (const KeySplice& k : change.splices) {
+      std::vector<RawKey>& keys = client.at(k.channel);
+      ASSERT_LE(k.from + k.removed, keys.size());
+      const std::vector<RawKey>& now = track(doc, k.channel).raw.keys;
+      keys.erase(keys.begin() + static_cast<std::ptrdiff_t>(k.from),
+                 keys.begin() + static_cast<std::ptrdiff_t>(k.from + k.removed));
+      keys.insert(keys.begin() + static_cast<std::ptrdiff_t>(k.from), now.begin() + static_cast<std::ptrdiff_t>(k.from),
+                  now.begin() + static_cast<std::ptrdiff_t>(k.from + k.added));
+      ++spliced;
+    }
+    for (const playback::Track& t : doc.show().tracks) {
+      ASSERT_EQ(client.at(t.channel).size(), t.raw.keys.size()) << t.channel;
+      for (std::size_t i = 0; i < t.raw.keys.size(); ++i) {
+        ASSERT_EQ(client.at(t.channel)[i].time, t.raw.keys[i].time) << t.channel << " key " << i;
+        ASSERT_EQ(client.at(t.channel)[i].value, t.raw.keys[i].value) << t.channel << " key " << i;
+      }
+      const playback::Curve fresh = playback::Curve::build(t.raw);
+      for (double x = -1; x < 13; x += 0.0173) ASSERT_EQ(t.curve.evaluate(x), fresh.evaluate(x)) << t.channel << " at " << x;
+    }
+  };
+  for (int e = 0; e < 300; ++e) {
+    try {
+      doc.apply(testing::random_show_edit(rng, doc, 12));
+    } catch (const EditError&) {
+      EXPECT_FALSE(doc.last_change().whole);
+      EXPECT_TRUE(doc.last_change().splices.empty());
+      continue;
+    }
+    follow();
+    if (rng() % 4 == 0 && doc.undo()) follow();
+    if (rng() % 8 == 0 && doc.redo()) follow();
+  }
+  EXPECT_GT(spliced, 100u);
+  EXPECT_GT(whole, 10u);
 }
 
 }  // namespace

@@ -108,19 +108,20 @@ TEST(StudioServer, AnEditGoesBackToEveryClientAndARefusalOnlyToItsSender) {
   ASSERT_TRUE(watcher.next("hello"));
   editor.send(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [2], "dt": 0, "dv": -10}]})");
   ASSERT_TRUE(editor.next("ok"));
-  const auto seen = watcher.next("show");
+  const auto seen = watcher.next("keys");
   ASSERT_TRUE(seen);
   EXPECT_EQ((*seen)["version"], 1);
-  EXPECT_EQ((*seen)["show"]["tracks"]["jaw"][2]["value"].get<double>(), 8.0);
+  EXPECT_EQ((*seen)["tracks"][0]["channel"], "jaw");
+  EXPECT_EQ((*seen)["tracks"][0]["keys"][0]["value"].get<double>(), 8.0);
   editor.send(R"({"type": "redo"})");
   const auto refused = editor.next("error");
   ASSERT_TRUE(refused);
   EXPECT_EQ((*refused)["message"], "message 'redo': there is nothing to redo");
-  // The watcher hears of no refusal: its next show is the undo's.
+  // The watcher hears of no refusal: its next change is the undo's.
   editor.send(R"({"type": "undo"})");
-  const auto next = watcher.wait_for([](const json& m) { return m["type"] == "error" || m["type"] == "show"; });
+  const auto next = watcher.wait_for([](const json& m) { return m["type"] == "error" || m["type"] == "keys"; });
   ASSERT_TRUE(next);
-  EXPECT_EQ((*next)["type"], "show");
+  EXPECT_EQ((*next)["type"], "keys");
   EXPECT_EQ((*next)["version"], 2);
 }
 

@@ -149,17 +149,46 @@ TEST(Studio, AnEditReachesTheFigureAtTheNextTickAndUndoTakesItBack) {
   });
   EXPECT_EQ(reply(edited)["type"], "ok");
   ASSERT_EQ(edited.to_all.size(), 1u);
-  const json show = json::parse(edited.to_all[0]);
-  EXPECT_EQ(show["type"], "show");
-  EXPECT_EQ(show["version"], 1);
-  EXPECT_EQ(show["modified"], true);
-  EXPECT_EQ(show["show"]["tracks"]["jaw"][2]["value"].get<double>(), 8.0);
+  // Every client is told the keys that changed (and the one after them), not the whole show.
+  const json keys = json::parse(edited.to_all[0]);
+  EXPECT_EQ(keys["type"], "keys");
+  EXPECT_EQ(keys["version"], 1);
+  EXPECT_EQ(keys["modified"], true);
+  EXPECT_EQ(keys["undo"], "move 1 key of 'jaw' by 0 s, -10");
+  ASSERT_EQ(keys["tracks"].size(), 1u);
+  EXPECT_EQ(keys["tracks"][0]["channel"], "jaw");
+  EXPECT_EQ(keys["tracks"][0]["from"], 2);
+  EXPECT_EQ(keys["tracks"][0]["remove"], 2);
+  ASSERT_EQ(keys["tracks"][0]["keys"].size(), 2u);
+  EXPECT_EQ(keys["tracks"][0]["keys"][0]["value"].get<double>(), 8.0);
+  EXPECT_EQ(json::parse(undone.to_all.at(0))["type"], "keys");
   EXPECT_EQ(json::parse(undone.to_all.at(0))["version"], 2);
   EXPECT_EQ(json::parse(undone.to_all.at(0))["modified"], false);
   ASSERT_GT(targets.size(), 300u);
   EXPECT_DOUBLE_EQ(targets[100], 18.0);
   EXPECT_DOUBLE_EQ(targets[101], 8.0);
   EXPECT_DOUBLE_EQ(targets[201], 18.0);
+}
+
+TEST(Studio, TheChangedKeysAreWrittenAsTheShowWritesThemAndATimeEditSendsTheWholeShow) {
+  StudioFigure f;
+  const Replies moved = f.studio.handle(
+      R"({"type": "edit", "edits": [{"op": "move", "channel": "neck_pan", "keys": [1, 2], "dt": 0.01, "dv": 3}]})");
+  ASSERT_EQ(reply(moved)["type"], "ok");
+  const json keys = json::parse(moved.to_all.at(0));
+  ASSERT_EQ(keys["type"], "keys");
+  const json show = json::parse(config::show_json(f.studio.document().show()));
+  const json& track = keys["tracks"].at(0);
+  EXPECT_EQ(track["channel"], "neck_pan");
+  EXPECT_EQ(track["from"], 1);
+  for (std::size_t i = 0; i < track["keys"].size(); ++i)
+    EXPECT_EQ(track["keys"][i], show["tracks"]["neck_pan"][1 + i]) << "key " << 1 + i;
+  // A ripple moves every track and the cues: only the whole show tells.
+  const Replies rippled = f.studio.handle(R"({"type": "edit", "edits": [{"op": "insert_time", "at": 1, "length": 0.5}]})");
+  ASSERT_EQ(reply(rippled)["type"], "ok");
+  const json whole = json::parse(rippled.to_all.at(0));
+  EXPECT_EQ(whole["type"], "show");
+  EXPECT_EQ(whole["show"], json::parse(config::show_json(f.studio.document().show())));
 }
 
 TEST(Studio, SavesTheOriginalBytesWhenTheShowIsAsOpenedAndTheEditOtherwise) {
@@ -244,7 +273,13 @@ TEST(Studio, CurvesAreTheTracksAsTheEnginesFlatKeysAndFollowEdits) {
     const playback::Curve rebuilt = playback::Curve::build(playback::decode_raw_curve(flat));
     for (int i = -10; i <= 1300; ++i) ASSERT_EQ(rebuilt.evaluate(i * 0.01), track.curve.evaluate(i * 0.01)) << track.channel;
   }
-  EXPECT_EQ(reply(f.studio.handle(R"({"type": "curves", "channels": ["jaw"]})"))["type"], "error");
+  // A client that was told which tracks changed asks for those alone.
+  const json jaw = reply(f.studio.handle(R"({"type": "curves", "channels": ["jaw"]})"));
+  ASSERT_EQ(jaw["tracks"].size(), 1u);
+  EXPECT_EQ(jaw["tracks"]["jaw"], curves["tracks"]["jaw"]);
+  EXPECT_EQ(reply(f.studio.handle(R"({"type": "curves", "channels": ["tail"]})"))["message"],
+            "message 'curves': no channel 'tail' in the rig; expected one of: jaw, neck_pan, neck_tilt, neck_roll, eyes_pan, "
+            "eyes_tilt, lid_left, lid_right");
 }
 
 TEST(Studio, CheckFindsWhatAsksTooMuchAndRetimeStretchesItAsOneStep) {

@@ -36,14 +36,27 @@ const toHeap = (numbers) => {
 let samples = 0;
 let handleNumbers = 0;
 const mismatches = [];
+let previousFlat = null;
+let rebuilt = 0;
 for (const curve of probe.curves) {
-  const flat = toHeap(curve.flat);
-  const id = engine._avar_curve_build(flat, curve.flat.length);
+  // Every curve after the first is made as the page makes an edited track: the one before it
+  // built, then rebuilt from this one's keys (reusing what it can). The same bits either way.
+  const firstFlat = previousFlat ?? curve.flat;
+  const flat = toHeap(firstFlat);
+  const id = engine._avar_curve_build(flat, firstFlat.length);
   engine._free(flat);
   if (id < 0) {
     mismatches.push(`${curve.name}: the module refused keys the native engine built: ${engine.UTF8ToString(engine._avar_error())}`);
     continue;
   }
+  if (previousFlat) {
+    const next = toHeap(curve.flat);
+    if (engine._avar_curve_rebuild(id, next, curve.flat.length) !== 0)
+      mismatches.push(`${curve.name}: the module refused to rebuild: ${engine.UTF8ToString(engine._avar_error())}`);
+    engine._free(next);
+    rebuilt += 1;
+  }
+  previousFlat = curve.flat;
   const times = toHeap(curve.times);
   const out = engine._malloc(curve.times.length * 8);
   engine._avar_curve_sample_many(id, times, out, curve.times.length);
@@ -77,5 +90,5 @@ if (mismatches.length > 0) {
   process.exit(1);
 }
 console.log(
-  `wasm curves: ${probe.curves.length} curves, ${samples} samples and ${handleNumbers} handle numbers, every one bit-identical to the native engine`,
+  `wasm curves: ${probe.curves.length} curves (${rebuilt} rebuilt from the one before), ${samples} samples and ${handleNumbers} handle numbers, every one bit-identical to the native engine`,
 );

@@ -4,7 +4,9 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -33,7 +35,17 @@ class CurveBuilder {
   static constexpr std::uint32_t kMinTablePieces = Curve::kMinTablePieces;
   static constexpr std::uint32_t kMaxTablePieces = Curve::kMaxTablePieces;
 
-  static void segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
+  /// A built curve and what it was built from: where segments() may copy Bezier segments from.
+  struct Previous {
+    const Curve& curve;
+    const RawCurve& raw;
+    std::vector<ResolvedHandles> handles;
+  };
+  static void segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
+                       const Previous* previous = nullptr);
+  /// Copies `previous`'s segment j (its extra and inverse table with it) as the next of `curve`.
+  static Segment copied(Curve& curve, const Curve& previous, std::size_t j);
+  static Curve build(const RawCurve& raw, const Previous* previous);
   static void extrapolation(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   /// Appends the header, pieces and last entry of s's inverse table; returns how many pieces.
   static std::uint32_t tabulate_inverse(double k1, double k2, double k3, std::vector<InversePiece>& table);
@@ -190,7 +202,15 @@ double handle_slope(const Handle& h, const RawKey& k) {
 
 }  // namespace
 
-Curve Curve::build(const RawCurve& raw) {
+Curve Curve::build(const RawCurve& raw) { return CurveBuilder::build(raw, nullptr); }
+
+Curve Curve::build(const RawCurve& raw, const Curve& previous, const RawCurve& previous_raw) {
+  if (previous.segments_.size() + 1 != previous_raw.keys.size()) return CurveBuilder::build(raw, nullptr);
+  const CurveBuilder::Previous p{previous, previous_raw, compute_handles(previous_raw)};
+  return CurveBuilder::build(raw, &p);
+}
+
+Curve CurveBuilder::build(const RawCurve& raw, const Previous* previous) {
   validate(raw);
   Curve curve;
   const std::size_t n = raw.keys.size();
@@ -202,18 +222,68 @@ Curve Curve::build(const RawCurve& raw) {
   curve.last_value_ = raw.keys.back().value;
   curve.cycles_ = raw.cycles;
   const std::vector<ResolvedHandles> handles = compute_handles(raw);
-  CurveBuilder::segments(curve, raw, handles);
+  segments(curve, raw, handles, previous);
   curve.segment_count_ = curve.segments_.size();
-  CurveBuilder::extrapolation(curve, raw, handles);
+  extrapolation(curve, raw, handles);
   return curve;
 }
 
-void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
+namespace {
+
+bool same_handle(const std::optional<Handle>& a, const std::optional<Handle>& b) noexcept {
+  return a && b && same_bits(a->time, b->time) && same_bits(a->value, b->value);
+}
+
+}  // namespace
+
+CurveBuilder::Segment CurveBuilder::copied(Curve& curve, const Curve& previous, std::size_t j) {
+  Segment s = previous.segments_[j];
+  if (s.shape == Shape::bezier_table) {
+    // Header, pieces, and the u = 1 entry.
+    const std::size_t header = s.extra - 1;
+    const auto pieces = static_cast<std::size_t>(avar::bit_cast<TableHeader>(previous.inverse_[header]).pieces);
+    const auto first = previous.inverse_.begin() + static_cast<std::ptrdiff_t>(header);
+    s.extra = static_cast<std::uint32_t>(curve.inverse_.size()) + 1;
+    curve.inverse_.insert(curve.inverse_.end(), first, first + static_cast<std::ptrdiff_t>(pieces + 2));
+  } else if (s.shape == Shape::bezier_closed) {
+    const SegmentExtra extra = previous.extras_[s.extra];
+    s.extra = static_cast<std::uint32_t>(curve.extras_.size());
+    curve.extras_.push_back(extra);
+  }
+  return s;
+}
+
+void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
+                            const Previous* previous) {
   const std::size_t n = raw.keys.size();
   curve.segments_.reserve(n - 1);
+  // A Bezier segment of `previous` built from the same two keys and handles as segment i (the
+  // same index, or as far from the end), if there is one.
+  const auto reusable = [&](std::size_t i) -> std::optional<std::size_t> {
+    if (!previous) return std::nullopt;
+    const std::size_t old_n = previous->raw.keys.size();
+    // Out of range as the same distance from the end: i + 1 + old_n <= n.
+    const std::size_t from_end = i + old_n >= n ? i + old_n - n : old_n;
+    for (const std::size_t j : {i, from_end}) {
+      if (j + 1 >= old_n) continue;
+      const RawKey &a = raw.keys[i], &b = raw.keys[i + 1], &pa = previous->raw.keys[j], &pb = previous->raw.keys[j + 1];
+      if (pa.interpolation == Interpolation::bezier && same_bits(a.time, pa.time) && same_bits(a.value, pa.value) &&
+          same_bits(b.time, pb.time) && same_bits(b.value, pb.value) &&
+          same_handle(handles[i].right, previous->handles[j].right) &&
+          same_handle(handles[i + 1].left, previous->handles[j + 1].left))
+        return j;
+    }
+    return std::nullopt;
+  };
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const RawKey& k = raw.keys[i];
     const RawKey& next = raw.keys[i + 1];
+    if (k.interpolation == Interpolation::bezier) {
+      if (const std::optional<std::size_t> j = reusable(i)) {
+        curve.segments_.push_back(copied(curve, previous->curve, *j));
+        continue;
+      }
+    }
     const double duration = next.time - k.time;
     const double change = next.value - k.value;
     Segment s;

@@ -4,6 +4,7 @@
 
 interface CurveModule {
   _avar_curve_build(flat: number, count: number): number;
+  _avar_curve_rebuild(id: number, flat: number, count: number): number;
   _avar_curve_free(id: number): void;
   _avar_curve_sample(id: number, t: number): number;
   _avar_curve_sample_many(id: number, times: number, out: number, count: number): void;
@@ -32,22 +33,43 @@ export class CurveEngine {
     return new CurveEngine(await window.AvarCurves());
   }
 
-  /// Replaces every curve with the tracks of a `curves` message; the channels whose keys the
+  /// Takes the tracks of a `curves` message: a channel the engine has is rebuilt from its new keys
+  /// (reusing the segments they left alone), another is built. Returns the channels whose keys the
   /// engine refused, with its reason (the server built them, so this is not expected).
-  setTracks(tracks: Record<string, number[]>): string[] {
-    for (const id of this.curves.values()) this.module._avar_curve_free(id);
-    this.curves.clear();
-    this.flats = new Map(Object.entries(tracks));
-    this.handleCache.clear();
+  putTracks(tracks: Record<string, number[]>): string[] {
     const problems: string[] = [];
     for (const [channel, flat] of Object.entries(tracks)) {
+      this.handleCache.delete(channel);
+      this.flats.set(channel, flat);
       const address = this.toHeap(flat);
+      const old = this.curves.get(channel);
+      if (old !== undefined && this.module._avar_curve_rebuild(old, address, flat.length) === 0) {
+        this.module._free(address);
+        continue;
+      }
+      if (old !== undefined) this.module._avar_curve_free(old);
       const id = this.module._avar_curve_build(address, flat.length);
       this.module._free(address);
-      if (id < 0) problems.push(`${channel}: ${this.module.UTF8ToString(this.module._avar_error())}`);
-      else this.curves.set(channel, id);
+      if (id < 0) {
+        problems.push(`${channel}: ${this.module.UTF8ToString(this.module._avar_error())}`);
+        this.curves.delete(channel);
+        this.flats.delete(channel);
+      } else {
+        this.curves.set(channel, id);
+      }
     }
     return problems;
+  }
+
+  /// Forgets the curves of channels not in `channels` (tracks the show no longer has).
+  keepOnly(channels: Set<string>): void {
+    for (const [channel, id] of this.curves) {
+      if (channels.has(channel)) continue;
+      this.module._avar_curve_free(id);
+      this.curves.delete(channel);
+      this.flats.delete(channel);
+      this.handleCache.delete(channel);
+    }
   }
 
   has(channel: string): boolean {

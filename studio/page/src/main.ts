@@ -32,6 +32,9 @@ async function main(): Promise<void> {
       case 'show':
         state.takeShow(message);
         break;
+      case 'keys':
+        state.takeKeys(message);
+        break;
       case 'status':
         state.status = message;
         state.changed();

@@ -172,6 +172,25 @@ export interface Status {
   links: LinkStatus[];
 }
 
+/// Keys [from, from + remove) of a track became `keys` (an edit, undo or redo of existing tracks'
+/// keys); the rest of the show is as it was.
+export interface KeySplice {
+  channel: string;
+  from: number;
+  remove: number;
+  keys: Key[];
+}
+
+export interface KeysChange {
+  type: 'keys';
+  version: number;
+  file: string | null;
+  modified: boolean;
+  undo: string;
+  redo: string;
+  tracks: KeySplice[];
+}
+
 export interface Curves {
   type: 'curves';
   version: number;
@@ -203,6 +222,7 @@ export type ServerMessage =
   | Status
   | Curves
   | ({ type: 'show' } & ShowState)
+  | KeysChange
   | { type: 'ok'; request: string }
   | { type: 'error'; request: string; message: string }
   | { type: 'saved'; file: string }

@@ -3,7 +3,7 @@
 // ask for a redraw; only messages from the server change the show.
 import type { Connection } from './connection';
 import type { CurveEngine } from './engine';
-import type { Edit, Finding, Hello, Key, Rig, ShowState, Status, Vocabulary } from './protocol';
+import type { Edit, Finding, Hello, Key, KeysChange, Rig, ShowState, Status, Vocabulary } from './protocol';
 import { trackKeys } from './protocol';
 
 /// Keys picked, per channel (indices into the channel's track, in time order).
@@ -67,19 +67,78 @@ export class StudioState {
     this.show = show;
     // A selection survives an edit that kept every track's key count (a move, a set); otherwise
     // indices may name other keys, so it is dropped.
-    if (keysBefore) {
-      const after = this.keyCounts();
-      for (const channel of this.selection.keys())
-        if (keysBefore.get(channel) !== after.get(channel)) this.selection.delete(channel);
-    }
-    void this.connection.request({ type: 'curves' })?.then((reply) => {
-      if (reply?.type !== 'curves') return;
-      const problems = this.engine.setTracks(reply.tracks);
-      if (problems.length > 0) this.notice = `the page's engine refused: ${problems.join('; ')}`;
-      this.changed();
-    });
+    if (keysBefore) this.keepSelection(keysBefore);
+    const channels = new Set(Object.keys(show.show.tracks));
+    this.engine.keepOnly(channels);
+    for (const channel of channels) this.staleCurves.add(channel);
+    this.refreshCurves();
     this.requestCheck();
     this.changed();
+  }
+
+  /// An edit, undo or redo of existing tracks' keys: the stretches of keys that changed.
+  takeKeys(change: KeysChange): void {
+    const show = this.show;
+    if (!show) return;
+    const keysBefore = this.keyCounts();
+    for (const splice of change.tracks) {
+      const track = show.show.tracks[splice.channel];
+      if (!track) continue;
+      trackKeys(track).splice(splice.from, splice.remove, ...splice.keys);
+      this.staleCurves.add(splice.channel);
+    }
+    this.show = { ...show, version: change.version, file: change.file, modified: change.modified, undo: change.undo, redo: change.redo };
+    this.keepSelection(keysBefore);
+    this.refreshCurves();
+    this.requestCheck();
+    this.changed();
+  }
+
+  private keepSelection(keysBefore: Map<string, number>): void {
+    const after = this.keyCounts();
+    for (const channel of this.selection.keys()) if (keysBefore.get(channel) !== after.get(channel)) this.selection.delete(channel);
+  }
+
+  /// Channels whose keys changed since the engine last had their curves.
+  private staleCurves = new Set<string>();
+  private curvesInFlight = false;
+  private curvesWaiting = false;
+
+  /// Brings the engine's curves up to date, one request at a time: the graph editor's channel at
+  /// once, the others once every message in flight is answered (during a drag, when it ends), so
+  /// a drag of keys on many tracks costs the page one track's curve per answer.
+  private refreshCurves(): void {
+    if (this.curvesInFlight || this.staleCurves.size === 0) return;
+    const first = this.channel !== null && this.staleCurves.has(this.channel) ? [this.channel] : null;
+    if (first) {
+      this.fetchCurves(first);
+      return;
+    }
+    if (this.curvesWaiting) return;
+    this.curvesWaiting = true;
+    void this.connection.whenIdle().then(() => {
+      this.curvesWaiting = false;
+      if (!this.curvesInFlight && this.staleCurves.size > 0) this.fetchCurves([...this.staleCurves]);
+    });
+  }
+
+  private fetchCurves(channels: string[]): void {
+    for (const channel of channels) this.staleCurves.delete(channel);
+    const request = this.connection.request({ type: 'curves', channels });
+    if (!request) {
+      for (const channel of channels) this.staleCurves.add(channel);
+      return;
+    }
+    this.curvesInFlight = true;
+    void request.then((reply) => {
+      this.curvesInFlight = false;
+      if (reply?.type === 'curves') {
+        const problems = this.engine.putTracks(reply.tracks);
+        if (problems.length > 0) this.notice = `the page's engine refused: ${problems.join('; ')}`;
+      }
+      this.changed();
+      this.refreshCurves();
+    });
   }
 
   /// Asks for the feasibility check of the newest show once every message in flight is answered

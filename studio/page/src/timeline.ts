@@ -14,9 +14,21 @@ const RULER = 24;
 const ROW = 22;
 const KEY_RADIUS = 5;
 
+/// The index of the first key at or after `t` (keys.length when none): keys are in time order.
+function firstKeyAtOrAfter(keys: Key[], t: number): number {
+  let lo = 0;
+  let hi = keys.length;
+  while (lo < hi) {
+    const mid = (lo + hi) >>> 1;
+    if (keys[mid]!.time < t) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
 type Drag =
   | { kind: 'scrub' }
-  | { kind: 'keys'; startX: number; applied: number; busy: boolean; started: boolean; pendingX: number | null }
+  | { kind: 'keys'; startX: number; x: number; applied: number; busy: boolean; started: boolean; pendingX: number | null }
   | { kind: 'box'; x0: number; y0: number; x1: number; y1: number };
 
 export class DopeSheet {
@@ -111,7 +123,7 @@ export class DopeSheet {
         selection.clear();
         selection.set(hit.channel, new Set([hit.index]));
       }
-      this.drag = { kind: 'keys', startX: x, applied: 0, busy: false, started: false, pendingX: null };
+      this.drag = { kind: 'keys', startX: x, x, applied: 0, busy: false, started: false, pendingX: null };
     } else {
       if (!e.shiftKey) selection.clear();
       this.drag = { kind: 'box', x0: x, y0: y, x1: x, y1: y };
@@ -133,8 +145,20 @@ export class DopeSheet {
       drag.y1 = y;
       this.state.changed();
     } else {
+      drag.x = x;
+      this.state.changed();
       void this.moveKeys(drag, x);
     }
+  }
+
+  /// Seconds the selected keys are drawn ahead of where the studio has them: the pointer's travel
+  /// that no answered move has applied yet. The keys follow the pointer at every frame however
+  /// long the studio takes over a move of many keys.
+  private ghost(): number {
+    const drag = this.drag;
+    if (drag?.kind !== 'keys') return 0;
+    const wanted = (drag.x - drag.startX) * this.axis().secondsPerPixel();
+    return Math.abs(wanted - drag.applied) < 1e-4 ? 0 : wanted - drag.applied;
   }
 
   /// Moves the selection by what the pointer travelled, one edit in flight at a time (the newest
@@ -304,6 +328,46 @@ export class DopeSheet {
     });
   }
 
+  /// A row's keys as diamonds: only those in view (found by bisection: keys are in time order),
+  /// one per pixel column, each colour one path; the selected ones moved by the drag's ghost.
+  private drawKeys(g: CanvasRenderingContext2D, axis: TimeAxis, keys: Key[], picked: Set<number> | undefined, cy: number, width: number): void {
+    const diamond = (x: number) => {
+      g.moveTo(x, cy - KEY_RADIUS);
+      g.lineTo(x + KEY_RADIUS, cy);
+      g.lineTo(x, cy + KEY_RADIUS);
+      g.lineTo(x - KEY_RADIUS, cy);
+      g.closePath();
+    };
+    const paint = (fill: string) => {
+      g.fillStyle = fill;
+      g.strokeStyle = themeColor('--key-edge');
+      g.fill();
+      g.stroke();
+    };
+    const first = firstKeyAtOrAfter(keys, axis.t(GUTTER - KEY_RADIUS));
+    const last = firstKeyAtOrAfter(keys, axis.t(width + KEY_RADIUS));
+    g.beginPath();
+    let column = Number.NaN;
+    for (let index = first; index < last; index++) {
+      if (picked?.has(index)) continue;
+      const x = Math.round(axis.x(keys[index]!.time));
+      if (x === column) continue;
+      column = x;
+      diamond(x);
+    }
+    paint(themeColor('--key'));
+    if (!picked || picked.size === 0) return;
+    const ghost = this.ghost();
+    g.beginPath();
+    for (const index of picked) {
+      const key = keys[index];
+      if (!key) continue;
+      const x = axis.x(key.time + ghost);
+      if (x >= GUTTER - KEY_RADIUS && x <= width + KEY_RADIUS) diamond(x);
+    }
+    paint(themeColor('--key-selected'));
+  }
+
   render(): void {
     const rig = this.state.rig;
     const extra = this.extraRows();
@@ -381,20 +445,7 @@ export class DopeSheet {
           if (xb > xa) g.fillRect(xa, cy - 2, xb - xa, 4);
         }
       }
-      keys.forEach((key, index) => {
-        const x = axis.x(key.time);
-        if (x < GUTTER - KEY_RADIUS || x > width + KEY_RADIUS) return;
-        g.fillStyle = picked?.has(index) ? color('--key-selected') : color('--key');
-        g.strokeStyle = color('--key-edge');
-        g.beginPath();
-        g.moveTo(x, cy - KEY_RADIUS);
-        g.lineTo(x + KEY_RADIUS, cy);
-        g.lineTo(x, cy + KEY_RADIUS);
-        g.lineTo(x - KEY_RADIUS, cy);
-        g.closePath();
-        g.fill();
-        g.stroke();
-      });
+      this.drawKeys(g, axis, keys, picked, cy, width);
     });
     this.drawExtraRows(g, axis, extra, RULER + (rig?.channels.length ?? 0) * ROW, width);
     g.fillStyle = color('--grid');

@@ -35,6 +35,23 @@
 
 namespace avar::edit {
 
+/// Where a track's keys changed: keys [from, from + removed) of the track before became keys
+/// [from, from + added) after; the keys before and after that stretch are the same (and written
+/// the same: a key's written form depends on the key before it, so the stretch takes the key
+/// after a changed one with it).
+struct KeySplice {
+  std::string channel;
+  std::size_t from = 0, removed = 0, added = 0;
+};
+
+/// What one change of the document changed, for someone who holds a copy of the show: the
+/// splices of existing tracks' keys, or `whole` when more changed (a track made or removed, the
+/// duration or the cues) and only the whole show tells.
+struct DocumentChange {
+  bool whole = false;
+  std::vector<KeySplice> splices;
+};
+
 class ShowDocument {
  public:
   /// A show made in memory: saving always writes the canonical form.
@@ -75,6 +92,10 @@ class ShowDocument {
   /// What undo() or redo() would do ("move 2 keys of 'jaw' by 0.1 s, +0"); empty when nothing.
   std::string undo_label() const;
   std::string redo_label() const;
+
+  /// What the last apply, continue_last, retime, undo or redo changed (nothing before the first,
+  /// and after a refused edit).
+  const DocumentChange& last_change() const noexcept { return last_change_; }
 
   /// Whether the show differs from what was last saved (or opened).
   bool modified() const noexcept { return !saved_position_ || *saved_position_ != position_; }
@@ -117,6 +138,7 @@ class ShowDocument {
   bool continues_last(const Step& step) const;
 
   playback::Show show_;
+  DocumentChange last_change_;
   std::optional<std::string> opened_bytes_;  ///< the file as opened, for a save of that state
   std::vector<Step> history_;
   std::size_t position_ = 0;                       ///< steps applied; history_[position_ - 1] was the last

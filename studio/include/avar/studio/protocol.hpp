@@ -6,6 +6,7 @@
 // against the rig's. Keys in edits are the show file's key maps written in JSON, checked by the show reader's own rules. Pure: no
 // I/O. Not real-time: allocates and throws.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -32,8 +33,10 @@ struct Undo {};
 struct Redo {};
 struct Save {};
 /// The show's tracks as the curve engine's flat keys (raw_curve_codec.hpp), for a client that
-/// evaluates curves itself (the page's WebAssembly engine).
-struct Curves {};
+/// evaluates curves itself (the page's WebAssembly engine): every track, or those of `channels`.
+struct Curves {
+  std::optional<std::vector<std::string>> channels;  ///< rig channels, checked
+};
 
 /// What the show asks of the rig beyond its limits (config::check_feasibility), for the page's
 /// timeline.

@@ -28,7 +28,7 @@ namespace avar::studio {
 /// What a message makes the studio say: to the client that sent it, and to every client.
 struct Replies {
   std::string to_sender;            ///< "ok", "error" or "saved"
-  std::vector<std::string> to_all;  ///< "show" after a change of the show
+  std::vector<std::string> to_all;  ///< "keys" or "show" after a change of the show
 };
 
 class Studio final : public session::SessionObserver {
@@ -66,8 +66,11 @@ class Studio final : public session::SessionObserver {
   /// The show's fields of a "show" or "hello" message, without braces.
   std::string show_fields() const;
   std::string show_message() const;
-  /// The "curves" reply: every track's keys, flat.
-  std::string curves_message() const;
+  /// What every client is told after the document changed: "keys" with the stretches of keys
+  /// that changed, or "show" when only the whole show tells.
+  std::string change_message() const;
+  /// The "curves" reply: every track's keys (or those of `channels`), flat.
+  std::string curves_message(const std::optional<std::vector<std::string>>& channels) const;
   /// The "check" reply: what the show asks beyond the rig's limits.
   std::string check_message() const;
   /// Hands the document's show to the session.

@@ -38,6 +38,13 @@ class Curve {
   /// its slopes, negative cycle counts. Load-time only: allocates. Offline: defined by the offline
   /// layer (avar::playback links it); avar_playback_runtime alone does not provide it.
   static Curve build(const RawCurve& raw);
+  /// The same curve, built again after an edit of `previous_raw` (which built `previous`): a
+  /// Bezier segment whose keys and resolved handles are those of a segment of `previous` at the
+  /// same index, or at the same distance from the end, takes that segment's coefficients and
+  /// inverse table instead of solving them again. The result is bit for bit Curve::build(raw)
+  /// (what it copies was computed from the same numbers); an edit of a few keys of a long curve
+  /// then costs its handles and the segments it changed, not the whole curve's tables.
+  static Curve build(const RawCurve& raw, const Curve& previous, const RawCurve& previous_raw);
 
   /// A time within this many seconds of a key's time is that key's time, as Blender treats an
   /// evaluation time within 0.0001 frame of a key as the key: at a key the curve returns that
