@@ -11,7 +11,7 @@ import { spawn } from 'node:child_process';
 import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
-import { basename, join, resolve } from 'node:path';
+import { basename, isAbsolute, join, resolve } from 'node:path';
 
 const args = process.argv.slice(2);
 const option = (name) => {
@@ -34,9 +34,10 @@ if (!existsSync(CHROMIUM)) {
 const { chromium } = createRequire(join(modules, 'package.json'))('playwright-core');
 mkdirSync(out, { recursive: true });
 
-/// Polls `probe` until it returns a truthy value, which it returns; fails with `what` after 15 s.
-export async function until(what, probe) {
-  const deadline = Date.now() + 15000;
+/// Polls `probe` until it returns a truthy value, which it returns; fails with `what` after
+/// `seconds` (15).
+export async function until(what, probe, seconds = 15) {
+  const deadline = Date.now() + seconds * 1000;
   for (;;) {
     const value = await probe();
     if (value) return value;
@@ -45,16 +46,17 @@ export async function until(what, probe) {
   }
 }
 
-/// Starts `avar studio` on a copy of examples/shows/SHOW with examples/rigs/RIG on the simulator,
-/// opens its page in Chromium and waits for the first status and the engine's curves of
-/// `channel`. Returns {page, showFile, original (the show's bytes), close()}.
-export async function openStudio({ show, rig, channel }) {
+/// Starts `avar studio` on a copy of examples/shows/SHOW with examples/rigs/RIG (or the files at
+/// those absolute paths) on the simulator, opens its page in Chromium and waits for the first
+/// status and the engine's curves of `channel` (up to `patience` seconds, 15).
+/// Returns {page, showFile, original (the show's bytes), close()}.
+export async function openStudio({ show, rig, channel, patience = 15 }) {
   const work = mkdtempSync(join(tmpdir(), 'avar-studio-page-'));
-  const showFile = join(work, show);
-  copyFileSync(join(source, 'examples/shows', show), showFile);
+  const showFile = join(work, basename(show));
+  copyFileSync(isAbsolute(show) ? show : join(source, 'examples/shows', show), showFile);
   const original = readFileSync(showFile);
-  const rigFile = join(work, `rig-${rig}`);
-  const rigText = readFileSync(join(source, 'examples/rigs', rig), 'utf8');
+  const rigFile = join(work, `rig-${basename(rig)}`);
+  const rigText = readFileSync(isAbsolute(rig) ? rig : join(source, 'examples/rigs', rig), 'utf8');
   // A link written as a block (port: sim on a line of its own) or in flow style ({port: sim, ...}).
   const widened = rigText
     .replace(/\n( +)port: sim([^\n]*)\n/g, '\n$1port: sim$2\n$1watchdog_ms: 5000\n')
@@ -75,9 +77,9 @@ export async function openStudio({ show, rig, channel }) {
   const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
   page.on('pageerror', (e) => assert.fail(`the page threw: ${e.message}`));
   await page.goto(url);
-  await page.waitForSelector('body[data-ready="yes"]');
-  await until('the first status', () => page.evaluate(() => window.avarStudio.state.status));
-  await until("the engine's curves", () => page.evaluate((c) => window.avarStudio.state.engine.has(c), channel));
+  await page.waitForSelector('body[data-ready="yes"]', { timeout: patience * 1000 });
+  await until('the first status', () => page.evaluate(() => window.avarStudio.state.status), patience);
+  await until("the engine's curves", () => page.evaluate((c) => window.avarStudio.state.engine.has(c), channel), patience);
   const close = async () => {
     await browser.close();
     if (server.exitCode === null) {

@@ -65,9 +65,19 @@ export function fitCanvas(canvas: HTMLCanvasElement): CanvasRenderingContext2D {
   return context;
 }
 
-/// The theme's colour named `name` (a CSS custom property of the page), for canvas drawing.
+const themeColors = new Map<string, string>();
+// The theme follows the system's light or dark preference: its colours are read again then.
+window.matchMedia('(prefers-color-scheme: dark)').addEventListener('change', () => themeColors.clear());
+
+/// The theme's colour named `name` (a CSS custom property of the page), for canvas drawing. Read
+/// once (reading computed style costs more than drawing a key, and a redraw asks thousands).
 export function themeColor(name: string): string {
-  return getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#888';
+  let color = themeColors.get(name);
+  if (color === undefined) {
+    color = getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#888';
+    themeColors.set(name, color);
+  }
+  return color;
 }
 
 /// The playhead: a vertical line at show time `t`, where it is right of `left`.

@@ -16,3 +16,9 @@ export function typingIn(event: KeyboardEvent): boolean {
     (target instanceof HTMLButtonElement && event.key === ' ')
   );
 }
+
+/// Sets an element's property only when it differs: the page redraws at every frame of a drag,
+/// and writing even the same text or class makes the browser lay the page out again.
+export function put<T extends object, K extends keyof T>(target: T, field: K, value: T[K]): void {
+  if (target[field] !== value) target[field] = value;
+}

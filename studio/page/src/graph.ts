@@ -5,7 +5,7 @@
 import { drawPlayhead, fitCanvas, themeColor, TimeAxis } from './axis';
 import { describeFinding } from './findings';
 import type { Key } from './protocol';
-import { numericValue } from './protocol';
+import { firstKeyAtOrAfter, numericValue } from './protocol';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -204,21 +204,34 @@ export class GraphEditor {
       const first = keys[0]?.time ?? 0;
       const last = keys[keys.length - 1]?.time ?? 0;
       const extrapolated = (t0: number, t1: number) => t1 <= first || t0 >= last;
+      // One path per run of pieces drawn alike.
+      let run: boolean | null = null;
+      const finish = () => {
+        if (run === null) return;
+        g.strokeStyle = run ? color('--over') : color('--curve');
+        g.lineWidth = run ? 3 : 2;
+        g.stroke();
+        run = null;
+      };
       for (let i = 1; i < n; i++) {
         const t0 = times[i - 1] ?? 0;
         const t1 = times[i] ?? 0;
-        if (extrapolated(t0, t1)) continue;
+        if (extrapolated(t0, t1)) {
+          finish();
+          continue;
+        }
         const v0 = values[i - 1] ?? 0;
         const v1 = values[i] ?? 0;
-        const fast = Math.abs(v1 - v0) / (t1 - t0) > spec.max_velocity;
-        const outside = v1 > spec.max || v1 < spec.min;
-        g.strokeStyle = fast || outside ? color('--over') : color('--curve');
-        g.lineWidth = fast || outside ? 3 : 2;
-        g.beginPath();
-        g.moveTo(a.time.x(t0), a.y(v0));
+        const over = Math.abs(v1 - v0) / (t1 - t0) > spec.max_velocity || v1 > spec.max || v1 < spec.min;
+        if (over !== run) {
+          finish();
+          run = over;
+          g.beginPath();
+          g.moveTo(a.time.x(t0), a.y(v0));
+        }
         g.lineTo(a.time.x(t1), a.y(v1));
-        g.stroke();
       }
+      finish();
       g.strokeStyle = color('--curve');
       g.lineWidth = 2;
       g.setLineDash([5, 4]);
@@ -244,7 +257,12 @@ export class GraphEditor {
     // Keys and the handles the show gives.
     g.lineWidth = 1;
     const picked = this.state.selection.get(channel);
-    this.state.keys(channel).forEach((key, index) => {
+    // The keys in view (and one beyond each side, whose handles may reach in).
+    const keys = this.state.keys(channel);
+    const from = Math.max(0, firstKeyAtOrAfter(keys, a.time.t(GUTTER)) - 1);
+    const to = Math.min(keys.length, firstKeyAtOrAfter(keys, a.time.t(width)) + 1);
+    keys.slice(from, to).forEach((key, offset) => {
+      const index = from + offset;
       const kx = a.time.x(key.time);
       const ky = a.y(numericValue(key));
       for (const side of ['left', 'right'] as const) {

@@ -2,7 +2,7 @@
 // and value, its interpolation and easing, and its handle types, each applied as one edit (the
 // studio refuses what would not build, and says why in the status bar). Beside it: copy and paste
 // keys at the playhead, and ripple insert or delete time there.
-import { element, typingIn } from './dom';
+import { element, put, typingIn } from './dom';
 import type { Edit, Key } from './protocol';
 import { numericValue } from './protocol';
 import type { StudioState } from './state';
@@ -122,17 +122,17 @@ export class Inspector {
     }
     const at = inspected(this.state);
     for (const control of [this.time, this.value, this.interpolation, this.easing, this.leftType, this.rightType])
-      control.disabled = at === null;
+      put(control, 'disabled', at === null);
     if (!at) {
-      this.label.textContent = 'no key selected';
-      for (const input of [this.time, this.value]) input.value = '';
-      for (const select of [this.interpolation, this.easing, this.leftType, this.rightType]) select.selectedIndex = -1;
+      put(this.label, 'textContent', 'no key selected');
+      for (const input of [this.time, this.value]) put(input, 'value', '');
+      for (const select of [this.interpolation, this.easing, this.leftType, this.rightType]) put(select, 'selectedIndex', -1);
       return;
     }
-    this.label.textContent = `${at.channel} key ${at.index}`;
+    put(this.label, 'textContent', `${at.channel} key ${at.index}`);
     // A field being typed in keeps what the user types until it is applied.
     const show = (input: HTMLInputElement | HTMLSelectElement, text: string) => {
-      if (force || document.activeElement !== input) input.value = text;
+      if (force || document.activeElement !== input) put(input, 'value', text);
     };
     show(this.time, String(at.key.time));
     show(this.value, String(numericValue(at.key)));

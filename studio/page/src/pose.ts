@@ -2,7 +2,8 @@
 // sent (bar) and where the device says it is (tick). Dragging a slider holds the channel there
 // (the figure follows through the limiter, never faster than allowed); letting go hands it back
 // to the show. A digital channel is a switch held while pressed.
-import type { RigChannel } from './protocol';
+import { put } from './dom';
+import type { RigChannel, Status } from './protocol';
 import type { StudioState } from './state';
 
 interface Row {
@@ -17,6 +18,8 @@ interface Row {
 export class PosePanel {
   private rows: Row[] = [];
   private built = '';
+  private shownStatus: Status | null = null;
+  private shownChannel: string | null = null;
 
   constructor(
     private readonly root: HTMLElement,
@@ -79,20 +82,25 @@ export class PosePanel {
   render(): void {
     if (this.state.rig && this.built !== this.state.rig.name) this.build();
     const status = this.state.status;
+    // Only what a new status or another channel changes: writing the page's styles at every
+    // frame (a drag redraws at every frame) would lay the page out again each time.
+    if (status === this.shownStatus && this.state.channel === this.shownChannel) return;
+    this.shownStatus = status;
+    this.shownChannel = this.state.channel;
     for (const [i, r] of this.rows.entries()) {
       r.row.classList.toggle('selected', this.state.channel === r.channel.name);
       const s = status?.channels[i];
       if (!s) continue;
       const span = r.channel.max - r.channel.min || 1;
       const fraction = (v: number) => `${(100 * Math.min(1, Math.max(0, (v - r.channel.min) / span))).toFixed(2)}%`;
-      r.bar.style.width = fraction(s.command);
-      r.measured.style.left = s.measured === null ? '-10px' : fraction(s.measured);
+      put(r.bar.style, 'width', fraction(s.command));
+      put(r.measured.style, 'left', s.measured === null ? '-10px' : fraction(s.measured));
       r.row.classList.toggle('held', s.held);
       // The slider shows the figure while nobody holds it.
       if (r.slider.dataset.holding !== 'yes' && document.activeElement !== r.slider) r.slider.value = String(s.command);
       const measuredText = s.measured === null ? '' : ` · at ${s.measured.toFixed(1)}`;
       const temperature = s.temperature === null ? '' : ` · ${s.temperature.toFixed(0)} °C`;
-      r.readout.textContent = `${s.command.toFixed(1)} ${r.channel.unit}${measuredText}${temperature}`;
+      put(r.readout, 'textContent', `${s.command.toFixed(1)} ${r.channel.unit}${measuredText}${temperature}`);
       r.row.dataset.command = String(s.command);
       r.row.dataset.measured = String(s.measured);
     }

@@ -245,3 +245,15 @@ export function trackKeys(track: Track | undefined): Key[] {
 export function numericValue(key: Key): number {
   return typeof key.value === 'boolean' ? (key.value ? 1 : 0) : key.value;
 }
+
+/// The index of the first key at or after `t` (keys.length when none): keys are in time order.
+export function firstKeyAtOrAfter(keys: Key[], t: number): number {
+  let lo = 0;
+  let hi = keys.length;
+  while (lo < hi) {
+    const mid = (lo + hi) >>> 1;
+    if (keys[mid]!.time < t) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}

@@ -99,6 +99,25 @@ export class StudioState {
     for (const channel of this.selection.keys()) if (keysBefore.get(channel) !== after.get(channel)) this.selection.delete(channel);
   }
 
+  /// Whether a pointer is dragging keys or handles: what can wait for its end waits (the other
+  /// tracks' curves, the check), so that the drag's frames and the studio's answers stay quick.
+  private dragging = false;
+  private dragEnded: (() => void)[] = [];
+
+  setDragging(on: boolean): void {
+    this.dragging = on;
+    if (!on) for (const resume of this.dragEnded.splice(0)) resume();
+  }
+
+  /// Resolves when no drag is under way and every message in flight is answered.
+  private async settled(): Promise<void> {
+    for (;;) {
+      if (this.dragging) await new Promise<void>((resume) => this.dragEnded.push(resume));
+      await this.connection.whenIdle();
+      if (!this.dragging) return;
+    }
+  }
+
   /// Channels whose keys changed since the engine last had their curves.
   private staleCurves = new Set<string>();
   private curvesInFlight = false;
@@ -116,7 +135,7 @@ export class StudioState {
     }
     if (this.curvesWaiting) return;
     this.curvesWaiting = true;
-    void this.connection.whenIdle().then(() => {
+    void this.settled().then(() => {
       this.curvesWaiting = false;
       if (!this.curvesInFlight && this.staleCurves.size > 0) this.fetchCurves([...this.staleCurves]);
     });
@@ -148,7 +167,7 @@ export class StudioState {
   private requestCheck(): void {
     if (this.checkWanted) return;
     this.checkWanted = true;
-    void this.connection.whenIdle().then(async () => {
+    void this.settled().then(async () => {
       this.checkWanted = false;
       const reply = await this.connection.request({ type: 'check' });
       if (reply?.type !== 'check') return;

@@ -5,8 +5,8 @@
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
 import { typingIn } from './dom';
 import { describeFinding } from './findings';
-import type { Key, Layer } from './protocol';
-import { trackKeys } from './protocol';
+import type { Finding, Key, Layer } from './protocol';
+import { firstKeyAtOrAfter, trackKeys } from './protocol';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -14,25 +14,24 @@ const RULER = 24;
 const ROW = 22;
 const KEY_RADIUS = 5;
 
-/// The index of the first key at or after `t` (keys.length when none): keys are in time order.
-function firstKeyAtOrAfter(keys: Key[], t: number): number {
-  let lo = 0;
-  let hi = keys.length;
-  while (lo < hi) {
-    const mid = (lo + hi) >>> 1;
-    if (keys[mid]!.time < t) lo = mid + 1;
-    else hi = mid;
-  }
-  return lo;
-}
-
 type Drag =
   | { kind: 'scrub' }
-  | { kind: 'keys'; startX: number; x: number; applied: number; busy: boolean; started: boolean; pendingX: number | null }
+  | {
+      kind: 'keys';
+      startX: number;
+      x: number;
+      applied: number;
+      /// The moves being sent, one answered before the next; null when none is.
+      sending: Promise<void> | null;
+      started: boolean;
+      pendingX: number | null;
+    }
   | { kind: 'box'; x0: number; y0: number; x1: number; y1: number };
 
 export class DopeSheet {
   private drag: Drag | null = null;
+  /// A drag of keys let go whose last move is still on its way.
+  private landing: Extract<Drag, { kind: 'keys' }> | null = null;
   private lastScrub = 0;
 
   constructor(
@@ -123,7 +122,8 @@ export class DopeSheet {
         selection.clear();
         selection.set(hit.channel, new Set([hit.index]));
       }
-      this.drag = { kind: 'keys', startX: x, x, applied: 0, busy: false, started: false, pendingX: null };
+      this.drag = { kind: 'keys', startX: x, x, applied: 0, sending: null, started: false, pendingX: null };
+      this.state.setDragging(true);
     } else {
       if (!e.shiftKey) selection.clear();
       this.drag = { kind: 'box', x0: x, y0: y, x1: x, y1: y };
@@ -155,7 +155,7 @@ export class DopeSheet {
   /// that no answered move has applied yet. The keys follow the pointer at every frame however
   /// long the studio takes over a move of many keys.
   private ghost(): number {
-    const drag = this.drag;
+    const drag = this.drag ?? this.landing;
     if (drag?.kind !== 'keys') return 0;
     const wanted = (drag.x - drag.startX) * this.axis().secondsPerPixel();
     return Math.abs(wanted - drag.applied) < 1e-4 ? 0 : wanted - drag.applied;
@@ -164,10 +164,15 @@ export class DopeSheet {
   /// Moves the selection by what the pointer travelled, one edit in flight at a time (the newest
   /// pointer position is sent when it is answered); a whole drag is one undo step. A refused move
   /// (a key would pass its neighbour) leaves the keys where they were.
-  private async moveKeys(drag: Extract<Drag, { kind: 'keys' }>, x: number): Promise<void> {
+  private moveKeys(drag: Extract<Drag, { kind: 'keys' }>, x: number): Promise<void> {
     drag.pendingX = x;
-    if (drag.busy) return;
-    drag.busy = true;
+    drag.sending ??= this.sendMoves(drag).finally(() => {
+      drag.sending = null;
+    });
+    return drag.sending;
+  }
+
+  private async sendMoves(drag: Extract<Drag, { kind: 'keys' }>): Promise<void> {
     while (drag.pendingX !== null) {
       const wanted = (drag.pendingX - drag.startX) * this.axis().secondsPerPixel();
       drag.pendingX = null;
@@ -186,7 +191,6 @@ export class DopeSheet {
         drag.started = true;
       }
     }
-    drag.busy = false;
   }
 
   private up(e: PointerEvent): void {
@@ -209,8 +213,14 @@ export class DopeSheet {
         });
       });
     } else if (drag?.kind === 'keys') {
-      // Let the last pointer position land.
-      void this.moveKeys(drag, e.offsetX);
+      // Let the last pointer position land; the keys are drawn where it left them meanwhile.
+      drag.x = e.offsetX;
+      this.landing = drag;
+      void this.moveKeys(drag, e.offsetX).then(() => {
+        if (this.landing === drag) this.landing = null;
+        this.state.setDragging(false);
+        this.state.changed();
+      });
     }
     this.state.changed();
   }
@@ -329,7 +339,8 @@ export class DopeSheet {
   }
 
   /// A row's keys as diamonds: only those in view (found by bisection: keys are in time order),
-  /// one per pixel column, each colour one path; the selected ones moved by the drag's ghost.
+  /// each colour one path, the selected ones moved by the drag's ghost; keys too dense to tell
+  /// apart as bars.
   private drawKeys(g: CanvasRenderingContext2D, axis: TimeAxis, keys: Key[], picked: Set<number> | undefined, cy: number, width: number): void {
     const diamond = (x: number) => {
       g.moveTo(x, cy - KEY_RADIUS);
@@ -346,16 +357,30 @@ export class DopeSheet {
     };
     const first = firstKeyAtOrAfter(keys, axis.t(GUTTER - KEY_RADIUS));
     const last = firstKeyAtOrAfter(keys, axis.t(width + KEY_RADIUS));
-    g.beginPath();
-    let column = Number.NaN;
-    for (let index = first; index < last; index++) {
-      if (picked?.has(index)) continue;
-      const x = Math.round(axis.x(keys[index]!.time));
-      if (x === column) continue;
-      column = x;
-      diamond(x);
+    if (last - first > (width - GUTTER) / KEY_RADIUS) {
+      // Keys closer than a diamond's half-width on average: a bar over each run of keys less
+      // than that apart (a canvas fills one bar far faster than thousands of overlapping paths).
+      g.fillStyle = themeColor('--key');
+      let runStart = Number.NaN;
+      let runEnd = Number.NaN;
+      const bar = () => {
+        if (!Number.isNaN(runStart)) g.fillRect(runStart - 2, cy - KEY_RADIUS + 1, runEnd - runStart + 4, 2 * KEY_RADIUS - 2);
+      };
+      for (let index = first; index < last; index++) {
+        const x = Math.round(axis.x(keys[index]!.time));
+        if (x - runEnd <= KEY_RADIUS) {
+          runEnd = x;
+          continue;
+        }
+        bar();
+        runStart = runEnd = x;
+      }
+      bar();
+    } else {
+      g.beginPath();
+      for (let index = first; index < last; index++) if (!picked?.has(index)) diamond(axis.x(keys[index]!.time));
+      paint(themeColor('--key'));
     }
-    paint(themeColor('--key'));
     if (!picked || picked.size === 0) return;
     const ghost = this.ghost();
     g.beginPath();
@@ -416,6 +441,8 @@ export class DopeSheet {
     }
 
     // Rows: name, keys, selection.
+    const findings = new Map<string, Finding[]>();
+    for (const f of this.state.findings) findings.set(f.channel, [...(findings.get(f.channel) ?? []), f]);
     rig?.channels.forEach((channel, row) => {
       const y = RULER + row * ROW;
       const cy = y + ROW / 2;
@@ -428,8 +455,7 @@ export class DopeSheet {
       const picked = this.state.selection.get(channel.name);
       // Spans that ask more than the channel allows, under everything else of the row.
       g.fillStyle = color('--over-span');
-      for (const f of this.state.findings) {
-        if (f.channel !== channel.name) continue;
+      for (const f of findings.get(channel.name) ?? []) {
         const xa = Math.max(GUTTER, axis.x(f.t0));
         const xb = Math.max(xa + 3, axis.x(f.t1));
         if (xb > GUTTER) g.fillRect(xa, y + 2, xb - xa, ROW - 4);

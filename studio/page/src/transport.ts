@@ -2,7 +2,7 @@
 // the run's phase, show time, faults, link counters, the last refusal).
 import { formatTime } from './axis';
 import type { ConnectionState } from './connection';
-import { element, typingIn } from './dom';
+import { element, put, typingIn } from './dom';
 import type { StudioState } from './state';
 
 export class Transport {
@@ -61,38 +61,45 @@ export class Transport {
   render(): void {
     const { show, status, rig } = this.state;
     if (show) {
-      this.title.textContent = `${show.show.name}${show.modified ? ' •' : ''}`;
-      this.title.title = show.file ?? 'no file: save is off';
-      this.undo.disabled = show.undo === '';
-      this.undo.title = show.undo ? `undo ${show.undo} (Ctrl+Z)` : 'nothing to undo';
-      this.redo.disabled = show.redo === '';
-      this.redo.title = show.redo ? `redo ${show.redo} (Ctrl+Shift+Z)` : 'nothing to redo';
-      this.save.disabled = show.file === null;
+      put(this.title, 'textContent', `${show.show.name}${show.modified ? ' •' : ''}`);
+      put(this.title, 'title', show.file ?? 'no file: save is off');
+      put(this.undo, 'disabled', show.undo === '');
+      put(this.undo, 'title', show.undo ? `undo ${show.undo} (Ctrl+Z)` : 'nothing to undo');
+      put(this.redo, 'disabled', show.redo === '');
+      put(this.redo, 'title', show.redo ? `redo ${show.redo} (Ctrl+Shift+Z)` : 'nothing to redo');
+      put(this.save, 'disabled', show.file === null);
     }
     const tooMuch = this.state.findings.filter((f) => f.kind === 'speed' || f.kind === 'acceleration').length;
-    this.retime.disabled = tooMuch === 0;
-    this.retime.textContent = tooMuch === 0 ? 'Retime' : `Retime (${tooMuch})`;
-    this.retime.title =
+    put(this.retime, 'disabled', tooMuch === 0);
+    put(this.retime, 'textContent', tooMuch === 0 ? 'Retime' : `Retime (${tooMuch})`);
+    put(
+      this.retime,
+      'title',
       tooMuch === 0
         ? 'every span is within its channel’s speed and acceleration'
-        : `stretch the ${tooMuch} span${tooMuch === 1 ? '' : 's'} drawn red to the rig’s limits (one undo step)`;
+        : `stretch the ${tooMuch} span${tooMuch === 1 ? '' : 's'} drawn red to the rig’s limits (one undo step)`,
+    );
     this.retime.classList.toggle('warn', tooMuch > 0);
     if (status) {
-      this.play.textContent = status.paused ? '▶ Play' : '❚❚ Pause';
-      this.time.textContent = `${formatTime(status.show_time)} / ${formatTime(status.duration, 0.1)}`;
+      put(this.play, 'textContent', status.paused ? '▶ Play' : '❚❚ Pause');
+      put(this.time, 'textContent', `${formatTime(status.show_time)} / ${formatTime(status.duration, 0.1)}`);
       const fault = status.fault ? `fault: ${status.fault.cause}` : '';
-      this.phase.textContent = [status.estop ? 'E-STOP' : status.phase, fault].filter(Boolean).join(' · ');
-      this.phase.className = status.fault || status.estop ? 'bad' : status.phase === 'running' ? 'good' : '';
-      this.links.textContent = status.links
-        .map((link) => {
-          const errors = link.crc_errors + link.timeouts + link.device_errors;
-          return `${link.name}: ${link.exchanges} exchanges, ${link.bytes_sent} B out, ${errors} errors`;
-        })
-        .join(' · ');
+      put(this.phase, 'textContent', [status.estop ? 'E-STOP' : status.phase, fault].filter(Boolean).join(' · '));
+      put(this.phase, 'className', status.fault || status.estop ? 'bad' : status.phase === 'running' ? 'good' : '');
+      put(
+        this.links,
+        'textContent',
+        status.links
+          .map((link) => {
+            const errors = link.crc_errors + link.timeouts + link.device_errors;
+            return `${link.name}: ${link.exchanges} exchanges, ${link.bytes_sent} B out, ${errors} errors`;
+          })
+          .join(' · '),
+      );
     } else if (rig) {
-      this.phase.textContent = 'no status yet';
+      put(this.phase, 'textContent', 'no status yet');
     }
-    this.notice.textContent = this.state.notice;
-    this.notice.className = this.state.noticeIsProblem ? 'bad' : 'good';
+    put(this.notice, 'textContent', this.state.notice);
+    put(this.notice, 'className', this.state.noticeIsProblem ? 'bad' : 'good');
   }
 }
