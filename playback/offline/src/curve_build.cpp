@@ -29,6 +29,7 @@ class CurveBuilder {
   using SegmentExtra = Curve::SegmentExtra;
   using InversePiece = Curve::InversePiece;
   using TableHeader = Curve::TableHeader;
+  using Tables = Curve::Tables;
   static constexpr double kWindowLow = Curve::kWindowLow;
   static constexpr double kWindowHigh = Curve::kWindowHigh;
   static constexpr double kMaxResidual = Curve::kMaxResidual;
@@ -41,12 +42,12 @@ class CurveBuilder {
     const RawCurve& raw;
     std::vector<ResolvedHandles> handles;
   };
-  static void segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
+  static void segments(Tables& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
                        const Previous* previous = nullptr);
   /// Copies `previous`'s segment j (its extra and inverse table with it) as the next of `curve`.
-  static Segment copied(Curve& curve, const Curve& previous, std::size_t j);
+  static Segment copied(Tables& curve, const Curve& previous, std::size_t j);
   static Curve build(const RawCurve& raw, const Previous* previous);
-  static void extrapolation(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
+  static void extrapolation(Curve& curve, const Tables& tables, const RawCurve& raw, const std::vector<ResolvedHandles>& handles);
   /// Appends the header, pieces and last entry of s's inverse table; returns how many pieces.
   static std::uint32_t tabulate_inverse(double k1, double k2, double k3, std::vector<InversePiece>& table);
 };
@@ -205,7 +206,7 @@ double handle_slope(const Handle& h, const RawKey& k) {
 Curve Curve::build(const RawCurve& raw) { return CurveBuilder::build(raw, nullptr); }
 
 Curve Curve::build(const RawCurve& raw, const Curve& previous, const RawCurve& previous_raw) {
-  if (previous.segments_.size() + 1 != previous_raw.keys.size()) return CurveBuilder::build(raw, nullptr);
+  if (previous.key_count() != previous_raw.keys.size()) return CurveBuilder::build(raw, nullptr);
   const CurveBuilder::Previous p{previous, previous_raw, compute_handles(previous_raw)};
   return CurveBuilder::build(raw, &p);
 }
@@ -213,18 +214,18 @@ Curve Curve::build(const RawCurve& raw, const Curve& previous, const RawCurve& p
 Curve CurveBuilder::build(const RawCurve& raw, const Previous* previous) {
   validate(raw);
   Curve curve;
-  const std::size_t n = raw.keys.size();
-  curve.times_.reserve(n);
-  for (const RawKey& k : raw.keys) curve.times_.push_back(k.time);
+  Tables tables;
+  tables.times.reserve(raw.keys.size());
+  for (const RawKey& k : raw.keys) tables.times.push_back(k.time);
   curve.start_ = raw.keys.front().time;
   curve.end_ = raw.keys.back().time;
   curve.first_value_ = raw.keys.front().value;
   curve.last_value_ = raw.keys.back().value;
   curve.cycles_ = raw.cycles;
   const std::vector<ResolvedHandles> handles = compute_handles(raw);
-  segments(curve, raw, handles, previous);
-  curve.segment_count_ = curve.segments_.size();
-  extrapolation(curve, raw, handles);
+  segments(tables, raw, handles, previous);
+  extrapolation(curve, tables, raw, handles);
+  curve.adopt(std::move(tables));
   return curve;
 }
 
@@ -236,27 +237,27 @@ bool same_handle(const std::optional<Handle>& a, const std::optional<Handle>& b)
 
 }  // namespace
 
-CurveBuilder::Segment CurveBuilder::copied(Curve& curve, const Curve& previous, std::size_t j) {
+CurveBuilder::Segment CurveBuilder::copied(Tables& curve, const Curve& previous, std::size_t j) {
   Segment s = previous.segments_[j];
   if (s.shape == Shape::bezier_table) {
     // Header, pieces, and the u = 1 entry.
     const std::size_t header = s.extra - 1;
     const auto pieces = static_cast<std::size_t>(avar::bit_cast<TableHeader>(previous.inverse_[header]).pieces);
-    const auto first = previous.inverse_.begin() + static_cast<std::ptrdiff_t>(header);
-    s.extra = static_cast<std::uint32_t>(curve.inverse_.size()) + 1;
-    curve.inverse_.insert(curve.inverse_.end(), first, first + static_cast<std::ptrdiff_t>(pieces + 2));
+    const InversePiece* first = previous.inverse_ + header;
+    s.extra = static_cast<std::uint32_t>(curve.inverse.size()) + 1;
+    curve.inverse.insert(curve.inverse.end(), first, first + static_cast<std::ptrdiff_t>(pieces + 2));
   } else if (s.shape == Shape::bezier_closed) {
     const SegmentExtra extra = previous.extras_[s.extra];
-    s.extra = static_cast<std::uint32_t>(curve.extras_.size());
-    curve.extras_.push_back(extra);
+    s.extra = static_cast<std::uint32_t>(curve.extras.size());
+    curve.extras.push_back(extra);
   }
   return s;
 }
 
-void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
+void CurveBuilder::segments(Tables& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles,
                             const Previous* previous) {
   const std::size_t n = raw.keys.size();
-  curve.segments_.reserve(n - 1);
+  curve.segments.reserve(n - 1);
   // A Bezier segment of `previous` built from the same two keys and handles as segment i (the
   // same index, or as far from the end), if there is one.
   const auto reusable = [&](std::size_t i) -> std::optional<std::size_t> {
@@ -280,7 +281,7 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
     const RawKey& next = raw.keys[i + 1];
     if (k.interpolation == Interpolation::bezier) {
       if (const std::optional<std::size_t> j = reusable(i)) {
-        curve.segments_.push_back(copied(curve, previous->curve, *j));
+        curve.segments.push_back(copied(curve, previous->curve, *j));
         continue;
       }
     }
@@ -300,8 +301,8 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
     };
     const auto with_extra = [&](Shape shape, double k1, double k2, double k3) -> SegmentExtra& {
       s.shape = shape;
-      s.extra = static_cast<std::uint32_t>(curve.extras_.size());
-      return curve.extras_.emplace_back(SegmentExtra{k1, k2, k3});
+      s.extra = static_cast<std::uint32_t>(curve.extras.size());
+      return curve.extras.emplace_back(SegmentExtra{k1, k2, k3});
     };
     switch (k.interpolation) {
       case Interpolation::step: break;  // v0
@@ -351,8 +352,8 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
         }
         if (min_slope_on_window(s_of_u) >= kMinTableSlope && std::isfinite(kMaxTablePieces * s.inv_duration)) {
           s.shape = Shape::bezier_table;
-          s.extra = static_cast<std::uint32_t>(curve.inverse_.size()) + 1;                      // after the table's header
-          s.inv_duration *= tabulate_inverse(s_of_u.c1, s_of_u.c2, s_of_u.c3, curve.inverse_);  // a power of two: exact
+          s.extra = static_cast<std::uint32_t>(curve.inverse.size()) + 1;                      // after the table's header
+          s.inv_duration *= tabulate_inverse(s_of_u.c1, s_of_u.c2, s_of_u.c3, curve.inverse);  // a power of two: exact
         } else {
           with_extra(Shape::bezier_closed, s_of_u.c1, s_of_u.c2, s_of_u.c3);
         }
@@ -364,7 +365,7 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
         with_extra(Shape::easing, k.back, k.amplitude, k.period);
         break;
     }
-    curve.segments_.push_back(s);
+    curve.segments.push_back(s);
   }
 }
 
@@ -372,7 +373,8 @@ void CurveBuilder::segments(Curve& curve, const RawCurve& raw, const std::vector
 // key with constant interpolation, holds; an end key with linear interpolation continues the
 // line to its neighbour; Bezier and easing end keys follow their outer handle. avar's splines
 // continue with the slope of the curve at the end.
-void CurveBuilder::extrapolation(Curve& curve, const RawCurve& raw, const std::vector<ResolvedHandles>& handles) {
+void CurveBuilder::extrapolation(Curve& curve, const Tables& tables, const RawCurve& raw,
+                                 const std::vector<ResolvedHandles>& handles) {
   if (raw.extrapolation == Extrapolation::constant) return;
   const std::size_t n = raw.keys.size();
   const auto slope_at = [&](bool before) -> double {
@@ -390,8 +392,8 @@ void CurveBuilder::extrapolation(Curve& curve, const RawCurve& raw, const std::v
       case Interpolation::cardinal:
       case Interpolation::kochanek_bartels:
       case Interpolation::bspline: {
-        if (curve.segments_.empty()) return 0;
-        const Segment& s = before ? curve.segments_.front() : curve.segments_.back();
+        if (tables.segments.empty()) return 0;
+        const Segment& s = before ? tables.segments.front() : tables.segments.back();
         if (s.shape != Shape::polynomial) return 0;
         return (before ? s.e1 : s.e1 + 2 * s.e2 + 3 * s.e3) * s.inv_duration;
       }

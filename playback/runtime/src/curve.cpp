@@ -1,6 +1,7 @@
 #include "avar/playback/runtime/curve.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cfloat>
 #include <cmath>
 
@@ -68,8 +69,8 @@ double Curve::evaluate_solved(const Segment& s, double x, double t) const noexce
 
 std::size_t Curve::find_segment(double t) const noexcept {
   // The last key at or before t; callers guarantee times_.front() < t < times_.back().
-  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
-  return static_cast<std::size_t>(after - times_.begin()) - 1;
+  const double* after = std::upper_bound(times_, times_ + key_count_, t);
+  return static_cast<std::size_t>(after - times_) - 1;
 }
 
 double Curve::extrapolate(double t) const noexcept {
@@ -131,8 +132,8 @@ double Curve::snapped_to_ends(double t) const noexcept {
 double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
   t = snapped_to_ends(t);  // a cycled time may land there
   if (!(t > start_) || t >= end_) return extrapolate(t);
-  std::size_t i = cursor ? cursor->segment : segments_.size();
-  if (i >= segments_.size() || t < times_[i]) {
+  std::size_t i = cursor ? cursor->segment : segment_count_;
+  if (i >= segment_count_ || t < times_[i]) {
     // (A looping show comes back to the first segment: no search for it.)
     i = t < times_[1] ? 0 : find_segment(t);
   } else if (t >= times_[i + 1]) {
@@ -147,7 +148,7 @@ double Curve::evaluate_keys(double t, CurveCursor* cursor) const noexcept {
   const double after_start = t - times_[i], before_end = times_[i + 1] - t;
   if (before_end <= kKeySnap && before_end < after_start) {
     t = times_[++i];
-    if (i == segments_.size()) return extrapolate(t);  // not reached: the last key snapped above
+    if (i == segment_count_) return extrapolate(t);  // not reached: the last key snapped above
   } else if (after_start <= kKeySnap) {
     t = times_[i];
   }
@@ -176,7 +177,7 @@ double Curve::warm(const CurveCursor& cursor) const noexcept {
 
 // Key times themselves come here too: the general path decides which segment owns them.
 double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
-  if (times_.empty()) return 0;
+  if (key_count_ == 0) return 0;
   if (!cycles_.any()) return evaluate_keys(t, &cursor);  // it snaps t to the keys
   t = snapped_to_ends(t);                                // before the cycle map: the end key, not the next cycle
   if (t >= start_ && t <= end_) return evaluate_keys(t, &cursor);
@@ -187,7 +188,7 @@ double Curve::evaluate_moved(double t, CurveCursor& cursor) const noexcept {
 }
 
 double Curve::evaluate(double t) const noexcept {
-  if (times_.empty()) return 0;
+  if (key_count_ == 0) return 0;
   if (!cycles_.any()) return evaluate_keys(t, nullptr);  // it snaps t to the keys
   t = snapped_to_ends(t);                                // before the cycle map: the end key, not the next cycle
   if (t >= start_ && t <= end_) return evaluate_keys(t, nullptr);
@@ -195,6 +196,17 @@ double Curve::evaluate(double t) const noexcept {
   const double mapped = cycle_time(t, offset);
   const double base = evaluate_keys(mapped, nullptr);
   return std::clamp(finite_or(base + offset, base), -DBL_MAX, DBL_MAX);
+}
+
+void Curve::adopt(Tables tables) {
+  auto shared = std::make_shared<const Tables>(std::move(tables));
+  times_ = shared->times.data();
+  segments_ = shared->segments.data();
+  extras_ = shared->extras.data();
+  inverse_ = shared->inverse.data();
+  key_count_ = shared->times.size();
+  segment_count_ = shared->segments.size();
+  tables_ = std::move(shared);
 }
 
 }  // namespace avar::playback

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "avar/playback/runtime/keys.hpp"
@@ -83,7 +84,7 @@ class Curve {
 
   double start_time() const noexcept { return start_; }  ///< first key's time (s); 0 without keys
   double end_time() const noexcept { return end_; }      ///< last key's time (s); 0 without keys
-  std::size_t key_count() const noexcept { return times_.size(); }
+  std::size_t key_count() const noexcept { return key_count_; }
 
  private:
   friend class CurveBuilder;  // the offline layer's builder fills the segments and tables
@@ -194,13 +195,25 @@ class Curve {
   /// t, or the first or last key's time when t is within kKeySnap of it.
   double snapped_to_ends(double t) const noexcept;
 
-  std::vector<double> times_;      ///< key times
-  std::vector<Segment> segments_;  ///< times_.size() - 1 of them
-  /// segments_.size(), kept beside it: the cursor's bounds check then reads one member instead
-  /// of computing the size from two pointers, on the path every sequential sample takes.
+  /// What a build makes; a built curve never changes it, so copies of a curve share it (a copy
+  /// of a show, made for each edit the studio hands to the figure, copies no tables).
+  struct Tables {
+    std::vector<double> times;          ///< key times
+    std::vector<Segment> segments;      ///< times.size() - 1 of them
+    std::vector<SegmentExtra> extras;   ///< one per bezier_closed and easing segment
+    std::vector<InversePiece> inverse;  ///< pieces + 2 per bezier_table segment
+  };
+  /// Makes `tables` this curve's (the builder's last step).
+  void adopt(Tables tables);
+
+  std::shared_ptr<const Tables> tables_;
+  // Into tables_, read where a sample reads them: one load each, as a vector's data would be.
+  const double* times_ = nullptr;
+  const Segment* segments_ = nullptr;
+  const SegmentExtra* extras_ = nullptr;
+  const InversePiece* inverse_ = nullptr;
+  std::size_t key_count_ = 0;
   std::size_t segment_count_ = 0;
-  std::vector<SegmentExtra> extras_;   ///< one per bezier_closed and easing segment
-  std::vector<InversePiece> inverse_;  ///< pieces + 2 per bezier_table segment
   double start_ = 0, end_ = 0;
   double first_value_ = 0, last_value_ = 0;
   double slope_before_ = 0, slope_after_ = 0;  ///< units per second; 0 for constant extrapolation
