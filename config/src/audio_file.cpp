@@ -2,6 +2,8 @@
 
 #include <sndfile.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace avar::config {
@@ -30,6 +32,20 @@ MonoAudio read_mono_audio(const std::string& path, const SourceLocation& where) 
     audio.samples[f] = sum / static_cast<float>(channels);
   }
   return audio;
+}
+
+std::vector<float> audio_peaks(const MonoAudio& audio, double bucket_s) {
+  const auto per_bucket = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(bucket_s * audio.sample_rate_hz)));
+  std::vector<float> peaks;
+  peaks.reserve(2 * (audio.samples.size() / per_bucket + 1));
+  for (std::size_t from = 0; from < audio.samples.size(); from += per_bucket) {
+    const auto first = audio.samples.begin() + static_cast<std::ptrdiff_t>(from);
+    const auto [low, high] =
+        std::minmax_element(first, first + static_cast<std::ptrdiff_t>(std::min(per_bucket, audio.samples.size() - from)));
+    peaks.push_back(*low);
+    peaks.push_back(*high);
+  }
+  return peaks;
 }
 
 }  // namespace avar::config

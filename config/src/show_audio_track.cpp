@@ -69,6 +69,7 @@ playback::Track read_audio_track(const YamlRef& name, const YamlRef& audio, doub
   playback::Track track = jaw_track_from_audio(path.string(), channel, o, tolerance, file.where(), start, duration).track;
   track.where = name.where();
   track.raw.where = name.where();
+  track.raw.audio = playback::AudioSource{path.string(), start};
   return track;
 }
 

@@ -228,6 +228,7 @@ void ShowSession::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
     r->phase = controller.phase();
     r->show_time_s = controller.show_time();
     r->paused = clock_.paused();
+    r->looping = clock_.looping();
     r->estop = estop_seen_;
     r->stop_requested = controller.stop_requested();
     r->fault = controller.latched_fault();

@@ -208,6 +208,7 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
   }
   if (type == "check") return plain(Check{});
   if (type == "retime") return plain(Retime{});
+  if (type == "waveform") return plain(Waveform{});
   if (type == "seek" || type == "scrub") {
     f.expect_only({"type", "time"});
     return Command{type == "seek" ? CommandKind::seek : CommandKind::scrub, 0, f.number("time", "show time in seconds")};
@@ -245,7 +246,7 @@ ClientMessage parse_client_message(std::string_view text, const std::vector<std:
   f.fail("unknown type \"" + type +
          "\"; expected one of: play, pause, seek, scrub, loop, hold, release, aim, release_aim, stop, estop, edit, undo, redo, "
          "save, "
-         "retime, curves, check");
+         "retime, curves, check, waveform");
 }
 
 }  // namespace avar::studio

@@ -7,6 +7,7 @@
 #include <utility>
 #include <variant>
 
+#include "avar/config/audio_file.hpp"
 #include "avar/config/feasibility.hpp"
 #include "avar/config/show_writer.hpp"
 #include "avar/core/input_error.hpp"
@@ -20,6 +21,9 @@ namespace {
 using nlohmann::json;
 
 constexpr std::size_t kMaxRefusedKept = 64;
+/// The waveform's resolution: a low and a high sample per 10 ms of sound (a pixel at the dope
+/// sheet's closest useful zoom), to 4 decimals.
+constexpr double kWaveformBucket_s = 0.01;
 
 std::string error_reply(std::string_view request, const std::string& problem) {
   return json{{"type", "error"}, {"request", request}, {"message", problem}}.dump();
@@ -117,6 +121,23 @@ std::string Studio::check_message() const {
   return json{{"type", "check"}, {"version", version_}, {"findings", findings}}.dump();
 }
 
+std::string Studio::waveform_message() const {
+  json tracks = json::array();
+  for (const playback::Track& t : document_.show().tracks) {
+    if (!t.raw.audio) continue;
+    const config::MonoAudio audio = config::read_mono_audio(t.raw.audio->path, t.where);
+    json peaks = json::array();
+    for (const float x : config::audio_peaks(audio, kWaveformBucket_s)) peaks.push_back(std::round(x * 1e4) / 1e4);
+    tracks.push_back({{"channel", t.channel},
+                      {"file", t.raw.audio->path},
+                      {"start", t.raw.audio->start_s},
+                      {"duration", audio.duration_s()},
+                      {"bucket", kWaveformBucket_s},
+                      {"peaks", std::move(peaks)}});
+  }
+  return json{{"type", "waveform"}, {"tracks", std::move(tracks)}}.dump();
+}
+
 std::string Studio::hello() const {
   std::string head =
       json{{"type", "hello"}, {"protocol", 1}, {"rig", rig_json(rig_)}, {"vocabulary", curve_vocabulary_json()}}.dump();
@@ -165,6 +186,8 @@ Replies Studio::handle(std::string_view message) {
             out.to_sender = curves_message(m.channels);
           } else if constexpr (std::is_same_v<M, Check>) {
             out.to_sender = check_message();
+          } else if constexpr (std::is_same_v<M, Waveform>) {
+            out.to_sender = waveform_message();
           } else if constexpr (std::is_same_v<M, Retime>) {
             document_.retime(rig_);
             play_document();
@@ -195,6 +218,7 @@ void Studio::on_tick(const session::TickRecord& record) {
   newest_.tick = record.tick;
   newest_.show_time_s = record.show_time_s;
   newest_.paused = record.paused;
+  newest_.looping = record.looping;
   newest_.estop = record.estop;
   newest_.stop_requested = record.stop_requested;
   newest_.phase = record.phase;
@@ -286,6 +310,7 @@ std::string Studio::status_json(const Snapshot& s) const {
               {"show_time", s.show_time_s},
               {"duration", duration},
               {"paused", s.paused},
+              {"loop", s.looping},
               {"estop", s.estop},
               {"stopping", s.stop_requested},
               {"fault", fault},

@@ -48,10 +48,12 @@ export async function until(what, probe, seconds = 15) {
 
 /// Starts `avar studio` on a copy of examples/shows/SHOW with examples/rigs/RIG (or the files at
 /// those absolute paths) on the simulator, opens its page in Chromium and waits for the first
-/// status and the engine's curves of `channel` (up to `patience` seconds, 15).
+/// status and the engine's curves of `channel` (up to `patience` seconds, 15). `files` (name to
+/// contents) are written beside the show first: what it names (a sound, a viseme table).
 /// Returns {page, showFile, original (the show's bytes), close()}.
-export async function openStudio({ show, rig, channel, patience = 15 }) {
+export async function openStudio({ show, rig, channel, patience = 15, files = {} }) {
   const work = mkdtempSync(join(tmpdir(), 'avar-studio-page-'));
+  for (const [name, contents] of Object.entries(files)) writeFileSync(join(work, name), contents);
   const showFile = join(work, basename(show));
   copyFileSync(isAbsolute(show) ? show : join(source, 'examples/shows', show), showFile);
   const original = readFileSync(showFile);

@@ -145,7 +145,7 @@ TEST(StudioProtocol, AMalformedMessageIsRefusedNamingTheFieldAndWhatWasExpected)
   EXPECT_EQ(refusal(R"({"time": 1})"), "a message: missing field 'type' (what the message asks)");
   EXPECT_EQ(refusal(R"({"type": "jump"})"),
             "message 'jump': unknown type \"jump\"; expected one of: play, pause, seek, scrub, loop, hold, release, aim, "
-            "release_aim, stop, estop, edit, undo, redo, save, retime, curves, check");
+            "release_aim, stop, estop, edit, undo, redo, save, retime, curves, check, waveform");
   EXPECT_EQ(refusal(R"({"type": "seek"})"), "message 'seek': missing field 'time' (show time in seconds)");
   EXPECT_EQ(refusal(R"({"type": "seek", "time": "1"})"),
             "message 'seek': field 'time': expected show time in seconds, a finite number; found the string \"1\"");

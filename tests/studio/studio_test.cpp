@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -19,6 +21,7 @@
 #include "avar/config/show_writer.hpp"
 #include "avar/playback/runtime/raw_curve_codec.hpp"
 #include "support/temp_file.hpp"
+#include "support/wav_file.hpp"
 
 namespace avar::studio {
 namespace {
@@ -191,6 +194,42 @@ TEST(Studio, TheChangedKeysAreWrittenAsTheShowWritesThemAndATimeEditSendsTheWhol
   EXPECT_EQ(whole["show"], json::parse(config::show_json(f.studio.document().show())));
 }
 
+TEST(Studio, TheWaveformIsTheSoundATrackWasMadeFromAsPeaks) {
+  // One second of a 100 Hz tone at half scale, the jaw following it from 0.5 s.
+  std::vector<float> tone(8000);
+  for (std::size_t i = 0; i < tone.size(); ++i)
+    tone[i] = 0.5f * static_cast<float>(std::sin(2 * M_PI * 100.0 * static_cast<double>(i) / 8000.0));
+  const std::string show = testing::write_temp_file("voice.yaml", R"(name: voice
+duration: 2
+tracks:
+  jaw:
+    audio: {file: voice.wav, start: 0.5, open: 20}
+)");
+  testing::write_wav_mono16((std::filesystem::path(show).parent_path() / "voice.wav").string(), tone, 8000);
+  const rig::Rig rig = config::load_rig_file(example("rigs/hello-head.yaml"));
+  Studio studio(rig, edit::ShowDocument::open(show), show);
+  const json wave = reply(studio.handle(R"({"type": "waveform"})"));
+  ASSERT_EQ(wave["type"], "waveform");
+  ASSERT_EQ(wave["tracks"].size(), 1u);
+  const json& jaw = wave["tracks"][0];
+  EXPECT_EQ(jaw["channel"], "jaw");
+  EXPECT_EQ(jaw["start"], 0.5);
+  EXPECT_EQ(jaw["duration"], 1.0);
+  EXPECT_EQ(jaw["bucket"], 0.01);
+  const auto peaks = jaw["peaks"].get<std::vector<double>>();
+  ASSERT_EQ(peaks.size(), 200u);  // a low and a high per 10 ms
+  for (std::size_t b = 0; b < 100; ++b) {
+    // Every 10 ms holds a whole period of the tone: its trough and its crest, to 16-bit rounding.
+    EXPECT_NEAR(peaks[2 * b], -0.5, 2e-3) << "bucket " << b;
+    EXPECT_NEAR(peaks[2 * b + 1], 0.5, 2e-3) << "bucket " << b;
+  }
+  // The sound gone since the show was read: the reply names the file.
+  std::filesystem::remove(std::filesystem::path(show).parent_path() / "voice.wav");
+  const json gone = reply(studio.handle(R"({"type": "waveform"})"));
+  EXPECT_EQ(gone["type"], "error");
+  EXPECT_NE(gone["message"].get<std::string>().find("voice.wav"), std::string::npos) << gone["message"];
+}
+
 TEST(Studio, SavesTheOriginalBytesWhenTheShowIsAsOpenedAndTheEditOtherwise) {
   StudioFigure f;
   const Replies moved =
@@ -234,6 +273,7 @@ TEST(Studio, ASliderHoldsItsChannelAndTheStatusSaysWhereTheFigureIs) {
   f.run([&](const session::TickRecord& r) {
     if (r.tick == 5) {
       EXPECT_EQ(reply(f.studio.handle(R"({"type": "hold", "channel": "jaw", "value": 15})"))["type"], "ok");
+      EXPECT_EQ(reply(f.studio.handle(R"({"type": "loop", "on": true})"))["type"], "ok");
     }
     if (r.tick % 10 == 0)
       for (std::string& s : f.studio.take_status()) statuses.push_back(std::move(s));
@@ -244,6 +284,8 @@ TEST(Studio, ASliderHoldsItsChannelAndTheStatusSaysWhereTheFigureIs) {
   EXPECT_EQ(last["type"], "status");
   EXPECT_EQ(last["phase"], "running");
   EXPECT_EQ(last["paused"], true);
+  EXPECT_EQ(last["loop"], true);  // hello-head does not loop; a client asked
+  EXPECT_EQ(json::parse(statuses.front())["loop"], false);
   EXPECT_EQ(last["show_time"].get<double>(), 0.0);
   EXPECT_EQ(last["fault"], nullptr);
   const json& ch = last["channels"][jaw];

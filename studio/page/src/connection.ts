@@ -3,9 +3,9 @@
 import type { ServerMessage } from './protocol';
 
 /// The one reply the server sends to each message, in the order of the messages.
-export type Reply = Extract<ServerMessage, { type: 'ok' | 'error' | 'curves' | 'check' | 'saved' }>;
+export type Reply = Extract<ServerMessage, { type: 'ok' | 'error' | 'curves' | 'check' | 'saved' | 'waveform' }>;
 const isReply = (m: ServerMessage): m is Reply =>
-  m.type === 'ok' || m.type === 'error' || m.type === 'curves' || m.type === 'check' || m.type === 'saved';
+  m.type === 'ok' || m.type === 'error' || m.type === 'curves' || m.type === 'check' || m.type === 'saved' || m.type === 'waveform';
 
 export type ConnectionState = 'connecting' | 'open' | 'closed';
 

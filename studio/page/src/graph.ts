@@ -6,6 +6,7 @@ import { drawPlayhead, fitCanvas, themeColor, TimeAxis } from './axis';
 import { describeFinding } from './findings';
 import type { Key } from './protocol';
 import { firstKeyAtOrAfter, numericValue } from './protocol';
+import { drawWaveform } from './waveform';
 import type { StudioState } from './state';
 
 const GUTTER = 120;
@@ -180,7 +181,9 @@ export class GraphEditor {
     g.setLineDash([]);
 
     // The check's findings on this channel: a band over the span, what it asks and what is allowed.
-    let label = 0;
+    // Labels on four lines, each where it does not cover another; the rest are in the dope
+    // sheet's tooltips.
+    const lineEnds = [0, 0, 0, 0];
     for (const f of this.state.findings) {
       if (f.channel !== channel) continue;
       const xa = Math.max(GUTTER, a.time.x(f.t0));
@@ -188,10 +191,22 @@ export class GraphEditor {
       if (xb <= GUTTER || xa >= width) continue;
       g.fillStyle = color('--over-span');
       g.fillRect(xa, 0, xb - xa, height);
+      const text = describeFinding(f);
+      const x = Math.min(xa + 4, width - 260);
+      const line = lineEnds.findIndex((end) => end <= x);
+      if (line < 0) continue;
       g.fillStyle = color('--over');
-      g.fillText(describeFinding(f), Math.min(xa + 4, width - 260), 30 + 14 * (label++ % 4));
+      g.fillText(text, x, 30 + 14 * line);
+      lineEnds[line] = x + g.measureText(text).width + 12;
     }
 
+    // The sound the track follows (a jaw's voice), behind the curve.
+    const wave = this.state.waveforms.get(channel);
+    if (wave) {
+      g.globalAlpha = 0.4;
+      drawWaveform(g, a.time, wave, GUTTER, width, 0, height);
+      g.globalAlpha = 1;
+    }
     // The curve, two pixels a sample, from the engine; red where it is faster than allowed.
     const n = Math.max(2, Math.floor((width - GUTTER) / 2));
     const times = new Float64Array(n);

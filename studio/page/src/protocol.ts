@@ -162,6 +162,8 @@ export interface Status {
   show_time: number;
   duration: number;
   paused: boolean;
+  /// Whether the show starts over at its end.
+  loop: boolean;
   estop: boolean;
   stopping: boolean;
   fault: { cause: string; index: number; value: number } | null;
@@ -216,8 +218,25 @@ export interface Check {
   findings: Finding[];
 }
 
+/// The sound a track made from audio follows: the lowest and highest sample of every `bucket`
+/// seconds of it, full scale +-1, from show time `start`.
+export interface WaveformTrack {
+  channel: string;
+  file: string;
+  start: number;
+  duration: number;
+  bucket: number;
+  peaks: number[];
+}
+
+export interface Waveform {
+  type: 'waveform';
+  tracks: WaveformTrack[];
+}
+
 export type ServerMessage =
   | Check
+  | Waveform
   | Hello
   | Status
   | Curves

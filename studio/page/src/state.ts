@@ -3,7 +3,7 @@
 // ask for a redraw; only messages from the server change the show.
 import type { Connection } from './connection';
 import type { CurveEngine } from './engine';
-import type { Edit, Finding, Hello, Key, KeysChange, Rig, ShowState, Status, Vocabulary } from './protocol';
+import type { Edit, Finding, Hello, Key, KeysChange, Rig, ShowState, Status, Vocabulary, WaveformTrack } from './protocol';
 import { trackKeys } from './protocol';
 
 /// Keys picked, per channel (indices into the channel's track, in time order).
@@ -14,6 +14,8 @@ export class StudioState {
   vocabulary: Vocabulary = { interpolations: [], easings: [], handle_types: [], extrapolations: [] };
   /// What the show asks beyond the rig's limits, as the studio's check found it.
   findings: Finding[] = [];
+  /// The sound each track made from audio follows (a jaw's voice), by channel.
+  waveforms: Map<string, WaveformTrack> = new Map();
   /// Keys copied (Ctrl+C), per channel, their times from the earliest copied key.
   clipboard: Map<string, Key[]> = new Map();
   show: ShowState | null = null;
@@ -60,6 +62,11 @@ export class StudioState {
       this.view = { t0: -0.02 * d, t1: 1.03 * d };
       this.channel = hello.rig.channels[0]?.name ?? null;
     }
+    void this.connection.request({ type: 'waveform' })?.then((reply) => {
+      if (reply?.type !== 'waveform') return;
+      this.waveforms = new Map(reply.tracks.map((w) => [w.channel, w]));
+      this.changed();
+    });
   }
 
   takeShow(show: ShowState): void {

@@ -4,6 +4,7 @@
 // key there with the curve's value, Delete removes the selection. Wheel zooms, Shift+wheel pans.
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
 import { typingIn } from './dom';
+import { drawWaveform } from './waveform';
 import { describeFinding } from './findings';
 import type { Finding, Key, Layer } from './protocol';
 import { firstKeyAtOrAfter, trackKeys } from './protocol';
@@ -460,6 +461,9 @@ export class DopeSheet {
         const xb = Math.max(xa + 3, axis.x(f.t1));
         if (xb > GUTTER) g.fillRect(xa, y + 2, xb - xa, ROW - 4);
       }
+      // The sound the track follows (a jaw's voice), under its keys.
+      const wave = this.state.waveforms.get(channel.name);
+      if (wave) drawWaveform(g, axis, wave, GUTTER, width, y + 1, ROW - 2);
       // A bar under the keys shows the track's span.
       if (keys.length > 1) {
         const first = keys[0];

@@ -82,6 +82,8 @@ export class Transport {
     this.retime.classList.toggle('warn', tooMuch > 0);
     if (status) {
       put(this.play, 'textContent', status.paused ? '▶ Play' : '❚❚ Pause');
+      // The figure's own loop state (the show's, or what any client asked).
+      if (document.activeElement !== this.loop) put(this.loop, 'checked', status.loop);
       put(this.time, 'textContent', `${formatTime(status.show_time)} / ${formatTime(status.duration, 0.1)}`);
       const fault = status.fault ? `fault: ${status.fault.cause}` : '';
       put(this.phase, 'textContent', [status.estop ? 'E-STOP' : status.phase, fault].filter(Boolean).join(' · '));

@@ -20,4 +20,8 @@ struct MonoAudio {
 /// reason, when the file cannot be opened or decoded, or holds no samples.
 MonoAudio read_mono_audio(const std::string& path, const SourceLocation& where);
 
+/// The sound's outline for drawing it: for each `bucket_s` of the sound (the last one shorter),
+/// the lowest and the highest sample, full scale +-1, as [low0, high0, low1, high1, ...].
+std::vector<float> audio_peaks(const MonoAudio& audio, double bucket_s);
+
 }  // namespace avar::config

@@ -38,6 +38,8 @@ class SessionClock final : public control::ShowClock {
   CommandOutcome apply(const Command& command, double now_s) noexcept;
 
   bool paused() const noexcept { return !playing_; }
+  /// Whether the show starts over at its end: as a loop command said, or as the show says.
+  bool looping() const noexcept { return loop_ == -1 ? controller_ && controller_->show_loops() : loop_ == 1; }
   /// Show time as of the last read.
   double show_time() const noexcept { return last_show_s_; }
 

@@ -50,6 +50,7 @@ struct TickRecord {
   control::Phase phase = control::Phase::disabled;
   double show_time_s = 0;       ///< show time of the last running tick
   bool paused = false;          ///< show time stands (pause, scrub, or the session started paused)
+  bool looping = false;         ///< the show starts over at its end (the show's loop, or a loop command)
   bool estop = false;           ///< the session's e-stop was pressed by this tick
   bool stop_requested = false;  ///< a stop (command, Ctrl-C) asked the figure to ease to rest
   control::Fault fault;         ///< the latched fault (cause none: none)

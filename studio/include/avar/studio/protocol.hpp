@@ -43,7 +43,9 @@ struct Curves {
 struct Check {};
 /// Stretch what asks too much to the rig's limits (edit::ShowDocument::retime): one undo step.
 struct Retime {};
-using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves, Check, Retime>;
+/// The outline of the sound each track made from audio follows (a jaw's voice), for drawing.
+struct Waveform {};
+using ClientMessage = std::variant<session::Command, Estop, Edit, Undo, Redo, Save, Curves, Check, Retime, Waveform>;
 
 /// Parses one message. `channels`: the rig's channel names, in the rig's order (a hold's channel
 /// index is its place there; an edit may name only these). `targets`: the show's targets' names

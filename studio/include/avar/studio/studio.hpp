@@ -73,6 +73,8 @@ class Studio final : public session::SessionObserver {
   std::string curves_message(const std::optional<std::vector<std::string>>& channels) const;
   /// The "check" reply: what the show asks beyond the rig's limits.
   std::string check_message() const;
+  /// The "waveform" reply: each audio track's sound, as peaks.
+  std::string waveform_message() const;
   /// Hands the document's show to the session.
   void play_document();
 
@@ -93,7 +95,7 @@ class Studio final : public session::SessionObserver {
   struct Snapshot {
     std::uint64_t tick = 0;
     double show_time_s = 0;
-    bool paused = false, estop = false, stop_requested = false;
+    bool paused = false, looping = false, estop = false, stop_requested = false;
     control::Phase phase = control::Phase::disabled;
     control::Fault fault;
     std::vector<session::ChannelRecord> channels;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -115,6 +116,12 @@ struct Cycles {
   bool any() const noexcept { return before != CycleMode::none || after != CycleMode::none; }
 };
 
+/// The sound a curve was made from (a jaw following a voice): what an editor shows beside it.
+struct AudioSource {
+  std::string path;    ///< the sound file, as the show file's folder resolves it
+  double start_s = 0;  ///< show time where the sound begins
+};
+
 struct RawCurve {
   RawCurve() = default;
   RawCurve(std::vector<RawKey> keys_in, SourceLocation where_in) : keys(std::move(keys_in)), where(std::move(where_in)) {}
@@ -124,6 +131,8 @@ struct RawCurve {
   Extrapolation extrapolation = Extrapolation::constant;
   AutoSmoothing auto_smoothing = AutoSmoothing::none;
   Cycles cycles;
+  /// Keys made from a sound file (a jaw track's `audio`): that sound. The keys alone make the curve.
+  std::optional<AudioSource> audio;
 };
 
 }  // namespace avar::playback
