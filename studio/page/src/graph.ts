@@ -276,21 +276,25 @@ export class GraphEditor {
     const keys = this.state.keys(channel);
     const from = Math.max(0, firstKeyAtOrAfter(keys, a.time.t(GUTTER)) - 1);
     const to = Math.min(keys.length, firstKeyAtOrAfter(keys, a.time.t(width)) + 1);
+    const dragged = this.state.draggedBy();
     keys.slice(from, to).forEach((key, offset) => {
       const index = from + offset;
-      const kx = a.time.x(key.time);
+      // Keys the dope sheet is dragging are drawn where the pointer has them.
+      const ahead = picked?.has(index) ? dragged : 0;
+      const kx = a.time.x(key.time + ahead);
       const ky = a.y(numericValue(key));
       for (const side of ['left', 'right'] as const) {
         const handle = this.handle(channel, index, side);
         if (!handle) continue;
+        const hx = a.time.x(handle[0] + ahead);
         g.strokeStyle = color('--handle');
         g.beginPath();
         g.moveTo(kx, ky);
-        g.lineTo(a.time.x(handle[0]), a.y(handle[1]));
+        g.lineTo(hx, a.y(handle[1]));
         g.stroke();
         g.fillStyle = color('--handle');
         g.beginPath();
-        g.arc(a.time.x(handle[0]), a.y(handle[1]), 3.5, 0, 2 * Math.PI);
+        g.arc(hx, a.y(handle[1]), 3.5, 0, 2 * Math.PI);
         g.fill();
       }
       g.fillStyle = picked?.has(index) ? color('--key-selected') : color('--key');

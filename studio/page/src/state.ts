@@ -6,6 +6,9 @@ import type { CurveEngine } from './engine';
 import type { Edit, Finding, Hello, Key, KeysChange, Rig, ShowState, Status, Vocabulary, WaveformTrack } from './protocol';
 import { trackKeys } from './protocol';
 
+/// Tracks asked for in one `curves` request when no view is waiting for them.
+const CURVES_PER_REQUEST = 8;
+
 /// Keys picked, per channel (indices into the channel's track, in time order).
 export type Selection = Map<string, Set<number>>;
 
@@ -23,6 +26,9 @@ export class StudioState {
   /// The channel the graph editor and the pose panel point at.
   channel: string | null = null;
   selection: Selection = new Map();
+  /// Seconds ahead of where the studio has them that the selected keys are drawn while a drag
+  /// moves them (the dope sheet's pointer travel not answered yet); 0 without a drag.
+  draggedBy: () => number = () => 0;
   /// The visible stretch of show time, seconds.
   view = { t0: 0, t1: 10 };
   /// The last refusal or problem (or, `noticeIsProblem` false, news such as a save), shown in the
@@ -144,7 +150,9 @@ export class StudioState {
     this.curvesWaiting = true;
     void this.settled().then(() => {
       this.curvesWaiting = false;
-      if (!this.curvesInFlight && this.staleCurves.size > 0) this.fetchCurves([...this.staleCurves]);
+      // A few tracks a request: a long show's curves arrive in pieces the page takes between
+      // frames, not in one message that stops it for seconds.
+      if (!this.curvesInFlight && this.staleCurves.size > 0) this.fetchCurves([...this.staleCurves].slice(0, CURVES_PER_REQUEST));
     });
   }
 

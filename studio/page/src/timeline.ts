@@ -53,6 +53,7 @@ export class DopeSheet {
       e.preventDefault();
     });
     new ResizeObserver(() => state.changed()).observe(canvas);
+    state.draggedBy = () => this.ghost();
   }
 
   axis(): TimeAxis {
