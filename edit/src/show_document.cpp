@@ -5,8 +5,6 @@
 #include <iterator>
 #include <sstream>
 
-#include <cstdint>
-
 #include "avar/config/feasibility.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/config/show_writer.hpp"
@@ -39,14 +37,10 @@ bool same_optional(const std::optional<double>& a, const std::optional<double>& 
   return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
 }
 
-bool same_handle(const std::optional<playback::Handle>& a, const std::optional<playback::Handle>& b) noexcept {
-  return a.has_value() == b.has_value() && (!a || (same_bits(a->time, b->time) && same_bits(a->value, b->value)));
-}
-
 /// Every field the show file writes (not where it was read).
 bool same_key(const playback::RawKey& a, const playback::RawKey& b) noexcept {
   return same_bits(a.time, b.time) && same_bits(a.value, b.value) && a.interpolation == b.interpolation &&
-         same_handle(a.left, b.left) && same_handle(a.right, b.right) && a.left_type == b.left_type &&
+         playback::same_handle(a.left, b.left) && playback::same_handle(a.right, b.right) && a.left_type == b.left_type &&
          a.right_type == b.right_type && a.easing == b.easing && same_bits(a.back, b.back) &&
          same_bits(a.amplitude, b.amplitude) && same_bits(a.period, b.period) && same_optional(a.in_slope, b.in_slope) &&
          same_optional(a.out_slope, b.out_slope) && same_bits(a.tension, b.tension) && same_bits(a.continuity, b.continuity) &&

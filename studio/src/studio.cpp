@@ -56,16 +56,21 @@ void Studio::attach(session::ShowSession* session) {
   session_ = session;
 }
 
+std::string Studio::state_fields() const {
+  const std::string fields = json{
+      {"version", version_},
+      {"file", show_path_.empty() ? json(nullptr) : json(show_path_)},
+      {"modified", document_.modified()},
+      {"undo", document_.undo_label()},
+      {"redo",
+       document_.redo_label()}}.dump();
+  return fields.substr(1, fields.size() - 2);
+}
+
 std::string Studio::show_fields() const {
-  const json head = {{"version", version_},
-                     {"file", show_path_.empty() ? json(nullptr) : json(show_path_)},
-                     {"modified", document_.modified()},
-                     {"undo", document_.undo_label()},
-                     {"redo", document_.redo_label()}};
   // The show's JSON is spliced in as the writer wrote it: numbers that read back to the same
   // doubles.
-  const std::string fields = head.dump();
-  return fields.substr(1, fields.size() - 2) + ",\"show\":" + config::show_json(document_.show());
+  return state_fields() + ",\"show\":" + config::show_json(document_.show());
 }
 
 std::string Studio::show_message() const { return "{\"type\":\"show\"," + show_fields() + "}"; }
@@ -73,14 +78,6 @@ std::string Studio::show_message() const { return "{\"type\":\"show\"," + show_f
 std::string Studio::change_message() const {
   const edit::DocumentChange& change = document_.last_change();
   if (change.whole) return show_message();
-  std::string head = json{{"type", "keys"},
-                          {"version", version_},
-                          {"file", show_path_.empty() ? json(nullptr) : json(show_path_)},
-                          {"modified", document_.modified()},
-                          {"undo", document_.undo_label()},
-                          {"redo", document_.redo_label()}}
-                         .dump();
-  head.pop_back();
   // The keys are spliced in as the show writer writes them (numbers that read back the same).
   std::string splices;
   for (const edit::KeySplice& k : change.splices) {
@@ -91,7 +88,7 @@ std::string Studio::change_message() const {
     fields.pop_back();
     splices += (splices.empty() ? "" : ",") + fields + ",\"keys\":" + config::keys_json(track->raw, k.from, k.added) + "}";
   }
-  return head + ",\"tracks\":[" + splices + "]}";
+  return "{\"type\":\"keys\"," + state_fields() + ",\"tracks\":[" + splices + "]}";
 }
 
 std::string Studio::curves_message(const std::optional<std::vector<std::string>>& channels) const {

@@ -229,14 +229,6 @@ Curve CurveBuilder::build(const RawCurve& raw, const Previous* previous) {
   return curve;
 }
 
-namespace {
-
-bool same_handle(const std::optional<Handle>& a, const std::optional<Handle>& b) noexcept {
-  return a && b && same_bits(a->time, b->time) && same_bits(a->value, b->value);
-}
-
-}  // namespace
-
 CurveBuilder::Segment CurveBuilder::copied(Tables& curve, const Curve& previous, std::size_t j) {
   Segment s = previous.segments_[j];
   if (s.shape == Shape::bezier_table) {

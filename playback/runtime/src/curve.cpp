@@ -1,9 +1,9 @@
 #include "avar/playback/runtime/curve.hpp"
 
 #include <algorithm>
-#include <memory>
 #include <cfloat>
 #include <cmath>
+#include <memory>
 
 #include "avar/core/bit_cast.hpp"
 #include "avar/playback/runtime/bezier_time_solve.hpp"

@@ -63,6 +63,9 @@ class Studio final : public session::SessionObserver {
   const edit::ShowDocument& document() const noexcept { return document_; }
 
  private:
+  /// What every message about the show says of its state (version, file, modified, undo, redo),
+  /// as a JSON object's text without its braces.
+  std::string state_fields() const;
   /// The show's fields of a "show" or "hello" message, without braces.
   std::string show_fields() const;
   std::string show_message() const;

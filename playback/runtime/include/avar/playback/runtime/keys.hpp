@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "avar/core/bit_cast.hpp"
 #include "avar/core/input_error.hpp"
 
 namespace avar::playback {
@@ -83,6 +84,12 @@ struct Handle {
   double time = 0;
   double value = 0;
 };
+
+/// Whether two handles are the same: both absent, or the same bits (results built from them must
+/// be bit-identical).
+inline bool same_handle(const std::optional<Handle>& a, const std::optional<Handle>& b) noexcept {
+  return a.has_value() == b.has_value() && (!a || (same_bits(a->time, b->time) && same_bits(a->value, b->value)));
+}
 
 struct RawKey {
   double time = 0;                                      ///< seconds
