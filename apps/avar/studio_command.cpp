@@ -41,6 +41,12 @@ CLI::App* add_studio_subcommand(CLI::App& app, StudioOptions& o) {
                   "HOST:PORT to serve on (default 127.0.0.1:0: this machine only, a free port). Any address but loopback "
                   "needs the token printed in the URL");
   cmd->add_flag("--open", o.open_browser, "Open the URL in the desktop's browser (xdg-open)");
+  cmd->add_option("--input", o.inputs,
+                  "Live input device, repeatable: osc://HOST:PORT, midi:NAME, hid:VID:PID[:SERIAL] (as for avar puppet); "
+                  "its mapped controls pose channels and steer the show's IK targets while you edit");
+  cmd->add_option("--inputs", o.inputs_path,
+                  "Inputs file (YAML with an inputs: section; default: the rig's own inputs:); without --input, its "
+                  "devices: are opened");
   cmd->add_option("--page", o.page_dir, "Serve the browser page from this folder instead of the one built with avar")
       ->check(CLI::ExistingDirectory);
   cmd->footer(
@@ -55,7 +61,10 @@ CLI::App* add_studio_subcommand(CLI::App& app, StudioOptions& o) {
       "  avar studio examples/shows/hello-head.yaml --rig examples/rigs/hello-head.yaml --sim\n"
       "      edit the bundled show on the simulated head; the URL is printed\n"
       "  avar studio my-show.yaml --rig my-rig.yaml --port /dev/ttyACM0 --listen 0.0.0.0:8080\n"
-      "      on the real figure, reachable from the workshop's network with the printed token");
+      "      on the real figure, reachable from the workshop's network with the printed token\n"
+      "  avar studio examples/shows/look-around.yaml --rig examples/rigs/gaze-head.yaml --sim \\\n"
+      "      --inputs examples/inputs/gaze-head-stick.yaml\n"
+      "      steer the head's gaze target from OSC (/avar/control/gaze_y 0.9 on port 9000) while you edit");
   return cmd;
 }
 
@@ -70,7 +79,7 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
   }
   std::optional<studio::StudioFiles> files;
   try {
-    files.emplace(studio::open_studio_files(o.rig_path, o.show_path));
+    files.emplace(studio::open_studio_files(o.rig_path, o.show_path, o.inputs_path));
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
@@ -83,6 +92,8 @@ int run_studio(const StudioOptions& o, std::ostream& out, std::ostream& err) {
   setup.run.session.rate_hz = o.rate_hz.value_or(rig.rate_hz);
   setup.run.session.links.simulate_all = o.simulate;
   setup.run.session.links.port = o.port;
+  // Live devices open only when asked: a rig's listed gamepad need not be plugged in to edit.
+  setup.run.input_uris = !o.inputs.empty() ? o.inputs : o.inputs_path ? files->inputs.devices : std::vector<std::string>{};
 
   std::unique_ptr<studio::StudioRun> run;
   try {

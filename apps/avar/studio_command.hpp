@@ -5,6 +5,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -21,6 +22,8 @@ struct StudioOptions {
   std::string listen = "127.0.0.1:0";    ///< --listen HOST:PORT
   bool open_browser = false;             ///< --open
   std::optional<std::string> page_dir;   ///< --page: the page's folder; default: the one built with avar
+  std::vector<std::string> inputs;       ///< --input URIs: live controls (default: --inputs' devices)
+  std::optional<std::string> inputs_path;  ///< --inputs: the mappings' file; default: the rig's own inputs:
 };
 
 /// Declares `avar studio` and its options on `app`.

@@ -35,14 +35,8 @@ std::pair<double, double> number_pair(const YamlRef& node, const std::string& wh
   return {node[0].as_double(what), node[1].as_double(what)};
 }
 
-control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, std::size_t index) {
-  const std::string what = "mapping " + std::to_string(index + 1) + " of inputs";
-  node.expect_map(what);
-  node.expect_only_keys({"control", "channel", "mode", "range", "rate", "input", "invert", "dead_zone", "expo", "smoothing",
-                         "hold", "priority", "blend", "crossfade", "timeout"},
-                        what);
-  control::ControlMapping m;
-  m.control = control_name(node.at("control", what), "the control of " + what);
+void read_channel_output(const rig::Rig& rig, const YamlRef& node, const std::string& what, control::ControlMapping& m) {
+  if (auto axis = node.find("axis")) axis->fail(what + " drives a channel: an axis applies to a target mapping only");
   const YamlRef channel = node.at("channel", what);
   const std::string channel_name = channel.as_string("the channel of " + what);
   const auto ci = rig.find_channel(channel_name);
@@ -51,18 +45,6 @@ control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, s
   const rig::ChannelSpec& c = rig.channels[*ci];
   m.low = c.min;
   m.high = c.max;
-  if (auto mode = node.find("mode")) {
-    const std::string s = mode->as_string("the mode of " + what);
-    if (s == "relative") m.mode = control::MappingMode::relative;
-    else if (s != "absolute")
-      mode->fail("expected the mode of " + what + " to be absolute or relative, found " + mode->describe());
-  }
-  if (auto blend = node.find("blend")) {
-    const std::string b = blend->as_string("the blend of " + what);
-    if (b == "additive") m.blend = control::Blend::additive;
-    else if (b != "override")
-      blend->fail("expected the blend of " + what + " to be override or additive, found " + blend->describe());
-  }
   if (m.blend == control::Blend::additive) {
     m.low = 0;  // an offset: none at rest, by default
     m.high = c.max - c.min;
@@ -82,13 +64,78 @@ control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, s
     m.low = low;
     m.high = high;
   }
+}
+
+/// A goal of the rig's inverse kinematics placed this far from the base is no figure's (metres).
+constexpr double kTargetReachM = 100;
+
+void read_target_output(const rig::Rig& rig, const YamlRef& node, const std::string& what, control::ControlMapping& m) {
+  if (auto channel = node.find("channel")) channel->fail(what + " drives a target: give a channel or a target, not both");
+  const YamlRef target = node.at("target", what);
+  const std::string effector = target.as_string("the target of " + what);
+  if (!rig.kinematics)
+    target.fail("target '" + effector + "' of " + what + " needs the rig's kinematics: section, and this rig has none");
+  const kinematics::Model& model = rig.kinematics->model;
+  const auto ei = model.find_effector(effector);
+  if (!ei) {
+    std::string names;
+    for (const kinematics::Effector& e : model.effectors()) names += (names.empty() ? "" : ", ") + e.name;
+    target.fail("unknown target '" + effector + "'; expected one of the kinematics' effectors: " + names);
+  }
+  m.output = control::MappingOutput::target;
+  m.effector = *ei;
+  const YamlRef axis = node.at("axis", what);
+  const std::string a = axis.as_string("the axis of " + what);
+  if (a == "x") m.axis = 0;
+  else if (a == "y") m.axis = 1;
+  else if (a == "z") m.axis = 2;
+  else axis.fail("expected the axis of " + what + " to be x, y or z (the rig's base frame), found " + axis.describe());
+  const YamlRef range = node.at("range", what);
+  const auto [low, high] = number_pair(range, "the range of " + what + " (metres)");
+  for (const double v : {low, high})
+    if (!(std::abs(v) <= kTargetReachM))
+      range.fail("expected the range of " + what + " in metres within ±" + format_number(kTargetReachM) + " of the base, found " +
+                 range.describe());
+  if (m.mode == control::MappingMode::relative && low == high)
+    range.fail("expected the range of relative " + what + " (the bounds it moves in) to span two different values, found " +
+               range.describe());
+  m.low = low;
+  m.high = high;
+}
+
+control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, std::size_t index) {
+  const std::string what = "mapping " + std::to_string(index + 1) + " of inputs";
+  node.expect_map(what);
+  node.expect_only_keys({"control", "channel", "target", "axis", "mode", "range", "rate", "input", "invert", "dead_zone", "expo",
+                         "smoothing", "hold", "priority", "blend", "crossfade", "timeout"},
+                        what);
+  control::ControlMapping m;
+  m.control = control_name(node.at("control", what), "the control of " + what);
+  if (auto mode = node.find("mode")) {
+    const std::string s = mode->as_string("the mode of " + what);
+    if (s == "relative") m.mode = control::MappingMode::relative;
+    else if (s != "absolute")
+      mode->fail("expected the mode of " + what + " to be absolute or relative, found " + mode->describe());
+  }
+  if (auto blend = node.find("blend")) {
+    const std::string b = blend->as_string("the blend of " + what);
+    if (b == "additive") m.blend = control::Blend::additive;
+    else if (b != "override")
+      blend->fail("expected the blend of " + what + " to be override or additive, found " + blend->describe());
+  }
+  if (node.find("target")) {
+    read_target_output(rig, node, what, m);
+  } else {
+    read_channel_output(rig, node, what, m);
+  }
   if (auto rate = node.find("rate")) {
     if (m.mode != control::MappingMode::relative) rate->fail(what + " is absolute: a rate applies to mode: relative only");
     m.rate = rate->as_double("the rate of " + what);
     if (!(m.rate > 0))
-      rate->fail("expected the rate of " + what + " (channel units/s) to be greater than 0, found " + rate->describe());
+      rate->fail("expected the rate of " + what + " (channel units/s, or m/s for a target) to be greater than 0, found " +
+                 rate->describe());
   } else if (m.mode == control::MappingMode::relative) {
-    node.fail("expected a rate (channel units per second at full deflection) for relative " + what);
+    node.fail("expected a rate (channel units per second at full deflection, or m/s for a target) for relative " + what);
   }
   if (auto input = node.find("input")) {
     const auto span = number_pair(*input, "the input of " + what);
@@ -114,6 +161,13 @@ control::ControlMapping read_mapping(const rig::Rig& rig, const YamlRef& node, s
 }
 
 }  // namespace
+
+std::vector<std::string> live_effectors(const rig::Rig& rig) {
+  std::vector<std::string> names;
+  if (rig.kinematics)
+    for (const kinematics::Effector& e : rig.kinematics->model.effectors()) names.push_back(e.name);
+  return names;
+}
 
 std::vector<control::LiveChannel> live_channels(const rig::Rig& rig) {
   std::vector<control::LiveChannel> channels;

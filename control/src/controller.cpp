@@ -298,7 +298,8 @@ void Controller::tick(double now_s) noexcept {
   }
   lap(Stage::sample, mark);
   if (sampled_show && binding_->ik)
-    (void)binding_->ik->apply(std::clamp(show_time_, 0.0, show_end()), target_, options_.aims);  // tallied in IkStage::stats
+    (void)binding_->ik->apply(std::clamp(show_time_, 0.0, show_end()), target_, options_.aims, options_.live,
+                              now_s);  // tallied in IkStage::stats
   lap(Stage::ik, mark);
   if (sampled_show && options_.live) options_.live->apply(now_s, target_);
   lap(Stage::mix, mark);

@@ -1,6 +1,7 @@
 #include "avar/control/ik_stage.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "avar/kinematics/ik_options.hpp"
@@ -25,7 +26,8 @@ IkStage::IkStage(const rig::RigKinematics& kinematics, const playback::Show& sho
       workspace_(kinematics.model, std::max<std::size_t>(1, show.targets.size())),
       cursors_(6 * show.targets.size()),
       q_(kinematics.model.dof(), 0.0),
-      q_next_(kinematics.model.dof(), 0.0) {
+      q_next_(kinematics.model.dof(), 0.0),
+      effector_points_(3 * kinematics.model.effector_count(), 0.0) {
   const kinematics::Model& model = kinematics.model;
   std::vector<char> moved(kinematics.bindings.size(), 0);
   for (const playback::TargetTrack& target : show.targets) {
@@ -58,7 +60,20 @@ void IkStage::reseed(std::span<const double> frame) noexcept {
   cold_ = true;
 }
 
-kinematics::IkResult IkStage::apply(double t, std::span<double> frame, const TargetAims* aims) noexcept {
+void IkStage::mix_live(LiveLayer& live, double now_s) noexcept {
+  std::fill(effector_points_.begin(), effector_points_.end(), std::numeric_limits<double>::quiet_NaN());
+  for (const kinematics::IkGoal& goal : goals_)
+    for (Eigen::Index a = 0; a < 3; ++a) effector_points_[3 * goal.effector + static_cast<std::size_t>(a)] = goal.position[a];
+  live.apply_targets(now_s, effector_points_);
+  for (kinematics::IkGoal& goal : goals_) {
+    const Eigen::Vector3d mixed(effector_points_[3 * goal.effector], effector_points_[3 * goal.effector + 1],
+                                effector_points_[3 * goal.effector + 2]);
+    if (mixed.allFinite()) goal.position = mixed;
+  }
+}
+
+kinematics::IkResult IkStage::apply(double t, std::span<double> frame, const TargetAims* aims, LiveLayer* live,
+                                    double now_s) noexcept {
   if (goals_.empty()) return {kinematics::IkStatus::converged, 0, 0, 0};
   const double local = show_.local_time(t);
   double rpy[3] = {0, 0, 0};
@@ -83,9 +98,12 @@ kinematics::IkResult IkStage::apply(double t, std::span<double> frame, const Tar
       goals_[i].orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
                               Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
                               Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
-    // A target held by hand: its point, the show's orientation.
-    if (aims && aims->held(i)) goals_[i].position = aims->point(i);
   }
+  if (live) mix_live(*live, now_s);
+  // A target held by hand: its point, the show's orientation, above any live control.
+  if (aims)
+    for (std::size_t i = 0; i < goals_.size(); ++i)
+      if (aims->held(i)) goals_[i].position = aims->point(i);
   const kinematics::IkOptions options = cold_ ? kinematics::cold_start_ik_options() : kinematics::default_ik_options();
   const kinematics::IkResult result = kinematics::solve_ik(kinematics_.model, workspace_, goals_, q_, q_next_, options);
   if (record_ik_outcome(stats_, result)) {

@@ -7,7 +7,7 @@
 namespace avar::session {
 
 LiveSession::LiveSession(const rig::Rig& rig, const config::InputMap& map, const std::vector<std::string>& uris)
-    : inputs_(config::live_channels(rig), map.mappings) {
+    : inputs_(config::live_channels(rig), map.mappings, config::live_effectors(rig)) {
   for (const std::string& uri : uris) sources_.push_back(inputs::make_input_source(uri));
   try {
     for (auto& source : sources_) source->start(inputs_.sink());

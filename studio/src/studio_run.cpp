@@ -14,9 +14,11 @@ playback::Show new_show(const std::string& name, double duration_s) {
   return show;
 }
 
-StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path) {
+StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path,
+                              const std::optional<std::string>& inputs_path) {
   rig::Rig rig = config::load_rig_file(rig_path);
-  config::InputMap inputs = config::load_input_map(rig, rig_path, false);
+  config::InputMap inputs =
+      inputs_path ? config::load_input_map(rig, *inputs_path, true) : config::load_input_map(rig, rig_path, false);
   const bool new_file = show_path && !std::filesystem::exists(*show_path);
   edit::ShowDocument document = !show_path ? edit::ShowDocument(new_show("untitled"))
                                 : new_file ? edit::ShowDocument(new_show(std::filesystem::path(*show_path).stem().string()))

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "../support/child_process.hpp"
+#include "../support/osc_sender.hpp"
 #include "../support/cli_run.hpp"
 #include "../support/studio_client.hpp"
 #include "../support/temp_file.hpp"
@@ -99,6 +101,39 @@ TEST(StudioCommand, ANewShowPathIsMadeWhenSaved) {
   EXPECT_EQ(studio.wait_for(std::chrono::seconds(20)), 0) << studio.err();
   EXPECT_NE(studio.err().find("new show: " + show + " is made when you save"), std::string::npos) << studio.err();
   EXPECT_NE(read_all(show).find("jaw"), std::string::npos);
+}
+
+TEST(StudioCommand, AnOscControlSteersTheShowsGazeTarget) {
+  // The gaze head's show, paused at its start: the fly it looks at is to the right (y -0.8 m).
+  const int osc_port = testing::free_udp_port();
+  testing::ChildProcess studio({AVAR_BINARY, "studio", AVAR_SOURCE_DIR "/examples/shows/look-around.yaml", "--rig",
+                                AVAR_SOURCE_DIR "/examples/rigs/gaze-head.yaml", "--sim", "--inputs",
+                                AVAR_SOURCE_DIR "/examples/inputs/gaze-head-stick.yaml", "--input",
+                                "osc://127.0.0.1:" + std::to_string(osc_port)});
+  const int port = port_in(studio.read_out_until("e-stop"));
+  ASSERT_GT(port, 0) << studio.out() << studio.err();
+  testing::StudioClient client(port, "/ws");
+  ASSERT_TRUE(client.next("hello"));
+  testing::OscSender osc(osc_port);
+  // 0.75 of gaze_y's range [-1.2, 1.2] m: 0.6 m to the left. The neck turns there.
+  double y = 0, pan = 0;
+  bool held = true;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (std::chrono::steady_clock::now() < deadline && !(std::abs(y - 0.6) < 1e-3 && pan > 20)) {
+    ASSERT_TRUE(osc.send("/avar/control/gaze_y", 0.75f));
+    const auto status = client.next("status");
+    ASSERT_TRUE(status);
+    y = (*status)["targets"][0]["point"][1].get<double>();
+    held = (*status)["targets"][0]["held"].get<bool>();
+    for (const auto& channel : (*status)["channels"])
+      if (channel["name"] == "neck_pan") pan = channel["command"].get<double>();
+  }
+  EXPECT_NEAR(y, 0.6, 1e-3);
+  EXPECT_GT(pan, 20);  // looking left, toward it
+  EXPECT_FALSE(held);  // a live control, not a hand in the studio
+  client.send(R"({"type": "stop"})");
+  ASSERT_TRUE(client.next("ok"));
+  EXPECT_EQ(studio.wait_for(std::chrono::seconds(20)), 0) << studio.err();
 }
 
 TEST(StudioCommand, BadOptionsAreRefusedBeforeAnythingOpens) {

@@ -79,6 +79,49 @@ TEST(InputMap, AnAdditiveRangeIsAnOffsetWithinTheChannelsSpan) {
             std::string::npos);
 }
 
+TEST(InputMap, AMappingMayDriveOneAxisOfAnInverseKinematicsTarget) {
+  const rig::Rig rig = load_rig_file(std::string(AVAR_SOURCE_DIR) + "/examples/rigs/gaze-head.yaml");
+  const InputMap map = load_input_map(
+      rig,
+      testing::write_temp_file("targets.yaml",
+                               "inputs:\n  mappings:\n"
+                               "    - {control: x, target: eyes, axis: y, range: [-1, 1]}\n"
+                               "    - {control: y, target: eyes, axis: z, range: [0, 1], mode: relative, rate: 0.5}\n"),
+      true);
+  ASSERT_EQ(map.mappings.size(), 2u);
+  EXPECT_EQ(map.mappings[0].output, control::MappingOutput::target);
+  EXPECT_EQ(map.mappings[0].effector, 0u);
+  EXPECT_EQ(map.mappings[0].axis, 1u);
+  EXPECT_DOUBLE_EQ(map.mappings[0].low, -1);
+  EXPECT_EQ(map.mappings[1].axis, 2u);
+  EXPECT_EQ(map.mappings[1].mode, control::MappingMode::relative);
+  EXPECT_DOUBLE_EQ(map.mappings[1].rate, 0.5);
+  EXPECT_EQ(live_effectors(rig), std::vector<std::string>{"eyes"});
+  const InputMap example = load_input_map(rig, std::string(AVAR_SOURCE_DIR) + "/examples/inputs/gaze-head-stick.yaml", true);
+  EXPECT_EQ(example.mappings.size(), 2u);
+}
+
+TEST(InputMap, ATargetMappingNamesAnEffectorAnAxisAndARangeInMetres) {
+  const std::string rig_path = std::string(AVAR_SOURCE_DIR) + "/examples/rigs/gaze-head.yaml";
+  const rig::Rig rig = load_rig_file(rig_path);
+  const auto error = [&](const std::string& mapping) {
+    return testing::load_error([&](const std::string& path) { (void)load_input_map(rig, path, true); },
+                               "inputs:\n  mappings:\n    - " + mapping + "\n", "target_inputs.yaml");
+  };
+  EXPECT_NE(error("{control: x, target: hand, axis: y, range: [-1, 1]}")
+                .find("unknown target 'hand'; expected one of the kinematics' effectors: eyes"),
+            std::string::npos);
+  EXPECT_NE(error("{control: x, target: eyes, axis: w, range: [-1, 1]}").find("to be x, y or z"), std::string::npos);
+  EXPECT_NE(error("{control: x, target: eyes, axis: y}").find("range"), std::string::npos);
+  EXPECT_NE(error("{control: x, target: eyes, axis: y, range: [-1, 1000]}").find("within ±100"), std::string::npos);
+  EXPECT_NE(error("{control: x, target: eyes, channel: jaw, axis: y, range: [-1, 1]}").find("not both"), std::string::npos);
+  EXPECT_NE(error("{control: x, channel: jaw, axis: y}").find("an axis applies to a target mapping only"), std::string::npos);
+  // A rig without kinematics has no targets to steer.
+  EXPECT_NE(input_map_error("inputs:\n  mappings:\n    - {control: x, target: eyes, axis: y, range: [-1, 1]}\n")
+                .find("needs the rig's kinematics: section"),
+            std::string::npos);
+}
+
 TEST(InputMap, ARigFileMayCarryItsOwnInputsSection) {
   const std::string path = testing::write_temp_file("rig_with_inputs.yaml", std::string(kInputMapRig) + kInputs);
   const rig::Rig rig = load_rig_file(path);

@@ -143,5 +143,59 @@ TEST(LiveInputs, RefusesAMappingOnAChannelTheRigLacks) {
   EXPECT_THROW(LiveInputs(live_test_channels(), {live_test_mapping("x", 5, 0, 1)}), std::invalid_argument);
 }
 
+ControlMapping live_target_mapping(std::string control, std::size_t effector, std::size_t axis, double low, double high) {
+  ControlMapping m = live_test_mapping(std::move(control), 0, low, high);
+  m.output = MappingOutput::target;
+  m.effector = effector;
+  m.axis = axis;
+  return m;
+}
+
+TEST(LiveInputs, ATargetMappingMovesOneAxisOfItsEffectorsGoalAndLeavesTheRest) {
+  // Two effectors, eyes and hand; the stick drives the eyes' y from -0.5 m to 0.5 m.
+  LiveInputs live(live_test_channels(), {live_target_mapping("x", 0, 1, -0.5, 0.5)}, {"eyes", "hand"});
+  const double nan = std::nan("");
+  std::vector<double> points{1, -0.8, 0.3, nan, nan, nan};  // the show moves the eyes only
+  live.apply_targets(0, points);
+  EXPECT_EQ(points[1], -0.8);  // nothing posted: the show's goal
+  live.sink().post("x", 0.6, true, 7);
+  points = {1, -0.8, 0.3, nan, nan, nan};
+  live.apply_targets(0.02, points);
+  EXPECT_DOUBLE_EQ(points[0], 1);
+  EXPECT_DOUBLE_EQ(points[1], 0.3);
+  EXPECT_DOUBLE_EQ(points[2], 0.3);
+  for (std::size_t k = 3; k < 6; ++k) EXPECT_TRUE(std::isnan(points[k])) << k;
+  // The channels are not touched by it; the arrival is reported once the tick's mix is done.
+  std::vector<double> frame{12, 34};
+  live.apply(0.02, frame);
+  EXPECT_DOUBLE_EQ(frame[0], 12);
+  EXPECT_DOUBLE_EQ(frame[1], 34);
+  EXPECT_EQ(live.newest_taken_ns(), 7);
+  EXPECT_TRUE(live.target_mixer().active(0));
+}
+
+TEST(LiveInputs, ARelativeTargetMappingMovesFromTheShowsGoalWithinItsBounds) {
+  ControlMapping m = live_target_mapping("x", 0, 2, 0.1, 0.5);
+  m.mode = MappingMode::relative;
+  m.rate = 0.2;  // m/s at full deflection
+  LiveInputs live(live_test_channels(), {m}, {"eyes"});
+  std::vector<double> points{1, 0, 0.3};
+  live.apply_targets(0, points);
+  live.sink().post("x", 1.0, true, 1);
+  for (int k = 1; k <= 150; ++k) {
+    points = {1, 0, 0.3};
+    live.apply_targets(k * 0.01, points);
+    if (k == 10) {
+      EXPECT_NEAR(points[2], 0.32, 1e-12);  // from the show's 0.3 at 0.2 m/s
+    }
+  }
+  EXPECT_DOUBLE_EQ(points[2], 0.5);  // held at the bound
+}
+
+TEST(LiveInputs, RefusesATargetMappingOnAnEffectorTheRigLacks) {
+  EXPECT_THROW(LiveInputs(live_test_channels(), {live_target_mapping("x", 1, 0, 0, 1)}, {"eyes"}), std::invalid_argument);
+  EXPECT_THROW(LiveInputs(live_test_channels(), {live_target_mapping("x", 0, 3, 0, 1)}, {"eyes"}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace avar::control

@@ -22,6 +22,12 @@
 //         blend: override           # override | additive
 //         crossfade: 0.3            # s, hand-over both ways
 //         timeout: 2                # s without a message before handing back; 0 = never
+//       - control: x                # or: one axis of an inverse-kinematics target
+//         target: head              # an effector of the rig's kinematics
+//         axis: y                   # x | y | z, the rig's base frame
+//         range: [-0.4, 0.4]        # metres (required): absolute: the span; relative: the bounds
+//         mode: relative            # relative: rate in m/s
+//         rate: 0.5
 
 #include <string>
 #include <vector>
@@ -46,5 +52,8 @@ InputMap load_input_map(const rig::Rig& rig, const std::string& path, bool requi
 
 /// The rig's channels as LiveInputs takes them.
 std::vector<control::LiveChannel> live_channels(const rig::Rig& rig);
+/// The rig's kinematic effectors' names, in the model's order, as LiveInputs takes them (none
+/// without a kinematics section).
+std::vector<std::string> live_effectors(const rig::Rig& rig);
 
 }  // namespace avar::config

@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "avar/control/live_layer.hpp"
 #include "avar/control/target_aims.hpp"
 #include "avar/rig/rig.hpp"
 #include "avar/kinematics/ik_goal.hpp"
@@ -43,9 +44,12 @@ class IkStage {
   IkStage(const rig::RigKinematics& kinematics, const playback::Show& show, std::span<const double> rest_frame);
 
   /// Solves for the targets at playing time t (seconds; wrapped like the tracks) and writes the
-  /// driven channels' targets into frame (indexed by channel). A target `aims` holds is solved for
-  /// its held point instead of the show's. Real-time safe.
-  kinematics::IkResult apply(double t, std::span<double> frame, const TargetAims* aims = nullptr) noexcept;
+  /// driven channels' targets into frame (indexed by channel). The show's goal points first go
+  /// through `live` (LiveLayer::apply_targets at loop time now_s: live controls steering a
+  /// target); then a target `aims` holds is solved for its held point instead. Real-time safe
+  /// when live's apply_targets is.
+  kinematics::IkResult apply(double t, std::span<double> frame, const TargetAims* aims = nullptr, LiveLayer* live = nullptr,
+                             double now_s = 0) noexcept;
 
   /// Where target `index` was last asked to be (metres, the rig's base frame): the show's point,
   /// or the held one. Before the first apply(): the origin.
@@ -61,12 +65,15 @@ class IkStage {
   std::span<const std::size_t> driven_channels() const noexcept { return driven_channels_; }
 
  private:
+  void mix_live(LiveLayer& live, double now_s) noexcept;
+
   const rig::RigKinematics& kinematics_;
   const playback::Show& show_;
   kinematics::IkWorkspace workspace_;
   std::vector<kinematics::IkGoal> goals_;
   std::vector<playback::CurveCursor> cursors_;  ///< 6 per target: x, y, z, roll, pitch, yaw
   std::vector<double> q_, q_next_;
+  std::vector<double> effector_points_;       ///< 3 per effector of the model: what `live` mixes
   std::vector<std::size_t> driven_bindings_;  ///< indices into kinematics_.bindings
   std::vector<std::size_t> driven_channels_;
   bool cold_ = true;

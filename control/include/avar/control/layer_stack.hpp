@@ -22,6 +22,10 @@ class LayerStack final : public LiveLayer {
     for (LiveLayer* layer : layers_)
       if (layer) layer->apply(now_s, frame);
   }
+  void apply_targets(double now_s, std::span<double> points) noexcept override {
+    for (LiveLayer* layer : layers_)
+      if (layer) layer->apply_targets(now_s, points);
+  }
 
  private:
   std::vector<LiveLayer*> layers_;

@@ -29,6 +29,10 @@ class HoldLayer final : public control::LiveLayer {
   std::size_t channel_count() const noexcept { return held_.size(); }
 
   void apply(double now_s, std::span<double> frame) noexcept override;
+  /// The layers below move the goals; holds are of channels only.
+  void apply_targets(double now_s, std::span<double> points) noexcept override {
+    if (below_) below_->apply_targets(now_s, points);
+  }
 
  private:
   control::LiveLayer* below_;

@@ -46,10 +46,11 @@ struct StudioFiles {
   bool new_file = false;  ///< show_path does not exist yet: a new show, written there on save
 };
 
-/// Opens the rig and the show: the show file when it exists, a new show named after it when it
-/// does not, a new "untitled" show without a path. InputError (file:line:col) for a file that
-/// cannot be read.
-StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path);
+/// Opens the rig, its live controls' mappings (`inputs_path`'s inputs: section, or the rig's own)
+/// and the show: the show file when it exists, a new show named after it when it does not, a new
+/// "untitled" show without a path. InputError (file:line:col) for a file that cannot be read.
+StudioFiles open_studio_files(const std::string& rig_path, const std::optional<std::string>& show_path,
+                              const std::optional<std::string>& inputs_path = std::nullopt);
 
 /// The folder of the browser page built with this avar (index.html and what it loads); empty when
 /// this build made none (it needs node, npm and emscripten) or the folder is gone.
