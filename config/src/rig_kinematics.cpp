@@ -15,6 +15,7 @@
 #include "avar/kinematics/denavit_hartenberg.hpp"
 #include "avar/kinematics/model_builder.hpp"
 #include "avar/kinematics/urdf_import.hpp"
+#include "avar/kinematics/urdf_visuals.hpp"
 #include "yaml_vectors.hpp"
 
 namespace avar::config {
@@ -126,7 +127,7 @@ rig::RigKinematics bind_imported(const rig::Rig& rig, const kinematics::Model& i
   }
   for (const kinematics::Effector& e : imported.effectors())
     builder.add_effector({e.name, imported.joint(e.joint).name, e.tool}, e.where);
-  return rig::RigKinematics{builder.build(), std::move(bindings), section.where()};
+  return rig::RigKinematics{builder.build(), std::move(bindings), section.where(), {}};
 }
 
 /// dh: {convention: standard | modified, rows: [{a, alpha, d, theta}], tool: {xyz, rpy}}
@@ -174,7 +175,10 @@ rig::RigKinematics read_rig_kinematics(const rig::Rig& rig, const YamlRef& node)
     // A relative path is relative to the rig file.
     std::filesystem::path path = urdf->as_string("the URDF file");
     if (path.is_relative()) path = std::filesystem::path(*node.file).parent_path() / path;
-    return bind_imported(rig, kinematics::model_from_urdf_file(path.string()), node.at("joints", "the kinematics section"), node);
+    rig::RigKinematics imported =
+        bind_imported(rig, kinematics::model_from_urdf_file(path.string()), node.at("joints", "the kinematics section"), node);
+    imported.visuals = kinematics::visuals_from_urdf_file(path.string());
+    return imported;
   }
   if (auto dh = node.find("dh")) {
     if (node.find("effectors")) node.at("effectors", "").fail("a DH chain's effector is its tip; expected no effectors section");
@@ -288,7 +292,7 @@ rig::RigKinematics read_rig_kinematics(const rig::Rig& rig, const YamlRef& node)
       builder.add_effector(spec, e.where());
     }
   }
-  return rig::RigKinematics{builder.build(), std::move(bindings), node.where()};
+  return rig::RigKinematics{builder.build(), std::move(bindings), node.where(), {}};
 }
 
 }  // namespace avar::config

@@ -1,6 +1,9 @@
 #include "rig_json.hpp"
 
 #include <Eigen/Geometry>
+#include <cctype>
+#include <filesystem>
+#include <optional>
 
 #include "avar/playback/runtime/keys.hpp"
 
@@ -23,6 +26,46 @@ const char* joint_type_name(kinematics::JointType type) {
     case kinematics::JointType::fixed: return "fixed";
   }
   return "fixed";
+}
+
+const char* shape_name(kinematics::VisualShape shape) {
+  switch (shape) {
+    case kinematics::VisualShape::box: return "box";
+    case kinematics::VisualShape::cylinder: return "cylinder";
+    case kinematics::VisualShape::sphere: return "sphere";
+    case kinematics::VisualShape::mesh: return "mesh";
+  }
+  return "box";
+}
+
+/// A visual's shape: box {size: [x, y, z]}, cylinder {radius, length} (along its frame's z),
+/// sphere {radius}, or mesh {url, format, file, found, scale}; metres.
+json visual_json(const rig::RigKinematics& k, std::size_t index) {
+  const kinematics::LinkVisual& v = k.visuals[index];
+  const std::optional<std::size_t> joint = v.joint.empty() ? std::nullopt : k.model.find_joint(v.joint);
+  json out = {{"link", v.link},
+              {"joint", joint ? json(*joint) : json(nullptr)},
+              {"origin", transform_json(v.origin)},
+              {"shape", shape_name(v.shape)},
+              {"color", v.rgba ? json(*v.rgba) : json(nullptr)}};
+  switch (v.shape) {
+    case kinematics::VisualShape::box: out["size"] = {v.size.x(), v.size.y(), v.size.z()}; break;
+    case kinematics::VisualShape::cylinder:
+      out["radius"] = v.size.x();
+      out["length"] = v.size.y();
+      break;
+    case kinematics::VisualShape::sphere: out["radius"] = v.size.x(); break;
+    case kinematics::VisualShape::mesh: {
+      std::error_code ignored;
+      out["url"] = "/api/mesh/" + std::to_string(index);
+      out["format"] = mesh_format(v.mesh_path);
+      out["file"] = v.mesh;
+      out["found"] = std::filesystem::is_regular_file(v.mesh_path, ignored);
+      out["scale"] = {v.scale.x(), v.scale.y(), v.scale.z()};
+      break;
+    }
+  }
+  return out;
 }
 
 /// The joint tree in topological order (a parent before its children). A movable joint names the
@@ -49,10 +92,19 @@ json kinematics_json(const rig::Rig& rig) {
   json effectors = json::array();
   for (const kinematics::Effector& e : model.effectors())
     effectors.push_back({{"name", e.name}, {"joint", e.joint}, {"origin", transform_json(e.tool)}});
-  return {{"joints", joints}, {"effectors", effectors}};
+  json visuals = json::array();
+  for (std::size_t v = 0; v < rig.kinematics->visuals.size(); ++v) visuals.push_back(visual_json(*rig.kinematics, v));
+  return {{"joints", joints}, {"effectors", effectors}, {"visuals", visuals}};
 }
 
 }  // namespace
+
+std::string mesh_format(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".stl" || ext == ".dae" || ext == ".obj") return ext.substr(1);
+  return "unknown";
+}
 
 json rig_json(const rig::Rig& rig) {
   json channels = json::array();

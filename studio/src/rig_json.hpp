@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "avar/rig/rig.hpp"
 
@@ -15,6 +16,10 @@ inline nlohmann::json maybe(double value) { return std::isfinite(value) ? nlohma
 
 /// `{name, rate_hz, channels, links, kinematics}`; kinematics is null for a rig without one.
 nlohmann::json rig_json(const rig::Rig& rig);
+
+/// A mesh file's format as the page loads it, from its extension: "stl", "dae", "obj", or
+/// "unknown".
+std::string mesh_format(const std::string& path);
 
 /// `{interpolations, easings, handle_types, extrapolations}`: the show file's names, in order.
 nlohmann::json curve_vocabulary_json();

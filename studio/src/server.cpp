@@ -2,6 +2,7 @@
 
 #include <civetweb.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -108,12 +109,31 @@ struct ServerCallbacks {
       body = server.studio_.hello();
     } else if (uri == "/api/status") {
       body = server.studio_.status();
+    } else if (uri.substr(0, kMeshPrefix.size()) == kMeshPrefix) {
+      return send_mesh(server, conn, uri.substr(kMeshPrefix.size()));
     } else {
-      mg_send_http_error(conn, 404, "%s", "no such API: /api/hello or /api/status\n");
+      mg_send_http_error(conn, 404, "%s", "no such API: /api/hello, /api/status or /api/mesh/N\n");
       return 404;
     }
     mg_send_http_ok(conn, "application/json", static_cast<long long>(body.size()));
     mg_write(conn, body.data(), body.size());
+    return 200;
+  }
+
+  static constexpr std::string_view kMeshPrefix = "/api/mesh/";
+
+  /// The rig's mesh file by its visual's index (only files the rig names: no path comes from
+  /// the client).
+  static int send_mesh(Server& server, mg_connection* conn, std::string_view digits) {
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    const std::optional<std::string> file =
+        ec == std::errc() && end == digits.data() + digits.size() ? server.studio_.mesh_file(index) : std::nullopt;
+    if (!file) {
+      mg_send_http_error(conn, 404, "%s", "no such mesh: /api/mesh/N names a mesh visual of the rig whose file exists\n");
+      return 404;
+    }
+    mg_send_mime_file(conn, file->c_str(), "application/octet-stream");
     return 200;
   }
 

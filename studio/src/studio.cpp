@@ -15,6 +15,8 @@
 #include "avar/studio/protocol.hpp"
 #include "rig_json.hpp"
 
+#include <filesystem>
+
 namespace avar::studio {
 namespace {
 
@@ -133,6 +135,14 @@ std::string Studio::waveform_message() const {
                       {"peaks", std::move(peaks)}});
   }
   return json{{"type", "waveform"}, {"tracks", std::move(tracks)}}.dump();
+}
+
+std::optional<std::string> Studio::mesh_file(std::size_t index) const {
+  if (!rig_.kinematics || index >= rig_.kinematics->visuals.size()) return std::nullopt;
+  const kinematics::LinkVisual& v = rig_.kinematics->visuals[index];
+  std::error_code ignored;
+  if (v.shape != kinematics::VisualShape::mesh || !std::filesystem::is_regular_file(v.mesh_path, ignored)) return std::nullopt;
+  return v.mesh_path;
 }
 
 std::string Studio::hello() const {

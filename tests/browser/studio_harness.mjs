@@ -11,7 +11,7 @@ import { spawn } from 'node:child_process';
 import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
-import { basename, isAbsolute, join, resolve } from 'node:path';
+import { basename, dirname, isAbsolute, join, resolve } from 'node:path';
 
 const args = process.argv.slice(2);
 const option = (name) => {
@@ -25,7 +25,7 @@ const option = (name) => {
 const avar = option('--avar');
 const modules = option('--modules');
 export const out = option('--out');
-const source = resolve(import.meta.dirname, '../..');
+export const source = resolve(import.meta.dirname, '../..');
 const CHROMIUM = process.env.AVAR_CHROMIUM ?? '/usr/bin/chromium';
 if (!existsSync(CHROMIUM)) {
   console.log(`skipped: no Chromium at ${CHROMIUM} (apt-get install chromium; scripts/install-deps.sh does)`);
@@ -58,7 +58,11 @@ export async function openStudio({ show, rig, channel, patience = 15, files = {}
   copyFileSync(isAbsolute(show) ? show : join(source, 'examples/shows', show), showFile);
   const original = readFileSync(showFile);
   const rigFile = join(work, `rig-${basename(rig)}`);
-  const rigText = readFileSync(isAbsolute(rig) ? rig : join(source, 'examples/rigs', rig), 'utf8');
+  const rigSource = isAbsolute(rig) ? rig : join(source, 'examples/rigs', rig);
+  // The copy stays beside nothing: a URDF the rig names relative to itself is named in full.
+  const rigText = readFileSync(rigSource, 'utf8').replace(/\n( +)urdf: (\S+)/, (line, indent, path) =>
+    isAbsolute(path) ? line : `\n${indent}urdf: ${join(dirname(rigSource), path)}`,
+  );
   // A link written as a block (port: sim on a line of its own) or in flow style ({port: sim, ...}).
   const widened = rigText
     .replace(/\n( +)port: sim([^\n]*)\n/g, '\n$1port: sim$2\n$1watchdog_ms: 5000\n')
@@ -97,3 +101,19 @@ export async function onCanvas(page, id, x, y) {
   const box = await page.locator(`#${id}`).boundingBox();
   return { x: box.x + x, y: box.y + y };
 }
+
+/// The colour drawn at a point of the 3-D view (its CSS pixels), as [r, g, b].
+export const previewPixelAt = (page, x, y) =>
+  page.evaluate(
+    ([x, y]) => {
+      const view = document.getElementById('preview');
+      const copy = document.createElement('canvas');
+      copy.width = view.width;
+      copy.height = view.height;
+      const g = copy.getContext('2d');
+      g.drawImage(view, 0, 0);
+      const ratio = view.width / view.clientWidth;
+      return [...g.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data].slice(0, 3);
+    },
+    [x, y],
+  );

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { onCanvas, openStudio, out, until } from './studio_harness.mjs';
+import { onCanvas, openStudio, out, previewPixelAt, until } from './studio_harness.mjs';
 
 let page;
 let close;
@@ -25,21 +25,7 @@ async function holdAt(channel, value) {
   // Within half a degree: the simulated hobby servo has a deadband, as real ones do.
   await until(`${channel} at ${value}`, async () => Math.abs((await measured(channel)) - value) < 0.5);
 }
-/// The colour drawn at a point of the 3-D view (its CSS pixels).
-const pixelAt = (x, y) =>
-  page.evaluate(
-    ([x, y]) => {
-      const view = document.getElementById('preview');
-      const copy = document.createElement('canvas');
-      copy.width = view.width;
-      copy.height = view.height;
-      const g = copy.getContext('2d');
-      g.drawImage(view, 0, 0);
-      const ratio = view.width / view.clientWidth;
-      return [...g.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data].slice(0, 3);
-    },
-    [x, y],
-  );
+const pixelAt = (x, y) => previewPixelAt(page, x, y);
 const drawnAt = (name) => page.evaluate((n) => window.avarStudio.preview.screenPosition(n), name);
 
 test('the 3-D view draws the joints and turns with the simulated servos', async () => {

@@ -37,7 +37,7 @@ Rig head_rig() {
   Eigen::Isometry3d eye = Eigen::Isometry3d::Identity();
   eye.translation() = Eigen::Vector3d(0.05, 0, 0);
   b.add_effector({"gaze", "tilt", eye});
-  RigKinematics k{b.build(), {{0, 0, kDeg, 0}, {1, 1, kDeg, 0}, {2, 2, kDeg, 0}}, {}};
+  RigKinematics k{b.build(), {{0, 0, kDeg, 0}, {1, 1, kDeg, 0}, {2, 2, kDeg, 0}}, {}, {}};
   r.kinematics = std::move(k);
   return r;
 }

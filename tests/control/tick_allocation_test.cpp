@@ -72,7 +72,7 @@ Scene scene_with_targets() {
   b.add_joint({"tilt", kinematics::JointType::revolute, "pan", Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitY(), -0.78, 0.78});
   b.add_effector({"eye", "tilt", Eigen::Isometry3d::Identity()});
   const double deg = 3.141592653589793 / 180;
-  sc.rig.kinematics = RigKinematics{b.build(), {{0, 0, deg, 0}, {1, 1, deg, 0}}, {}};
+  sc.rig.kinematics = RigKinematics{b.build(), {{0, 0, deg, 0}, {1, 1, deg, 0}}, {}, {}};
   sc.show.tracks.erase(sc.show.tracks.begin(), sc.show.tracks.begin() + 2);
   playback::TargetTrack target;
   target.effector = "eye";

@@ -32,9 +32,9 @@ std::string example_file(const std::string& path) { return std::string(AVAR_SOUR
 /// The hello-head figure behind a studio server, its session running in real time on a thread
 /// of its own until stopped.
 struct ServedFigure {
-  rig::Rig rig = config::load_rig_file(example_file("rigs/hello-head.yaml"));
-  Studio studio{rig, edit::ShowDocument(config::load_show_file(example_file("shows/hello-head.yaml"))), ""};
-  session::ShowSession session{rig, studio.initial_show(), config()};
+  rig::Rig rig;
+  Studio studio;
+  session::ShowSession session;
   std::atomic<int> interrupts{0};
   std::optional<Server> server;
   std::thread runner;
@@ -48,7 +48,11 @@ struct ServedFigure {
     c.realtime = {0, false, -1};
     return c;
   }
-  explicit ServedFigure(ServerOptions options = {}) {
+  explicit ServedFigure(ServerOptions options = {}, const std::string& rig_file = "rigs/hello-head.yaml",
+                        const std::string& show_file = "shows/hello-head.yaml")
+      : rig(config::load_rig_file(example_file(rig_file))),
+        studio(rig, edit::ShowDocument(config::load_show_file(example_file(show_file))), ""),
+        session(rig, studio.initial_show(), config()) {
     studio.attach(&session);
     session.add_observer(studio);
     EXPECT_FALSE(session.start_links());
@@ -162,6 +166,37 @@ TEST(StudioServer, ServesThePageFolderWithoutTheTokenAndTheConversationWithIt) {
   StudioClient stranger(f.server->port(), "/ws");
   EXPECT_FALSE(stranger.connected());
   std::filesystem::remove_all(dir);
+}
+
+TEST(StudioServer, AUrdfFiguresLooksAreInTheHelloAndItsMeshesServedByIndex) {
+  ServerOptions options;
+  options.host = "0.0.0.0";  // meshes are the figure's: behind the token like the rest of /api
+  ServedFigure f(options, "rigs/urdf-head.yaml", "shows/look-around.yaml");
+  const std::string token = "?token=" + f.server->token();
+  const auto [status, body] = http_get(f.server->port(), "/api/hello" + token);
+  ASSERT_EQ(status, "HTTP/1.0 200 OK");
+  const json visuals = json::parse(body)["rig"]["kinematics"]["visuals"];
+  ASSERT_EQ(visuals.size(), 7u);
+  EXPECT_EQ(visuals[0]["shape"], "box");
+  EXPECT_EQ(visuals[0]["joint"], nullptr);  // the base link: the base frame
+  EXPECT_EQ(visuals[1]["shape"], "cylinder");
+  EXPECT_DOUBLE_EQ(visuals[1]["length"].get<double>(), 0.26);
+  const json& skull = visuals[3];
+  EXPECT_EQ(skull["shape"], "mesh");
+  EXPECT_EQ(skull["format"], "stl");
+  EXPECT_EQ(skull["found"], true);
+  EXPECT_EQ(skull["url"], "/api/mesh/3");
+  EXPECT_EQ(skull["joint"], 1);  // tilt, the model's second joint
+  EXPECT_EQ(visuals[6]["format"], "obj");
+  const auto [mesh_status, mesh] = http_get(f.server->port(), "/api/mesh/3" + token);
+  EXPECT_EQ(mesh_status, "HTTP/1.0 200 OK");
+  EXPECT_EQ(mesh.size(), std::filesystem::file_size(example_file("rigs/urdf-head/meshes/head.stl")));
+  EXPECT_EQ(mesh.substr(0, 29), "avar example: urdf-head skull");
+  EXPECT_EQ(http_get(f.server->port(), "/api/mesh/3").first, "HTTP/1.0 403 Forbidden");
+  // Only the rig's own meshes, by index: a box, a number past the end, a path are not files.
+  EXPECT_EQ(http_get(f.server->port(), "/api/mesh/0" + token).first, "HTTP/1.0 404 Not Found");
+  EXPECT_EQ(http_get(f.server->port(), "/api/mesh/7" + token).first, "HTTP/1.0 404 Not Found");
+  EXPECT_EQ(http_get(f.server->port(), "/api/mesh/..%2f..%2fetc%2fpasswd" + token).first, "HTTP/1.0 404 Not Found");
 }
 
 TEST(StudioServer, TheHttpApiAnswersGet) {

@@ -1,14 +1,17 @@
-// The 3-D preview: the rig's kinematic tree drawn as simple link shapes (a sphere at each joint,
-// a rod to the next, a marker at each effector), posed every status by where the device says
-// each joint's channel is (what was sent, where the device reports nothing). Orbit with the left
-// button, zoom with the wheel, pan with the right button; click a joint to select its channel's
-// track. The show's inverse-kinematics targets are drawn as yellow balls where the figure is
+// The 3-D preview: the rig's kinematic tree drawn as its URDF's looks where the rig has them
+// (figure_visuals.ts: boxes, cylinders, spheres, meshes) and as simple link shapes otherwise (a
+// sphere at each joint, a rod to the next, a marker at each effector), posed every status by
+// where the device says each joint's channel is (what was sent, where the device reports
+// nothing). Orbit with the left button, zoom with the wheel, pan with the right button; click a
+// joint to select its channel's track. The show's inverse-kinematics targets are drawn as yellow balls where the figure is
 // asked to reach or look; drag one and the target is held there (the joints follow through the
 // rig's IK, within their limits) until it is let go, when the show's path takes it back. A rig
 // without a kinematics section has no preview: its gauges show every channel.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { KinematicJoint, Kinematics, Transform } from './protocol';
+import { put } from './dom';
+import { addVisuals, placed } from './figure_visuals';
+import type { KinematicJoint, Kinematics } from './protocol';
 import type { StudioState } from './state';
 
 interface EffectorView {
@@ -21,15 +24,6 @@ interface JointView {
   /// The joint's frame at zero in its parent's (origin), and the motion about its axis inside it.
   motion: THREE.Group;
   ball: THREE.Mesh;
-}
-
-function placed(transform: Transform): THREE.Group {
-  const group = new THREE.Group();
-  const [x, y, z] = transform.xyz;
-  const [w, qx, qy, qz] = transform.quaternion;
-  group.position.set(x, y, z);
-  group.quaternion.set(qx, qy, qz, w);
-  return group;
 }
 
 /// A rod from the frame's origin to `to` (in that frame), `radius` thick.
@@ -59,6 +53,13 @@ export class Preview {
   private readonly heldMaterial = new THREE.MeshStandardMaterial({ color: 0xff8a3d, emissive: 0x552200 });
   private effectors: EffectorView[] = [];
   private built: Kinematics | null = null;
+  /// The simple shapes' rods: hidden while the figure's own visuals draw it.
+  private rods: THREE.Mesh[] = [];
+  /// What the figure's visuals came to: how many were drawn, and why any mesh was not.
+  private visuals: Promise<{ drawn: number; problems: string[] }> = Promise.resolve({ drawn: 0, problems: [] });
+  private visualProblems: string[] = [];
+  /// Each URDF link's frame, by the link's name.
+  private linkFrames = new Map<string, THREE.Object3D>();
   private readonly selectedMaterial = new THREE.MeshStandardMaterial({ color: 0xffb13b });
   private readonly jointMaterial = new THREE.MeshStandardMaterial({ color: 0x5fb3f9 });
   private readonly linkMaterial = new THREE.MeshStandardMaterial({ color: 0xb8c0cc, metalness: 0.2, roughness: 0.6 });
@@ -108,15 +109,26 @@ export class Preview {
     this.targetRadius = radius * 1.3;
     this.joints = [];
     this.effectors = [];
+    this.rods = [];
+    this.visualProblems = [];
+    // With the figure's own looks, the joints are small handles on it and the rods give way.
+    const looks = kinematics.visuals ?? [];
+    const ballRadius = looks.length > 0 ? radius * 0.45 : radius;
+    const addRod = (parent: THREE.Object3D, to: THREE.Vector3, thickness: number): void => {
+      const link = rod(to, thickness, this.linkMaterial);
+      if (!link) return;
+      link.visible = looks.length === 0;
+      parent.add(link);
+      this.rods.push(link);
+    };
     for (const joint of kinematics.joints) {
       const parent = joint.parent === null ? figure : (this.joints[joint.parent]?.motion ?? figure);
       const frame = placed(joint.origin);
-      const link = rod(frame.position.clone(), radius * 0.5, this.linkMaterial);
-      if (link) parent.add(link);
+      addRod(parent, frame.position.clone(), radius * 0.5);
       parent.add(frame);
       const motion = new THREE.Group();
       frame.add(motion);
-      const ball = new THREE.Mesh(new THREE.SphereGeometry(radius, 24, 16), this.jointMaterial);
+      const ball = new THREE.Mesh(new THREE.SphereGeometry(ballRadius, 24, 16), this.jointMaterial);
       ball.userData.joint = this.joints.length;
       motion.add(ball);
       this.joints.push({ joint, motion, ball });
@@ -124,13 +136,33 @@ export class Preview {
     for (const effector of kinematics.effectors) {
       const parent = this.joints[effector.joint]?.motion ?? figure;
       const frame = placed(effector.origin);
-      const link = rod(frame.position.clone(), radius * 0.35, this.linkMaterial);
-      if (link) parent.add(link);
+      addRod(parent, frame.position.clone(), radius * 0.35);
       parent.add(frame);
       frame.add(new THREE.AxesHelper(radius * 4));
       this.effectors.push({ name: effector.name, frame });
     }
     this.frame();
+    if (looks.length > 0) {
+      const frameOf = (joint: number | null): THREE.Object3D => (joint === null ? figure : (this.joints[joint]?.motion ?? figure));
+      this.linkFrames = new Map(looks.map((look) => [look.link, frameOf(look.joint)]));
+      const load = addVisuals(looks, frameOf, () => this.draw());
+      this.visuals = load.done.then((problems) => {
+        // A mesh that could not be had: the simple shapes draw the figure too, and the note says why.
+        this.visualProblems = problems;
+        if (problems.length > 0)
+          for (const link of this.rods) link.visible = true;
+        this.frame();
+        this.render();
+        return { drawn: load.objects.length, problems };
+      });
+    } else {
+      this.visuals = Promise.resolve({ drawn: 0, problems: [] });
+    }
+  }
+
+  /// Settles when the figure's visuals are drawn: how many, and why any mesh was not (for tests).
+  visualsReady(): Promise<{ drawn: number; problems: string[] }> {
+    return this.visuals;
   }
 
   /// Frames the figure and its targets: looks at their middle from the front-left, above.
@@ -223,6 +255,15 @@ export class Preview {
     });
   }
 
+  /// Where a point of a URDF link (metres, its frame) is drawn, in the canvas's CSS pixels.
+  linkScreenPosition(link: string, point: [number, number, number] = [0, 0, 0]): { x: number; y: number } | null {
+    const frame = this.linkFrames.get(link);
+    if (!frame) return null;
+    this.scene.updateMatrixWorld();
+    const p = frame.localToWorld(new THREE.Vector3(...point)).project(this.camera);
+    return { x: ((p.x + 1) / 2) * this.canvas.clientWidth, y: ((1 - p.y) / 2) * this.canvas.clientHeight };
+  }
+
   /// Where a target is drawn, in the canvas's CSS pixels.
   targetScreenPosition(index: number): { x: number; y: number } | null {
     const ball = this.targets[index];
@@ -245,11 +286,13 @@ export class Preview {
     const kinematics = this.state.rig?.kinematics ?? null;
     const usable = kinematics !== null && this.renderer !== null;
     this.canvas.hidden = !usable;
-    this.message.hidden = usable;
-    if (!this.renderer) this.message.textContent = 'no 3-D preview: this browser gives no WebGL';
-    else if (!kinematics) this.message.textContent = 'this rig has no kinematics section: the gauges below show every channel';
+    if (usable && this.built !== kinematics) this.build(kinematics);
+    put(this.message, 'hidden', usable && this.visualProblems.length === 0);
+    if (!this.renderer) put(this.message, 'textContent', 'no 3-D preview: this browser gives no WebGL');
+    else if (!kinematics) put(this.message, 'textContent', 'this rig has no kinematics section: the gauges below show every channel');
+    else if (this.visualProblems.length > 0)
+      put(this.message, 'textContent', `drawn with simple shapes as well: ${this.visualProblems.join('; ')}`);
     if (!usable) return;
-    if (this.built !== kinematics) this.build(kinematics);
     for (const view of this.joints) {
       const q = this.jointValue(view.joint.name) ?? 0;
       const axis = new THREE.Vector3(...view.joint.axis);

@@ -38,9 +38,29 @@ export interface KinematicJoint {
   offset?: number;
 }
 
+/// What a URDF link looks like, in its link's frame (the frame of `joint` after its motion, or the
+/// base frame when null); metres.
+export interface Visual {
+  link: string;
+  joint: number | null;
+  origin: Transform;
+  shape: 'box' | 'cylinder' | 'sphere' | 'mesh';
+  color: [number, number, number, number] | null;
+  size?: [number, number, number];
+  radius?: number;
+  length?: number;
+  /// mesh: where the studio serves the file, its format, its name in the URDF, whether it exists.
+  url?: string;
+  format?: 'stl' | 'dae' | 'obj' | 'unknown';
+  file?: string;
+  found?: boolean;
+  scale?: [number, number, number];
+}
+
 export interface Kinematics {
   joints: KinematicJoint[];
   effectors: { name: string; joint: number; origin: Transform }[];
+  visuals?: Visual[];
 }
 
 export interface Rig {

@@ -19,6 +19,7 @@
 #include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/linear_calibration.hpp"
 #include "avar/kinematics/model.hpp"
+#include "avar/kinematics/urdf_visuals.hpp"
 #include "avar/rig/link_options.hpp"
 
 namespace avar::rig {
@@ -160,6 +161,9 @@ struct RigKinematics {
   kinematics::Model model;
   std::vector<JointBinding> bindings;  ///< one per movable joint, in q order
   SourceLocation where;
+  /// What the figure looks like, for previews (a URDF's <visual> elements); empty: draw the
+  /// joint tree with simple shapes.
+  std::vector<kinematics::LinkVisual> visuals;
 };
 
 /// Indices into RigKinematics::bindings of the joints that move an effector (every movable joint

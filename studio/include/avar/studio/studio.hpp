@@ -56,6 +56,9 @@ class Studio final : public session::SessionObserver {
   /// The newest tick as a "status" message, whether or not it was taken (phase "disabled" and
   /// no channels before the first tick).
   std::string status();
+  /// The file of the rig's visual `index` (the hello's kinematics.visuals, mesh url
+  /// /api/mesh/INDEX) when it is a mesh whose file exists; nullopt otherwise. Any thread.
+  std::optional<std::string> mesh_file(std::size_t index) const;
 
   /// Publisher thread: keeps the newest record.
   void on_tick(const session::TickRecord& record) override;
