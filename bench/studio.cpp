@@ -3,16 +3,22 @@
 // - Glass to wire: a slider's hold message sent -> the first tick whose frame carries it (the
 //   frame the links send at that tick). Median, p95 and worst over N holds, each sent at a random
 //   phase of the tick. Target: p95 <= 30 ms.
+// - Glass to wire from the glass: the same from a real pointerdown on the jaw's slider in the
+//   studio's page (headless Chromium, bench/browser/studio_glass.mjs; its event time stamp) to
+//   the moment the simulated Maestro behind the serial port holds the new target (the bytes of
+//   that tick read and parsed; watched every 100 us). Skipped, with the reason, without the built
+//   page, node or Chromium.
 // - Scrubbing back and forth at 10 Hz: scrub messages jumping between the show's two ends, every
 //   tick's commands checked against each channel's range, speed and acceleration limits.
 //   Target: 0 commands outside any limit.
-// Usage: avar-bench-studio [--holds N] [--scrub-seconds S] [--status-hz R]
+// Usage: avar-bench-studio [--holds N] [--pointer-holds N] [--scrub-seconds S] [--status-hz R]
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sys/wait.h>
 #include <mutex>
 #include <random>
 #include <string>
@@ -21,7 +27,9 @@
 
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/sim/sim_maestro.hpp"
 #include "avar/studio/server.hpp"
+#include "avar/studio/studio_run.hpp"
 #include "support/studio_client.hpp"
 
 namespace {
@@ -83,6 +91,81 @@ class LimitCheck final : public session::SessionObserver {
   int have_ = 0;
 };
 
+/// Every moment (system clock, ns since the epoch) the simulated device's target for one servo
+/// left its resting value, watched from a thread of its own under the device host's lock.
+class DeviceDepartures {
+ public:
+  DeviceDepartures(assembly::FigureLinks& figure, std::size_t link, int servo)
+      : figure_(figure), link_(link), servo_(servo), thread_([this] { watch(); }) {}
+  ~DeviceDepartures() {
+    stop_.store(true);
+    thread_.join();
+  }
+  std::vector<std::int64_t> taken() {
+    const std::lock_guard lock(mutex_);
+    return departures_;
+  }
+
+ private:
+  std::uint16_t target() {
+    std::uint16_t t = 0;
+    figure_.with_simulated(link_, [&](sim::ByteDevice& d) { t = dynamic_cast<sim::SimMaestro&>(d).target(servo_); });
+    return t;
+  }
+  void watch() {
+    const std::uint16_t rest = target();
+    bool away = false;
+    while (!stop_.load()) {
+      const bool now_away = target() != rest;
+      if (now_away && !away) {
+        const std::lock_guard lock(mutex_);
+        departures_.push_back(std::chrono::system_clock::now().time_since_epoch().count());
+      }
+      away = now_away;
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+  }
+  assembly::FigureLinks& figure_;
+  std::size_t link_;
+  int servo_;
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::vector<std::int64_t> departures_;
+  std::thread thread_;
+};
+
+/// The pointer half in Chromium (studio_glass.mjs): each press's time (system clock, ms), less
+/// the page's clock skew. Empty, with `why` said, when it cannot run.
+std::vector<double> pointer_presses([[maybe_unused]] const std::string& url, [[maybe_unused]] int holds, std::string& why) {
+#ifndef AVAR_BENCH_NODE
+  why = "node was not found when avar was configured";
+  return {};
+#else
+  const std::string command = std::string(AVAR_BENCH_NODE) + " " + AVAR_SOURCE_DIR "/bench/browser/studio_glass.mjs --url '" +
+                              url + "' --modules " AVAR_SOURCE_DIR "/studio/page --holds " + std::to_string(holds) + " 2>&1";
+  FILE* child = popen(command.c_str(), "r");
+  if (!child) {
+    why = "could not start node";
+    return {};
+  }
+  std::vector<double> presses;
+  double skew = 0;
+  std::string last, said;  // the last line, and every line that is not a measurement
+  char line[512];
+  while (std::fgets(line, sizeof line, child)) {
+    last = line;
+    if (std::sscanf(line, "skew %lf", &skew) == 1) continue;
+    double at = 0;
+    if (std::sscanf(line, "pointer %lf", &at) == 1) presses.push_back(at - skew);
+    else if (last != "done\n") said += "  " + last;
+  }
+  const int status = pclose(child);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 77) why = "no Chromium (" + last.substr(0, last.find('\n')) + ")";
+  else if (status != 0) why = "the page's run failed:\n" + said;
+  return presses;
+#endif
+}
+
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v[static_cast<std::size_t>(
@@ -93,12 +176,15 @@ double percentile(std::vector<double> v, double p) {
 
 int main(int argc, char** argv) {
   int holds = 100;
+  int pointer_holds = 100;
   double scrub_seconds = 60;
   studio::ServerOptions server_options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--holds" && i + 1 < argc) {
       holds = std::atoi(argv[++i]);
+    } else if (arg == "--pointer-holds" && i + 1 < argc) {
+      pointer_holds = std::atoi(argv[++i]);
     } else if (arg == "--scrub-seconds" && i + 1 < argc) {
       scrub_seconds = std::atof(argv[++i]);
     } else if (arg == "--status-hz" && i + 1 < argc) {
@@ -107,6 +193,7 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: avar-bench-studio [--holds N] [--scrub-seconds S]\n"
           "  --holds N          slider holds timed from message to wire (default 100)\n"
+          "  --pointer-holds N  slider presses in Chromium timed from the pointer event to the device (default 100; 0: none)\n"
           "  --scrub-seconds S  scrubbing back and forth at 10 Hz for S seconds (default 60)\n"
           "  --status-hz R      status messages a second from the server (default 20)\n");
       return arg == "--help" || arg == "-h" ? 0 : 2;
@@ -137,6 +224,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   session.begin();
+  server_options.assets_dir = studio::built_page_dir();
   studio::Server server(studio, server_options);
   std::atomic<int> interrupts{0};
   std::thread runner([&] { (void)session.run(interrupts); });
@@ -174,6 +262,27 @@ int main(int argc, char** argv) {
     wait_until([&] { return departure.at_rest(); }, std::chrono::seconds(2));
   }
 
+  // Glass to wire from the glass: a pointerdown in the page to the device holding the target.
+  std::vector<double> pointer_ms;
+  std::string pointer_skipped;
+  if (pointer_holds > 0 && server_options.assets_dir.empty()) pointer_skipped = "the studio's page is not built";
+  else if (pointer_holds > 0) {
+    const auto actuator = std::find_if(rig.actuators.begin(), rig.actuators.end(),
+                                       [&](const rig::ActuatorSpec& a) { return a.channel.value == jaw; });
+    DeviceDepartures departures(session.figure(), actuator->link.value, actuator->device_channel);
+    const std::vector<double> presses = pointer_presses(server.url(), pointer_holds, pointer_skipped);
+    const std::vector<std::int64_t> taken = departures.taken();
+    // Each press's latency: to the first departure after it.
+    for (const double press : presses) {
+      const auto first =
+          std::find_if(taken.begin(), taken.end(), [&](std::int64_t t) { return static_cast<double>(t) / 1e6 >= press; });
+      if (first != taken.end()) pointer_ms.push_back(static_cast<double>(*first) / 1e6 - press);
+    }
+    if (pointer_skipped.empty() && pointer_ms.size() != static_cast<std::size_t>(pointer_holds))
+      pointer_skipped = std::to_string(presses.size()) + " presses made, " + std::to_string(taken.size()) + " departures seen, " +
+                        std::to_string(pointer_ms.size()) + " paired; expected " + std::to_string(pointer_holds) + " of each";
+  }
+
   // Scrubbing back and forth at 10 Hz between the show's ends.
   limits.start();
   const auto scrubs = static_cast<int>(scrub_seconds * 10);
@@ -194,6 +303,12 @@ int main(int argc, char** argv) {
         latency_ms.size(), config.rate_hz, percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
         percentile(latency_ms, 1.0));
   }
+  if (!pointer_ms.empty())
+    std::printf(
+        "glass to wire from the glass (pointerdown on the jaw's slider in Chromium -> the simulated Maestro holds the new "
+        "target), %zu presses: median %.2f ms, p95 %.2f ms, worst %.2f ms (target p95 <= 30 ms)\n",
+        pointer_ms.size(), percentile(pointer_ms, 0.5), percentile(pointer_ms, 0.95), percentile(pointer_ms, 1.0));
+  if (!pointer_skipped.empty()) std::printf("glass to wire from the glass: %s\n", pointer_skipped.c_str());
   std::printf(
       "scrubbing at 10 Hz for %g s (%d jumps between 0.5 s and 11.5 s): %llu ticks, %llu commands outside a channel's "
       "range, %llu faster than its max_velocity, %llu beyond its max_acceleration (target 0); records dropped %llu\n",
