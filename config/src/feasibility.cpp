@@ -391,6 +391,7 @@ playback::Show retime(const playback::Show& show, const rig::Rig& rig) {
     }
     // Cues move with the time around them, as the keys do.
     for (playback::Cue& cue : out.cues) cue.time = warp(cue.time);
+    for (playback::Marker& marker : out.markers) marker.time = warp(marker.time);
     out.duration = warp(out.duration);
   }
   return out;

@@ -138,4 +138,29 @@ void read_cues(const YamlRef& list, playback::Show& show) {
   }
 }
 
+void read_markers(const YamlRef& list, playback::Show& show) {
+  list.expect_sequence("markers (a list of {time, name})");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YamlRef node = list[i];
+    const std::string what = "marker " + std::to_string(i + 1);
+    node.expect_map(what + " ({time: SECONDS, name: TEXT})");
+    node.expect_only_keys({"time", "name"}, what);
+    playback::Marker marker;
+    marker.where = node.where();
+    marker.time = read_key_time(node, what);
+    if (marker.time < 0 || marker.time > show.duration)
+      node.at("time", what)
+          .fail("expected " + what + " within the show, from 0 to " + format_number(show.duration) + " s, found " +
+                format_number(marker.time) + " s");
+    const YamlRef name = node.at("name", what);
+    marker.name = name.as_string("the name of " + what);  // refuses an empty one
+    for (const playback::Marker& other : show.markers)
+      if (other.name == marker.name)
+        name.fail("marker name '" + marker.name + "' is used twice (first at line " + std::to_string(other.where.line) +
+                  "); expected each marker named once");
+    show.markers.push_back(std::move(marker));
+  }
+  std::stable_sort(show.markers.begin(), show.markers.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
+}
+
 }  // namespace avar::config::detail

@@ -270,7 +270,8 @@ playback::TargetTrack read_target(const YamlRef& name, const YamlRef& body, doub
 
 playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& path) {
   const YamlRef root{root_node, &path};
-  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes", "cues"}, "the show file");
+  root.expect_only_keys({"name", "duration", "loop", "tracks", "targets", "clips", "layers", "visemes", "cues", "markers"},
+                        "the show file");
 
   playback::Show show;
   show.where = {path, 1, 1};
@@ -307,6 +308,7 @@ playback::Show show_from_yaml(const YAML::Node& root_node, const std::string& pa
   }
   detail::read_clips_and_layers(root, show);
   if (auto cues = root.find("cues")) detail::read_cues(*cues, show);
+  if (auto markers = root.find("markers")) detail::read_markers(*markers, show);
   return show;
 }
 

@@ -299,6 +299,13 @@ std::string show_text(const playback::Show& show, const std::string& comment) {
   if (!show.layers.empty()) write_layers(y, show);
   if (std::any_of(show.cues.begin(), show.cues.end(), [](const playback::Cue& c) { return c.is_osc(); }))
     write_osc_cues(y, show.cues);
+  if (!show.markers.empty()) {
+    y << YAML::Key << "markers" << YAML::Value << YAML::BeginSeq;
+    for (const playback::Marker& m : show.markers)
+      y << YAML::Flow << YAML::BeginMap << YAML::Key << "time" << YAML::Value << m.time << YAML::Key << "name" << YAML::Value
+        << YAML::DoubleQuoted << m.name << YAML::EndMap;
+    y << YAML::EndSeq;
+  }
   y << YAML::EndMap;
   return "# " + comment + '\n' + y.c_str() + '\n';
 }

@@ -172,6 +172,9 @@ std::string describe(const KeyEdit& edit) {
       return "set key " + std::to_string(e.key) + " of " + quoted(e.channel) + " (" + seconds(e.value.time) + ", " +
              format_number(e.value.value) + ", " + playback::to_string(e.value.interpolation) + ")";
     }
+    std::string operator()(const SetMarkers& e) const {
+      return "set the markers (" + std::to_string(e.markers.size()) + (e.markers.size() == 1 ? " marker)" : " markers)");
+    }
   };
   return std::visit(Describe{}, edit);
 }
@@ -186,6 +189,7 @@ std::vector<RawKey> edited_keys(const std::vector<RawKey>& keys, const KeyEdit& 
     std::vector<RawKey> operator()(const SetKey& e) const { return set(keys, e); }
     std::vector<RawKey> operator()(const InsertTime&) const { return keys; }  // rippled above
     std::vector<RawKey> operator()(const DeleteTime&) const { return keys; }
+    std::vector<RawKey> operator()(const SetMarkers&) const { return keys; }  // no keys: ShowDocument sets them
   };
   if (edited_channel(edit).empty()) throw EditError("an edit names no channel");
   return std::visit(Apply{keys}, edit);

@@ -122,9 +122,14 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
     touched.push_back(std::move(fresh));
     return touched.back();
   };
-  const Times now{show_.duration, show_.cues};
+  const Times now{show_.duration, show_.cues, show_.markers};
   std::optional<Times> times;
   for (const KeyEdit& edit : edits) {
+    if (const auto* markers = std::get_if<SetMarkers>(&edit)) {
+      times = times ? *times : now;
+      times->markers = checked_markers(*markers, times->duration);
+      continue;
+    }
     if (!is_time_edit(edit)) {
       Working& w = working(edited_channel(edit));
       w.keys = edited_keys(w.keys, edit, w.channel);
@@ -198,8 +203,8 @@ void ShowDocument::retime(const rig::Rig& rig) {
   Step step{"retime " + std::to_string(spans) + " span" + (spans == 1 ? "" : "s") + " to the rig's limits (+" +
                 format_number(retimed.duration - show_.duration) + " s)",
             {},
-            Times{show_.duration, show_.cues},
-            Times{retimed.duration, retimed.cues}};
+            Times{show_.duration, show_.cues, show_.markers},
+            Times{retimed.duration, retimed.cues, retimed.markers}};
   // config::retime keeps the tracks and their order: every track is a change, its curve built.
   for (std::size_t i = 0; i < show_.tracks.size(); ++i) {
     step.changes.push_back({show_.tracks[i].channel, i, show_.tracks[i].raw, retimed.tracks[i].raw});
@@ -239,6 +244,7 @@ void ShowDocument::put(const std::optional<Times>& times) {
   last_change_.whole = true;
   show_.duration = times->duration;
   show_.cues = times->cues;
+  show_.markers = times->markers;
 }
 
 ShowDocument::Times ShowDocument::rippled(const Times& times, const KeyEdit& edit) const {
@@ -247,7 +253,7 @@ ShowDocument::Times ShowDocument::rippled(const Times& times, const KeyEdit& edi
                     (show_.layered() ? "layers" : "targets") +
                     ", whose times it would leave behind (edit those times in the file)");
   rippled_time(0, edit);  // checks the edit itself
-  Times out{times.duration, {}};
+  Times out{times.duration, {}, {}};
   if (const auto* insert = std::get_if<InsertTime>(&edit)) {
     if (insert->at <= times.duration) out.duration += insert->length;
   } else {
@@ -262,6 +268,27 @@ ShowDocument::Times ShowDocument::rippled(const Times& times, const KeyEdit& edi
     out.cues.push_back(cue);
     out.cues.back().time = std::clamp(*t, 0.0, out.duration);
   }
+  for (const playback::Marker& marker : times.markers) {
+    const std::optional<double> t = rippled_time(marker.time, edit);
+    if (!t) continue;
+    out.markers.push_back(marker);
+    out.markers.back().time = std::clamp(*t, 0.0, out.duration);
+  }
+  return out;
+}
+
+std::vector<playback::Marker> ShowDocument::checked_markers(const SetMarkers& edit, double duration) {
+  std::vector<playback::Marker> out = edit.markers;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const playback::Marker& m = out[i];
+    const std::string what = "set the markers: marker " + std::to_string(i + 1);
+    if (!std::isfinite(m.time) || m.time < 0 || m.time > duration)
+      throw EditError(what + " at " + format_number(m.time) + " s is outside the show (0 to " + format_number(duration) + " s)");
+    if (m.name.empty()) throw EditError(what + " has no name");
+    for (std::size_t j = 0; j < i; ++j)
+      if (out[j].name == m.name) throw EditError(what + ": the name '" + m.name + "' is used twice");
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
   return out;
 }
 

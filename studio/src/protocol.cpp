@@ -130,7 +130,7 @@ std::vector<std::size_t> indices(const Fields& f, const json& list) {
 
 edit::KeyEdit key_edit(const json& v, std::size_t n, const std::vector<std::string>& channels) {
   const Fields f(v, "edit " + std::to_string(n + 1) + " of message 'edit'");
-  const std::string op = f.text("op", "add, delete, move, set, insert_time or delete_time");
+  const std::string op = f.text("op", "add, delete, move, set, insert_time, delete_time or markers");
   if (op == "add") {
     f.expect_only({"op", "channel", "keys"});
     const std::string c = channel(f, channels);
@@ -164,7 +164,18 @@ edit::KeyEdit key_edit(const json& v, std::size_t n, const std::vector<std::stri
     f.expect_only({"op", "from", "to"});
     return edit::DeleteTime{f.number("from", "show time in seconds"), f.number("to", "show time in seconds")};
   }
-  f.fail("unknown op \"" + op + "\"; expected add, delete, move, set, insert_time or delete_time");
+  if (op == "markers") {
+    f.expect_only({"op", "markers"});
+    const json& list = f.array("markers", "the show's markers, each {time, name}");
+    edit::SetMarkers markers;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Fields m(list[i], "markers[" + std::to_string(i) + "] of edit " + std::to_string(n + 1));
+      m.expect_only({"time", "name"});
+      markers.markers.push_back({m.number("time", "show time in seconds"), m.text("name", "the marker's name"), {}});
+    }
+    return markers;
+  }
+  f.fail("unknown op \"" + op + "\"; expected add, delete, move, set, insert_time, delete_time or markers");
 }
 
 }  // namespace

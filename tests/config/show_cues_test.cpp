@@ -9,6 +9,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_check.hpp"
 #include "avar/config/show_file.hpp"
+#include "avar/config/show_writer.hpp"
 
 namespace avar::config {
 namespace {
@@ -79,6 +80,33 @@ TEST(ShowCues, ADigitalCueOnAnAnalogChannelFailsTheRigCheck) {
   ASSERT_FALSE(check.ok());
   EXPECT_NE(check.errors.front().message.find("a digital cue switches channel 'key', which is analog"), std::string::npos)
       << check.errors.front().message;
+}
+
+TEST(ShowMarkers, AreReadInTimeOrderAndWrittenBackAsTheyWere) {
+  const std::string text = std::string(kCueShow) + "markers:\n  - {time: 3.5, name: \"out\"}\n  - {time: 0.5, name: 12}\n";
+  const playback::Show show = load_show_file(testing::write_temp_file("marker_show.yaml", text));
+  ASSERT_EQ(show.markers.size(), 2U);
+  EXPECT_EQ(show.markers[0].time, 0.5);
+  EXPECT_EQ(show.markers[0].name, "12");  // a name that looks like a number stays a name
+  EXPECT_EQ(show.markers[0].where.line, 11);
+  EXPECT_EQ(show.markers[1].name, "out");
+  const playback::Show again = load_show_text(show_text(show, "markers"), "again.yaml");
+  ASSERT_EQ(again.markers.size(), 2U);
+  EXPECT_EQ(again.markers[0].name, "12");
+  EXPECT_EQ(again.markers[1].time, 3.5);
+  EXPECT_EQ(load_show_text(show_text(again, "markers"), "again.yaml").markers[0].name, "12");
+}
+
+TEST(ShowMarkers, EachBadMarkerIsNamed) {
+  const auto error = [](const std::string& markers) {
+    return avar::testing::load_error(load_show_file, std::string(kCueShow) + "markers:\n" + markers, "marker_show.yaml");
+  };
+  EXPECT_EQ(error("  - {time: 5, name: late}\n"), ":10:12: expected marker 1 within the show, from 0 to 4 s, found 5 s");
+  EXPECT_NE(error("  - {time: 1, name: a}\n  - {time: 2, name: a}\n").find("marker name 'a' is used twice (first at line 10)"),
+            std::string::npos);
+  EXPECT_EQ(error("  - {time: 1, name: \"\"}\n"), ":10:21: expected the name of marker 1 to be a name, found ''");
+  EXPECT_NE(error("  - {time: 1}\n").find("name"), std::string::npos);
+  EXPECT_NE(error("  - {time: 1, name: a, colour: red}\n").find("colour"), std::string::npos);
 }
 
 }  // namespace

@@ -277,6 +277,42 @@ TEST(ShowDocument, InsertingTimeMovesEveryLaterKeyAndCueAndDeletingCutsThemOut) 
   EXPECT_THROW(doc.apply(InsertTime{std::nan(""), 1}), EditError);
 }
 
+TEST(ShowDocument, MarkersAreSetAsOneUndoStepAndMoveWithTheTimeAroundThem) {
+  ShowDocument doc = ShowDocument::open(AVAR_SOURCE_DIR "/examples/shows/stage-lights.yaml");
+  ASSERT_EQ(doc.show().markers.size(), 2u);  // scream at 2.4 s, quiet at 3.6 s
+  // Add one (out of order: kept sorted), rename one, in one step.
+  doc.apply(SetMarkers{{{2.4, "scream!", {}}, {3.6, "quiet", {}}, {1.0, "intro", {}}}});
+  ASSERT_EQ(doc.show().markers.size(), 3u);
+  EXPECT_EQ(doc.show().markers[0].name, "intro");
+  EXPECT_EQ(doc.show().markers[1].name, "scream!");
+  EXPECT_EQ(doc.undo_label(), "set the markers (3 markers)");
+  EXPECT_TRUE(doc.last_change().whole);
+  // Time edits carry them: an insert before moves them, a cut over one deletes it.
+  doc.apply(InsertTime{2.0, 0.5});
+  EXPECT_DOUBLE_EQ(doc.show().markers[1].time, 2.9);
+  EXPECT_DOUBLE_EQ(doc.show().markers[0].time, 1.0);
+  doc.apply(DeleteTime{2.8, 3.0});
+  ASSERT_EQ(doc.show().markers.size(), 2u);
+  EXPECT_EQ(doc.show().markers[1].name, "quiet");
+  // Bad lists change nothing.
+  const std::size_t steps = doc.undo_steps();
+  EXPECT_THROW(doc.apply(SetMarkers{{{1, "a", {}}, {2, "a", {}}}}), EditError);
+  EXPECT_THROW(doc.apply(SetMarkers{{{-1, "a", {}}}}), EditError);
+  EXPECT_THROW(doc.apply(SetMarkers{{{1, "", {}}}}), EditError);
+  EXPECT_THROW(doc.apply(SetMarkers{{{std::nan(""), "a", {}}}}), EditError);
+  EXPECT_EQ(doc.undo_steps(), steps);
+  // Undone to the start, the file saves as it was opened.
+  while (doc.undo()) {
+  }
+  EXPECT_EQ(doc.show().markers.size(), 2u);
+  EXPECT_EQ(doc.show().markers[0].name, "scream");
+  EXPECT_FALSE(doc.modified());
+  // A show with targets takes markers too (no time of its moves).
+  ShowDocument targets = ShowDocument::open(AVAR_SOURCE_DIR "/examples/shows/look-around.yaml");
+  targets.apply(SetMarkers{{{8.4, "speaks", {}}}});
+  EXPECT_EQ(targets.show().markers.size(), 1u);
+}
+
 TEST(ShowDocument, ATimeEditIsRefusedWhereItWouldLeaveLayersOrTargetsBehind) {
   ShowDocument doc = ShowDocument::open(AVAR_SOURCE_DIR "/examples/shows/look-around.yaml");
   ASSERT_FALSE(doc.show().targets.empty());

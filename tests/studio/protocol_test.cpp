@@ -137,6 +137,14 @@ TEST(StudioProtocol, AnEditMessageIsAGroupOfKeyEdits) {
   EXPECT_EQ(set.value.easing, playback::Easing::ease_out);
   EXPECT_EQ(set.value.amplitude, 3);
   EXPECT_EQ(set.value.period, 0.2);
+  const ClientMessage markers = parse_client_message(
+      R"({"type": "edit", "edits": [{"op": "markers", "markers": [{"time": 2.5, "name": "scream"}, {"time": 1, "name": "in"}]}]})",
+      kChannels);
+  const auto& set_markers = std::get<edit::SetMarkers>(std::get<Edit>(markers).edits[0]);
+  ASSERT_EQ(set_markers.markers.size(), 2u);
+  EXPECT_EQ(set_markers.markers[0].time, 2.5);
+  EXPECT_EQ(set_markers.markers[0].name, "scream");
+  EXPECT_EQ(set_markers.markers[1].name, "in");
 }
 
 TEST(StudioProtocol, AMalformedMessageIsRefusedNamingTheFieldAndWhatWasExpected) {
@@ -158,8 +166,9 @@ TEST(StudioProtocol, AMalformedMessageIsRefusedNamingTheFieldAndWhatWasExpected)
   EXPECT_EQ(refusal(R"({"type": "edit", "edits": []})"), "message 'edit': field 'edits': expected at least one edit");
   EXPECT_EQ(refusal(R"({"type": "edit", "edits": [{"op": "move", "channel": "jaw", "keys": [-1], "dt": 0, "dv": 0}]})"),
             "edit 1 of message 'edit': keys[0]: expected a key index (0, 1, ...), found the number -1");
-  EXPECT_EQ(refusal(R"({"type": "edit", "edits": [{"op": "shift", "channel": "jaw"}]})"),
-            "edit 1 of message 'edit': unknown op \"shift\"; expected add, delete, move, set, insert_time or delete_time");
+  EXPECT_EQ(
+      refusal(R"({"type": "edit", "edits": [{"op": "shift", "channel": "jaw"}]})"),
+      "edit 1 of message 'edit': unknown op \"shift\"; expected add, delete, move, set, insert_time, delete_time or markers");
   // The key's own fields: the show reader's words.
   const std::string easing_on_linear = refusal(
       R"({"type": "edit", "edits": [{"op": "add", "channel": "jaw", "keys": [{"time": 1, "value": 2, "easing": "ease_in"}]}]})");

@@ -121,6 +121,7 @@ export interface ShowJson {
   loop: boolean;
   tracks: Record<string, Track>;
   cues?: Cue[];
+  markers?: Marker[];
   layers?: Layer[];
   targets?: Record<string, TargetJson>;
   [field: string]: unknown;
@@ -273,7 +274,14 @@ export type Edit =
   | { op: 'move'; channel: string; keys: number[]; dt: number; dv: number }
   | { op: 'set'; channel: string; key: number; value: Key }
   | { op: 'insert_time'; at: number; length: number }
-  | { op: 'delete_time'; from: number; to: number };
+  | { op: 'delete_time'; from: number; to: number }
+  | { op: 'markers'; markers: Marker[] };
+
+/// A named point of show time (the show file's `markers:`): for navigating; it plays nothing.
+export interface Marker {
+  time: number;
+  name: string;
+}
 
 /// The keys of a track, whichever form the show file gave it.
 export function trackKeys(track: Track | undefined): Key[] {

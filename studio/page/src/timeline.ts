@@ -1,9 +1,11 @@
-// The dope sheet: a ruler with cues and the playhead, and a row of keys per channel. Drag on the
-// ruler to scrub (the figure glides after the playhead); click a key to select it (Shift adds),
-// drag a box to select many, drag selected keys to move them in time, double-click a row to add a
-// key there with the curve's value, Delete removes the selection. Wheel zooms, Shift+wheel pans.
+// The dope sheet: a ruler with cues, markers (markers.ts) and the playhead, and a row of keys
+// per channel. Drag on the ruler to scrub (the figure glides after the playhead); click a key to
+// select it (Shift adds), drag a box to select many, drag selected keys to move them in time,
+// double-click a row to add a key there with the curve's value, Delete removes the selection.
+// Wheel zooms, Shift+wheel pans.
 import { drawPlayhead, fitCanvas, formatTime, themeColor, TimeAxis, tickStep, zoomView } from './axis';
 import { typingIn } from './dom';
+import { Markers } from './markers';
 import { drawWaveform } from './waveform';
 import { describeFinding } from './findings';
 import type { Finding, Key, Layer } from './protocol';
@@ -34,6 +36,7 @@ export class DopeSheet {
   /// A drag of keys let go whose last move is still on its way.
   private landing: Extract<Drag, { kind: 'keys' }> | null = null;
   private lastScrub = 0;
+  readonly markers: Markers;
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
@@ -42,7 +45,8 @@ export class DopeSheet {
     canvas.addEventListener('pointerdown', (e) => this.down(e));
     canvas.addEventListener('pointermove', (e) => this.move(e));
     canvas.addEventListener('pointerup', (e) => this.up(e));
-    canvas.addEventListener('dblclick', (e) => void this.addKey(e));
+    this.markers = new Markers(state);
+    canvas.addEventListener('dblclick', (e) => void this.doubleClick(e));
     canvas.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
     window.addEventListener('keydown', (e) => {
       if (typingIn(e) || (e.target instanceof HTMLInputElement && e.target.type === 'range')) return;
@@ -225,6 +229,16 @@ export class DopeSheet {
       });
     }
     this.state.changed();
+  }
+
+  /// On the ruler, a marker is renamed; in a row, a key is added.
+  private async doubleClick(e: MouseEvent): Promise<void> {
+    if (e.offsetY < RULER) {
+      const marker = this.markers.at(this.axis(), e.offsetX);
+      if (marker >= 0) await this.markers.rename(marker);
+      return;
+    }
+    await this.addKey(e);
   }
 
   private async addKey(e: MouseEvent): Promise<void> {
@@ -442,6 +456,15 @@ export class DopeSheet {
       g.fill();
     }
 
+    // Markers: a flag and the name on the ruler (a faint line down the rows comes last).
+    g.fillStyle = color('--marker');
+    for (const marker of this.markers.list()) {
+      const x = axis.x(marker.time);
+      if (x < GUTTER || x > width) continue;
+      g.fillRect(x, RULER - 12, 2, 12);
+      g.fillText(marker.name, x + 4, RULER - 3);
+    }
+
     // Rows: name, keys, selection.
     const findings = new Map<string, Finding[]>();
     for (const f of this.state.findings) findings.set(f.channel, [...(findings.get(f.channel) ?? []), f]);
@@ -489,6 +512,18 @@ export class DopeSheet {
       g.strokeRect(Math.min(d.x0, d.x1), Math.min(d.y0, d.y1), Math.abs(d.x1 - d.x0), Math.abs(d.y1 - d.y0));
       g.setLineDash([]);
     }
+
+    g.strokeStyle = color('--marker');
+    g.globalAlpha = 0.4;
+    for (const marker of this.markers.list()) {
+      const x = axis.x(marker.time);
+      if (x < GUTTER || x > width) continue;
+      g.beginPath();
+      g.moveTo(x + 0.5, RULER);
+      g.lineTo(x + 0.5, height);
+      g.stroke();
+    }
+    g.globalAlpha = 1;
 
     // The playhead: where the pointer scrubs to, or where show time is.
     const t = this.drag?.kind === 'scrub' ? this.lastScrub : (this.state.status?.show_time ?? 0);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "avar/playback/runtime/keys.hpp"
+#include "avar/playback/runtime/show.hpp"
 
 namespace avar::edit {
 
@@ -52,7 +53,7 @@ struct SetKey {
   playback::RawKey value;
 };
 
-/// Ripple insert: `length` seconds of nothing at show time `at`; every key, handle and cue at or
+/// Ripple insert: `length` seconds of nothing at show time `at`; every key, handle, cue and marker at or
 /// after `at` (a key within Curve::kKeySnap of it included) moves that much later, on every
 /// track, and the show grows by `length`.
 struct InsertTime {
@@ -60,19 +61,25 @@ struct InsertTime {
   double length = 0;
 };
 
-/// Ripple delete: the span [from, to) is cut out; keys and cues in it are deleted, those after it
+/// Ripple delete: the span [from, to) is cut out; keys, cues and markers in it are deleted, those after it
 /// move `to - from` earlier on every track, and the show shrinks by the part of the span it had.
 struct DeleteTime {
   double from = 0;
   double to = 0;
 };
 
-using KeyEdit = std::variant<AddKeys, DeleteKeys, MoveKeys, SetKey, InsertTime, DeleteTime>;
+/// Replaces the show's markers whole (add, move, rename and delete are each a new list): each a
+/// finite time within the show and a name, not empty and not another's; kept in time order.
+struct SetMarkers {
+  std::vector<playback::Marker> markers;
+};
+
+using KeyEdit = std::variant<AddKeys, DeleteKeys, MoveKeys, SetKey, InsertTime, DeleteTime, SetMarkers>;
 
 /// Whether the edit changes show time (InsertTime, DeleteTime: every track and the cues).
 bool is_time_edit(const KeyEdit& edit);
 
-/// The channel a key edit applies to; empty for a time edit (every channel).
+/// The channel a key edit applies to; empty for a time edit (every channel) and SetMarkers (none).
 const std::string& edited_channel(const KeyEdit& edit);
 
 /// Where show time `t` goes under a time edit: nullopt when a DeleteTime cuts it out. EditError

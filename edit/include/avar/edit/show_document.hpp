@@ -115,7 +115,10 @@ class ShowDocument {
   struct Times {
     double duration = 0;
     std::vector<playback::Cue> cues;
+    std::vector<playback::Marker> markers;
   };
+  /// The markers an edit sets, checked against the show's duration and sorted (EditError).
+  static std::vector<playback::Marker> checked_markers(const SetMarkers& edit, double duration);
   struct Step {
     std::string label;
     std::vector<TrackChange> changes;

@@ -71,6 +71,14 @@ struct Cue {
   bool is_osc() const noexcept { return !osc_address.empty(); }
 };
 
+/// A named point of a show's time (`markers:` in a show file): where an animator navigates to
+/// and what an editor shows on its ruler; it plays nothing.
+struct Marker {
+  double time = 0;  ///< seconds within the show
+  std::string name;
+  SourceLocation where;
+};
+
 struct Show {
   std::string name;
   double duration = 0;  ///< seconds, > 0
@@ -80,6 +88,7 @@ struct Show {
   std::vector<Clip> clips;    ///< the clips the layers place (none for a plain show)
   std::vector<Layer> layers;  ///< applied bottom (first) to top over `tracks`; none for a plain show
   std::vector<Cue> cues;      ///< in time order
+  std::vector<Marker> markers;  ///< in time order, names unique
   SourceLocation where;
 
   bool layered() const noexcept { return !layers.empty(); }
