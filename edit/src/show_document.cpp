@@ -111,14 +111,17 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
     std::string channel;
     std::optional<playback::RawCurve> before;
     std::vector<playback::RawKey> keys;
+    std::optional<double> audio_start;  ///< where a track's sound begins, rippled by time edits
   };
   std::vector<Working> touched;
   const auto working = [&](const std::string& channel) -> Working& {
     auto w = std::find_if(touched.begin(), touched.end(), [&](const Working& x) { return x.channel == channel; });
     if (w != touched.end()) return *w;
-    Working fresh{channel, std::nullopt, {}};
-    if (const std::optional<std::size_t> i = track_of(channel))
+    Working fresh{channel, std::nullopt, {}, std::nullopt};
+    if (const std::optional<std::size_t> i = track_of(channel)) {
       fresh.before = show_.tracks[*i].raw, fresh.keys = fresh.before->keys;
+      if (fresh.before->audio) fresh.audio_start = fresh.before->audio->start_s;
+    }
     touched.push_back(std::move(fresh));
     return touched.back();
   };
@@ -137,7 +140,13 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
     }
     times = rippled(times ? *times : now, edit);
     for (const playback::Track& t : show_.tracks) working(t.channel);
-    for (Working& w : touched) w.keys = edited_keys(w.keys, edit, w.channel);
+    for (Working& w : touched) {
+      w.keys = edited_keys(w.keys, edit, w.channel);
+      // A sound moves with the time around its start; cut out, it starts where the cut was.
+      if (!w.audio_start) continue;
+      const std::optional<double> start = rippled_time(*w.audio_start, edit);
+      w.audio_start = start ? *start : std::max(0.0, std::get<DeleteTime>(edit).from);
+    }
   }
   // Each changed curve built as playback builds it, before anything changes.
   Step step{group_label(edits), {}, std::nullopt, std::nullopt};
@@ -149,6 +158,7 @@ void ShowDocument::apply(std::span<const KeyEdit> edits, bool continuing) {
     if (!w.keys.empty()) {
       playback::RawCurve raw = w.before ? *w.before : playback::RawCurve({}, {show_.where.file, 0, 0});
       raw.keys = std::move(w.keys);
+      if (raw.audio && w.audio_start) raw.audio->start_s = *w.audio_start;
       try {
         const std::optional<std::size_t> track = track_of(w.channel);
         built.back() = track ? playback::Curve::build(raw, show_.tracks[*track].curve, show_.tracks[*track].raw)

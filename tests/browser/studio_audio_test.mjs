@@ -76,3 +76,11 @@ test("the jaw's voice is drawn under its keys, where the show plays it", async (
   assert.ok(green);
   await page.screenshot({ path: join(out, 'studio-audio.png') });
 });
+
+test('time inserted before the voice moves it with the keys, and undo moves it back', async () => {
+  const start = () => page.evaluate(() => window.avarStudio.state.waveforms.get('jaw')?.start);
+  await page.evaluate(() => window.avarStudio.state.edit([{ op: 'insert_time', at: 0.25, length: 0.5 }]));
+  await until('the voice to start at 1 s', async () => (await start()) === 1);
+  await page.keyboard.press('Control+z');
+  await until('the voice back at 0.5 s', async () => (await start()) === 0.5);
+});

@@ -223,6 +223,15 @@ tracks:
     EXPECT_NEAR(peaks[2 * b], -0.5, 2e-3) << "bucket " << b;
     EXPECT_NEAR(peaks[2 * b + 1], 0.5, 2e-3) << "bucket " << b;
   }
+  // Time inserted before the sound moves it with the jaw's keys; undo moves it back.
+  ASSERT_EQ(reply(studio.handle(R"({"type": "edit", "edits": [{"op": "insert_time", "at": 0.2, "length": 0.25}]})"))["type"],
+            "ok");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "waveform"})"))["tracks"][0]["start"], 0.75);
+  ASSERT_EQ(reply(studio.handle(R"({"type": "edit", "edits": [{"op": "delete_time", "from": 0.5, "to": 1}]})"))["type"], "ok");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "waveform"})"))["tracks"][0]["start"], 0.5);  // cut out: where the cut was
+  ASSERT_EQ(reply(studio.handle(R"({"type": "undo"})"))["type"], "ok");
+  ASSERT_EQ(reply(studio.handle(R"({"type": "undo"})"))["type"], "ok");
+  EXPECT_EQ(reply(studio.handle(R"({"type": "waveform"})"))["tracks"][0]["start"], 0.5);
   // The sound gone since the show was read: the reply names the file.
   std::filesystem::remove(std::filesystem::path(show).parent_path() / "voice.wav");
   const json gone = reply(studio.handle(R"({"type": "waveform"})"));

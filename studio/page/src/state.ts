@@ -68,6 +68,11 @@ export class StudioState {
       this.view = { t0: -0.02 * d, t1: 1.03 * d };
       this.channel = hello.rig.channels[0]?.name ?? null;
     }
+    this.refreshWaveforms();
+  }
+
+  /// The voices of tracks made from sound files, where each starts now.
+  private refreshWaveforms(): void {
     void this.connection.request({ type: 'waveform' })?.then((reply) => {
       if (reply?.type !== 'waveform') return;
       this.waveforms = new Map(reply.tracks.map((w) => [w.channel, w]));
@@ -86,6 +91,8 @@ export class StudioState {
     for (const channel of channels) this.staleCurves.add(channel);
     this.refreshCurves();
     this.requestCheck();
+    // A time edit moves where a track's sound starts (and undo moves it back).
+    if (keysBefore && this.waveforms.size > 0) this.refreshWaveforms();
     this.changed();
   }
 
