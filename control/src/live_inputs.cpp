@@ -63,6 +63,7 @@ LiveInputs::LiveInputs(std::vector<LiveChannel> channels, std::vector<ControlMap
       values_(mailbox_.size(), std::numeric_limits<double>::quiet_NaN()),
       last_out_(channels_.size(), 0),
       touched_(channels_.size(), 0),
+      targets_touched_(effectors_.size(), 0),
       last_points_(3 * effectors_.size(), std::numeric_limits<double>::quiet_NaN()) {
   std::size_t channel_layers = 0, target_layers = 0;
   for (std::size_t i = 0; i < mappings_.size(); ++i) {
@@ -125,6 +126,8 @@ void LiveInputs::apply_targets(double now_s, std::span<double> points) noexcept 
   for (std::size_t i = 0; i < mappings_.size(); ++i)
     if (mappings_[i].output == MappingOutput::target) drive(i, now_s, dt, target_mixer_, last_points_);
   target_mixer_.mix(points, now_s);
+  for (std::size_t i = 0; i < target_mixer_.size(); ++i)
+    if (target_mixer_.weight(i) > 0) targets_touched_[target_mixer_.layer(i).channel / 3] = 1;
   std::copy(points.begin(), points.end(), last_points_.begin());
 }
 

@@ -31,9 +31,29 @@ TakeReport write_take(const TakeOptions& options, const rig::Rig& rig, const pla
     times.push_back(r.seconds()[k] - start);
     for (std::size_t c = 0; c < n; ++c) values[c].push_back(r.commands()[k * n + c]);
   }
+  // The channels a control moved, and the joints of the targets a control steered.
+  std::vector<char> moved(live.touched().begin(), live.touched().end());
+  moved.resize(n, 0);
+  std::vector<char> steered(n, 0);
+  for (std::size_t e = 0; e < live.targets_touched().size() && rig.kinematics; ++e)
+    if (live.targets_touched()[e])
+      for (const std::size_t b : rig::bindings_moving(*rig.kinematics, e)) steered[rig.kinematics->bindings[b].channel] = 1;
+  if (options.merge && rig.kinematics) {
+    // A layer plays under the IK: where the show's targets drive a steered joint, the take would
+    // not be heard.
+    for (const playback::TargetTrack& target : show.targets)
+      if (const auto e = rig.kinematics->model.find_effector(target.effector))
+        for (const std::size_t b : rig::bindings_moving(*rig.kinematics, *e))
+          if (steered[rig.kinematics->bindings[b].channel])
+            throw std::invalid_argument("the take steered target '" + target.effector + "', whose joints (channel '" +
+                                        rig.channels[rig.kinematics->bindings[b].channel].name +
+                                        "' among them) the show's targets drive: a merged layer would be overridden by them; "
+                                        "record the take on its own (without merging); " +
+                                        options.path + " not written");
+  }
   std::vector<std::size_t> performed;
   for (std::size_t c = 0; c < n; ++c)
-    if (live.touched()[c]) performed.push_back(c);
+    if (moved[c] || steered[c]) performed.push_back(c);
   if (times.size() < 2 || !(times.back() > 0) || performed.empty())
     throw std::runtime_error(std::string("nothing to keep: ") +
                              (times.size() < 2 ? "the take ended before the figure ran" : "no control moved a channel") + "; " +

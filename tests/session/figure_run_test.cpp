@@ -99,6 +99,28 @@ TEST(FigureRun, ARigWithoutAStartButtonHasNoneToWaitFor) {
   EXPECT_EQ(run.wait_for_start_button(interrupts), StartWait::no_button);
 }
 
+/// A stepped run at 50 Hz on the simulator, with live inputs from OSC on `port`.
+FigureRunSetup stepped_osc_setup(int port) {
+  FigureRunSetup setup;
+  setup.session.rate_hz = 50;
+  setup.session.stepped = true;
+  setup.session.links.simulate_all = true;
+  setup.input_uris = {"osc://127.0.0.1:" + std::to_string(port)};
+  return setup;
+}
+
+/// A recorder that keeps every tick's samples of `run`, for a take.
+RecorderOptions keeping_recorder(const rig::Rig& rig, const playback::Show& show, const FigureRun& run) {
+  RecorderOptions options;
+  options.channels = rig.channels.size();
+  options.links = rig.links.size();
+  options.controls = run.recorded_controls();
+  options.show_duration_s = show.duration;
+  options.keep_samples = true;
+  options.expected_ticks = 200;
+  return options;
+}
+
 /// A stepped run of hello-head's live-only show with the jaw performed over OSC: a ramp of
 /// values sent from tick 10 to tick 60 of the running phase, then a stop at tick 100. The
 /// recorder kept every tick.
@@ -114,20 +136,8 @@ struct PerformedRun {
   PerformedRun(bool perform, bool over_show)
       : show(over_show ? config::load_show_file(example("shows/hello-head.yaml")) : live_only_show(std::nullopt)) {
     const int port = testing::free_udp_port();
-    FigureRunSetup setup;
-    setup.session.rate_hz = 50;
-    setup.session.stepped = true;
-    setup.session.links.simulate_all = true;
-    setup.input_uris = {"osc://127.0.0.1:" + std::to_string(port)};
-    run = std::make_unique<FigureRun>(rig, show, config::InputMap{}, std::move(setup));
-    RecorderOptions options;
-    options.channels = rig.channels.size();
-    options.links = rig.links.size();
-    options.controls = run->recorded_controls();
-    options.show_duration_s = show.duration;
-    options.keep_samples = true;
-    options.expected_ticks = 200;
-    recorder = std::make_unique<PlayRecorder>(options);
+    run = std::make_unique<FigureRun>(rig, show, config::InputMap{}, stepped_osc_setup(port));
+    recorder = std::make_unique<PlayRecorder>(keeping_recorder(rig, show, *run));
     run->session().add_observer(*recorder);
 
     testing::OscSender osc(port);
@@ -202,6 +212,62 @@ TEST(FigureRunTake, AMergedTakeIsALayerOverTheShowThatPlayed) {
   ASSERT_EQ(written.clips.back().tracks.size(), 1u);
   EXPECT_EQ(written.clips.back().tracks[0].channel, "jaw");
   EXPECT_EQ(report.tracks.size(), 1u);
+}
+
+TEST(FigureRunTake, ASteeredTargetIsTakenAsTheJointsThatFollowedIt) {
+  // The gaze head's look-around, its eyes target steered sideways by an OSC control for 1 s.
+  const rig::Rig rig = config::load_rig_file(example("rigs/gaze-head.yaml"));
+  const playback::Show show = config::load_show_file(example("shows/look-around.yaml"));
+  const config::InputMap map = config::load_input_map(rig, example("inputs/gaze-head-stick.yaml"), true);
+  const int port = testing::free_udp_port();
+  FigureRun run(rig, show, map, stepped_osc_setup(port));
+  PlayRecorder recorder(keeping_recorder(rig, show, run));
+  run.session().add_observer(recorder);
+  testing::OscSender osc(port);
+  const control::ControlMailbox& mailbox = run.live()->inputs().mailbox();
+  const std::size_t slot = mailbox.find("gaze_y");
+  std::uint64_t t0 = 0, sent = 0;
+  Script script([&](const TickRecord& r) {
+    if (t0 == 0 && r.phase == control::Phase::running) t0 = r.tick;
+    if (t0 == 0) return;
+    if (r.tick >= t0 + 10 && r.tick <= t0 + 60) {
+      EXPECT_TRUE(osc.send("/avar/control/gaze_y", 0.9f));  // far to the left
+      ++sent;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+      while (mailbox.read(slot).sequence < sent && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    }
+    if (r.tick == t0 + 100) run.session().stop();
+  });
+  run.session().add_observer(script);
+  ASSERT_FALSE(run.start());
+  const std::atomic<int> interrupts{0};
+  (void)run.run(interrupts, nullptr);
+  recorder.finish(run.session().controller());
+  const control::LiveInputs& live = run.live()->inputs();
+  EXPECT_EQ(live.targets_touched()[0], 1);
+
+  // On its own: the neck's channels, as they followed the steered target.
+  const std::string path = testing::temp_path("gaze-take.yaml");
+  const TakeReport report = write_take({path, 0.1, false}, rig, show, run.session().controller(), recorder, live);
+  ASSERT_EQ(report.tracks.size(), 2u);
+  EXPECT_EQ(report.tracks[0].channel, "neck_pan");
+  EXPECT_EQ(report.tracks[1].channel, "neck_tilt");
+  EXPECT_LE(report.tracks[0].max_error, 0.1);
+  // Looking left at the steered point at some time of the take.
+  const playback::Show written = config::load_show_file(path);
+  double most_left = -90;
+  for (double t = 0; t < written.duration; t += 0.02) most_left = std::max(most_left, written.tracks[0].curve.evaluate(t));
+  EXPECT_GT(most_left, 30);
+  // Merged over the show, the show's own target would override it: refused, nothing written.
+  const std::string merged = testing::temp_path("gaze-merged.yaml");
+  std::filesystem::remove(merged);
+  try {
+    (void)write_take({merged, 0.1, true}, rig, show, run.session().controller(), recorder, live);
+    FAIL() << "expected the merge to be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the take steered target 'eyes'"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(merged));
 }
 
 TEST(FigureRunTake, ALiveOnlyRunHasNoShowToMergeOver) {

@@ -86,6 +86,9 @@ class LiveInputs final : public LiveLayer {
   const ControlMixer& target_mixer() const noexcept { return target_mixer_; }
   /// Per channel: whether any live layer has had a weight above 0 on it so far (a take's channels).
   std::span<const char> touched() const noexcept { return touched_; }
+  /// Per effector: whether a target mapping has had a weight above 0 on its goal so far (a take's
+  /// joints: the channels that move that effector).
+  std::span<const char> targets_touched() const noexcept { return targets_touched_; }
   const std::vector<ControlMapping>& mappings() const noexcept { return mappings_; }
   /// The newest arrival time (CLOCK_MONOTONIC ns) among the messages the last apply() took
   /// for the first time; 0 when it took none. For latency measurement.
@@ -117,6 +120,7 @@ class LiveInputs final : public LiveLayer {
   std::vector<double> values_;
   std::vector<double> last_out_;  ///< the frame the last apply() produced
   std::vector<char> touched_;
+  std::vector<char> targets_touched_;
   std::vector<double> last_points_;  ///< the goal points the last apply_targets() produced
   double last_now_ = 0, last_targets_now_ = 0;
   bool applied_ = false, targets_applied_ = false;
