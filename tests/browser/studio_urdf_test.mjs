@@ -1,6 +1,7 @@
 // A URDF figure in the studio's 3-D preview (tests/browser/studio_harness.mjs): the urdf-head's
 // boxes, cylinders, spheres, STL skull and OBJ jaw drawn in their links' frames and moving with
-// the simulated servos; a mesh that cannot be had is named, and simple shapes draw the figure.
+// the simulated servos; a mesh that cannot be had is named, and simple shapes draw the figure;
+// a Collada mesh (tests/browser/fixtures/jaw.dae) loads too.
 import assert from 'node:assert/strict';
 import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -46,13 +47,14 @@ test("the urdf-head is drawn from its URDF's shapes and meshes, and its jaw hing
   }
 });
 
-test('a mesh that is not there is named, and the simple shapes draw the figure', async () => {
-  // The same figure, its skull's file renamed in a copy of the URDF.
+test('a mesh that is not there is named, the simple shapes draw the figure, and a Collada jaw loads', async () => {
+  // The same figure, its skull's file renamed and its jaw a Collada file, in a copy of the URDF.
   const work = mkdtempSync(join(tmpdir(), 'avar-urdf-'));
   const folder = join(source, 'examples/rigs/urdf-head');
+  writeFileSync(join(work, 'jaw.dae'), readFileSync(join(source, 'tests/browser/fixtures/jaw.dae')));
   const urdf = readFileSync(join(folder, 'urdf-head.urdf'), 'utf8')
     .replace('package://urdf-head/meshes/head.stl', `file://${folder}/meshes/skull-missing.stl`)
-    .replace('filename="meshes/jaw.obj"', `filename="file://${folder}/meshes/jaw.obj"`);
+    .replace('filename="meshes/jaw.obj"', 'filename="jaw.dae"');
   writeFileSync(join(work, 'urdf-head.urdf'), urdf);
   const rig = join(work, 'urdf-head.yaml');
   writeFileSync(
@@ -62,7 +64,7 @@ test('a mesh that is not there is named, and the simple shapes draw the figure',
   const { page, close } = await openStudio({ show: 'look-around.yaml', rig, channel: 'jaw' });
   try {
     const ready = await page.evaluate(() => window.avarStudio.preview.visualsReady());
-    assert.equal(ready.drawn, 6);
+    assert.equal(ready.drawn, 6);  // the Collada jaw among them
     assert.equal(ready.problems.length, 1);
     assert.match(ready.problems[0], /skull-missing\.stl of link skull: not found/);
     await until('the note under the view', () => page.isVisible('#preview-message'));
