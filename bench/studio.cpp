@@ -92,9 +92,14 @@ class LimitCheck final : public session::SessionObserver {
 };
 
 /// Every moment (system clock, ns since the epoch) the simulated device's target for one servo
-/// left its resting value, watched from a thread of its own under the device host's lock.
+/// changed after holding still for at least kSettled: a press on a figure at rest, whatever its
+/// resting target is. Watched from a thread of its own under the device host's lock.
 class DeviceDepartures {
  public:
+  /// Longer than a tick (the glide back to rest changes the target every tick), shorter than
+  /// the rest the page waits for before each press.
+  static constexpr std::chrono::milliseconds kSettled{45};
+
   DeviceDepartures(assembly::FigureLinks& figure, std::size_t link, int servo)
       : figure_(figure), link_(link), servo_(servo), thread_([this] { watch(); }) {}
   ~DeviceDepartures() {
@@ -113,15 +118,19 @@ class DeviceDepartures {
     return t;
   }
   void watch() {
-    const std::uint16_t rest = target();
-    bool away = false;
+    std::uint16_t last = target();
+    auto still_since = std::chrono::system_clock::now();
     while (!stop_.load()) {
-      const bool now_away = target() != rest;
-      if (now_away && !away) {
-        const std::lock_guard lock(mutex_);
-        departures_.push_back(std::chrono::system_clock::now().time_since_epoch().count());
+      const std::uint16_t now_target = target();
+      if (now_target != last) {
+        const auto now = std::chrono::system_clock::now();
+        if (now - still_since >= kSettled) {
+          const std::lock_guard lock(mutex_);
+          departures_.push_back(now.time_since_epoch().count());
+        }
+        last = now_target;
+        still_since = now;
       }
-      away = now_away;
       std::this_thread::sleep_for(std::chrono::microseconds(100));
     }
   }

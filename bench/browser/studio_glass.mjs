@@ -68,7 +68,8 @@ try {
       'the jaw at rest',
       async () => (await jaw('command')) === 0 && !(await jaw('held')) && Number(await slider.inputValue()) === 0,
     );
-    await new Promise((r) => setTimeout(r, 40 * random()));
+    // Still for longer than the bench's settle time (45 ms), then a random phase of the 20 ms tick.
+    await new Promise((r) => setTimeout(r, 60 + 20 * random()));
     // Half way along the slider: about 15 degrees of the jaw's 0 to 30.
     await page.mouse.move(box.x + box.width * 0.5, box.y + box.height / 2);
     await page.mouse.down();
