@@ -198,6 +198,38 @@ double Curve::evaluate(double t) const noexcept {
   return std::clamp(finite_or(base + offset, base), -DBL_MAX, DBL_MAX);
 }
 
+Curve::SegmentView Curve::segment_view(std::size_t i) const noexcept {
+  const Segment& s = segments_[i];
+  SegmentView v;
+  v.t0 = s.t0, v.t1 = s.t1;
+  v.v0 = s.v0, v.e1 = s.e1, v.e2 = s.e2, v.e3 = s.e3;
+  switch (s.shape) {
+    case Shape::linear: v.kind = s.e1 == 0 ? SegmentView::Kind::constant : SegmentView::Kind::linear; break;
+    case Shape::polynomial: v.kind = SegmentView::Kind::cubic; break;
+    case Shape::bezier_table: {
+      const auto b = avar::bit_cast<TableHeader>(inverse_[s.extra - 1]);
+      v.kind = SegmentView::Kind::bezier;
+      v.k1 = b.k1, v.k2 = b.k2, v.k3 = b.k3;
+      break;
+    }
+    case Shape::bezier_closed: {
+      const SegmentExtra& b = extras_[s.extra];
+      v.kind = SegmentView::Kind::bezier;
+      v.k1 = b.k1, v.k2 = b.k2, v.k3 = b.k3;
+      break;
+    }
+    case Shape::easing: {
+      const SegmentExtra& b = extras_[s.extra];
+      v.kind = SegmentView::Kind::easing;
+      v.family = s.family;
+      v.easing = s.easing;
+      v.back = b.k1, v.amplitude = b.k2, v.period = b.k3;
+      break;
+    }
+  }
+  return v;
+}
+
 void Curve::adopt(Tables tables) {
   auto shared = std::make_shared<const Tables>(std::move(tables));
   times_ = shared->times.data();

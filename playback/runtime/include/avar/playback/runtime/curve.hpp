@@ -82,6 +82,33 @@ class Curve {
   /// keep (so that the reads are not optimised away). Real-time safe, O(1).
   double warm(const CurveCursor& cursor) const noexcept;
 
+  /// One segment as an exporter re-encodes it (the device engine's show image): its shape and
+  /// the numbers that define it, exactly as this curve evaluates them.
+  struct SegmentView {
+    enum class Kind : std::uint8_t {
+      constant,  ///< v0 (step, and Blender's flat Bezier)
+      linear,    ///< v0 + s e1 in the normalised time s
+      cubic,     ///< v0 + s (e1 + s (e2 + s e3)): the Hermite family, the B-spline, Bezier with time linear
+      bezier,    ///< v0 + u (e1 + u (e2 + u e3)) where the time cubic k1 u + k2 u^2 + k3 u^3 = s
+      easing,    ///< v0 + e1 * Blender's easing of `family` (elastic: its own equation)
+    };
+    Kind kind = Kind::constant;
+    double t0 = 0, t1 = 0;  ///< the keys' times (s)
+    double v0 = 0, e1 = 0, e2 = 0, e3 = 0;
+    double k1 = 0, k2 = 0, k3 = 0;               ///< bezier
+    Interpolation family = Interpolation::step;  ///< easing
+    Easing easing = Easing::ease_in;             ///< easing: resolved (never automatic)
+    double back = 0, amplitude = 0, period = 0;  ///< easing: the key's parameters
+  };
+  std::size_t segment_count() const noexcept { return segment_count_; }
+  /// Segment i (i < segment_count()).
+  SegmentView segment_view(std::size_t i) const noexcept;
+  /// Linear extrapolation's slopes before the first key and after the last (units per second;
+  /// 0 for constant extrapolation), and the Cycles modifier.
+  double slope_before() const noexcept { return slope_before_; }
+  double slope_after() const noexcept { return slope_after_; }
+  const Cycles& cycles() const noexcept { return cycles_; }
+
   double start_time() const noexcept { return start_; }  ///< first key's time (s); 0 without keys
   double end_time() const noexcept { return end_; }      ///< last key's time (s); 0 without keys
   std::size_t key_count() const noexcept { return key_count_; }

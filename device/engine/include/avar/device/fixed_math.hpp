@@ -1,0 +1,45 @@
+#pragma once
+// Integer arithmetic of the device engine: fixed-point products, shifts that round toward minus
+// infinity on every target, an integer square root, and sin and 2^x by polynomials in Q30. Every
+// function is a pure function of its arguments, built from +, -, *, shifts and compares of fixed
+// width integers, so that the host, AVR, Cortex-M and RISC-V builds give the same bits.
+// Freestanding C++14: no floating point, no library beyond <stdint.h>.
+//
+// Formats: Qn is a signed or unsigned integer holding x * 2^n; a "turn" phase is a uint32_t
+// holding the fraction of a full circle times 2^32 (it wraps as angles do).
+
+#include <stdint.h>
+
+namespace avar {
+namespace device {
+
+/// 1 in Q30.
+const int64_t kQ30 = static_cast<int64_t>(1) << 30;
+
+/// x / 2^n rounded toward minus infinity (an arithmetic shift, spelled out: C++14 leaves the
+/// shift of a negative number to the compiler). 0 <= n < 64.
+inline int64_t shift_floor(int64_t x, unsigned n) {
+  if (x >= 0) return static_cast<int64_t>(static_cast<uint64_t>(x) >> n);
+  return -static_cast<int64_t>((static_cast<uint64_t>(-(x + 1)) >> n)) - 1;
+}
+
+/// a * b / 2^30, toward minus infinity. |a| * b must fit in 63 bits.
+inline int64_t mul_q30(int64_t a, int64_t b) { return shift_floor(a * b, 30); }
+
+/// a clamped to [lo, hi].
+inline int64_t clamp64(int64_t a, int64_t lo, int64_t hi) { return a < lo ? lo : (a > hi ? hi : a); }
+
+/// floor(sqrt(x)), by the digit-by-digit method: 32 fixed steps.
+uint32_t isqrt64(uint64_t x);
+
+/// sin(2 pi phase / 2^32) in Q30, within 2^-27 of the true value.
+int32_t sin_turns(uint32_t phase);
+/// cos(2 pi phase / 2^32) in Q30.
+inline int32_t cos_turns(uint32_t phase) { return sin_turns(phase + 0x40000000u); }
+
+/// 2^(x / 2^30) in Q30 for x <= 2^30 (so at most 2^31), relative error below 2^-26; 0 when the
+/// result is below 2^-30.
+int64_t exp2_q30(int64_t x);
+
+}  // namespace device
+}  // namespace avar

@@ -1,0 +1,69 @@
+#include "avar/device/fixed_math.hpp"
+
+namespace avar {
+namespace device {
+
+uint32_t isqrt64(uint64_t x) {
+  uint64_t root = 0;
+  uint64_t bit = static_cast<uint64_t>(1) << 62;
+  while (bit > x) bit >>= 2;
+  while (bit != 0) {
+    if (x >= root + bit) {
+      x -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<uint32_t>(root);
+}
+
+namespace {
+
+// sin(pi/2 x) = x (c1 + x^2 (c3 + ... + x^2 c13)) on [0, 1]: the Taylor coefficients of
+// sin(pi/2 x) in Q30 (the next term is below 1e-9 there).
+const int64_t kSinCoefficients[] = {
+    1686629713,  // c1  =  pi/2
+    -693598668,  // c3  = -(pi/2)^3 / 3!
+    85569306,    // c5  =  (pi/2)^5 / 5!
+    -5026995,    // c7  = -(pi/2)^7 / 7!
+    172272,      // c9  =  (pi/2)^9 / 9!
+    -3864,       // c11 = -(pi/2)^11 / 11!
+    61,          // c13 =  (pi/2)^13 / 13!
+};
+
+// 2^f = e^(f ln 2) for f in [0, 1): Taylor coefficients (ln 2)^k / k! in Q30, k = 0..10 (the
+// next term is below 2^-30).
+const int64_t kExp2Coefficients[] = {
+    1073741824, 744261118, 257941248, 59597083, 10327387, 1431680, 165394, 16377, 1419, 109, 8,
+};
+
+}  // namespace
+
+int32_t sin_turns(uint32_t phase) {
+  // Quadrant and the position within it, x in Q30 of a quarter turn.
+  const uint32_t quadrant = phase >> 30;
+  int64_t x = static_cast<int64_t>(phase & 0x3fffffffu);
+  if (quadrant & 1u) x = (static_cast<int64_t>(1) << 30) - x;
+  const int64_t x2 = mul_q30(x, x);
+  int64_t acc = kSinCoefficients[6];
+  for (int i = 5; i >= 0; --i) acc = kSinCoefficients[i] + mul_q30(acc, x2);
+  int64_t s = mul_q30(acc, x);
+  if (s > (static_cast<int64_t>(1) << 30)) s = static_cast<int64_t>(1) << 30;
+  return static_cast<int32_t>(quadrant & 2u ? -s : s);
+}
+
+int64_t exp2_q30(int64_t x) {
+  if (x > (static_cast<int64_t>(1) << 30)) x = static_cast<int64_t>(1) << 30;
+  const int64_t whole = shift_floor(x, 30);  // <= 1
+  const int64_t f = x - whole * (static_cast<int64_t>(1) << 30);
+  int64_t acc = kExp2Coefficients[10];
+  for (int i = 9; i >= 0; --i) acc = kExp2Coefficients[i] + mul_q30(acc, f);
+  if (whole >= 0) return acc << whole;
+  if (whole <= -62) return 0;
+  return static_cast<int64_t>(static_cast<uint64_t>(acc) >> static_cast<unsigned>(-whole));
+}
+
+}  // namespace device
+}  // namespace avar
