@@ -16,6 +16,8 @@
 #include "avar/config/show_file.hpp"
 #include "avar/playback/runtime/sampler.hpp"
 #include "avar/core/format.hpp"
+#include "avar/device/image_sampler.hpp"
+#include "avar/device/show_export.hpp"
 #include "avar/exit_codes.hpp"
 
 namespace avar::app {
@@ -165,6 +167,30 @@ void write_show_csv(const playback::Show& show, const std::optional<rig::Rig>& r
   });
 }
 
+/// The CSV of the device engine's host build: the show's tracks encoded as a device image over
+/// the rig's channel ranges (a tick rate on which the grid and every key fall on whole ticks),
+/// sampled at each grid time's tick and mapped back to channel units.
+void write_device_csv(const playback::Show& show, const rig::Rig& rig, const Grid& grid, const std::vector<std::string>& wanted,
+                      std::ostream& out) {
+  const std::vector<std::string> available = driven_channels(show);
+  const std::vector<std::size_t> columns = columns_for(available, wanted);
+  std::vector<device::ImageChannel> channels;
+  std::vector<std::string> header;
+  for (std::size_t c : columns) {
+    const rig::ChannelSpec& channel = rig.channels[rig.find_channel(available[c]).value()];
+    channels.push_back({available[c], {channel.min, channel.max}});
+    header.push_back(available[c]);
+  }
+  device::ImageOptions options;
+  options.on_grid = {grid.step, grid.from};
+  device::ImageSampler sampler(device::encode_show_image(show, channels, options).bytes);
+  const double tps = sampler.ticks_per_second();
+  write_csv(header, grid, out, [&](double t, std::vector<double>& row) {
+    const auto tick = static_cast<std::int32_t>(std::llround(t * tps));
+    for (std::size_t c = 0; c < channels.size(); ++c) row[c] = channels[c].range.to_channel(sampler.output(c, tick));
+  });
+}
+
 /// The rig of --rig, checked against the show (a channel it lacks is refused with its place),
 /// with the show's behaviour layers bound to it. Without --rig a behaviour layer is refused: its
 /// generators need the rig's channels and limits.
@@ -199,6 +225,10 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
   cmd->add_option("--out", o.out_path, "Write the CSV to this file instead of standard output");
   cmd->add_option("--rig", o.rig_path,
                   "Rig file: a layered show is composed over the rig's rest pose (default: over 0 where no show track drives)");
+  cmd->add_option(
+         "--engine", o.engine,
+         "double (avar's reference engine, the default) or device (the microcontroller engine's host build; needs --rig)")
+      ->check(CLI::IsMember({"double", "device"}));
   cmd->footer(
       "Output: a header `seconds,<channel>,...`, then one row per sample time from --from to --to\n"
       "(inclusive when it falls on the grid). Each curve is evaluated as it is defined outside its keys too\n"
@@ -206,13 +236,18 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& o) {
       "A show with layers of clips prints every channel its tracks and layers drive, composed as it plays\n"
       "(a looping one wraps); under the layers lie its tracks, else the --rig rest pose, else 0.\n"
       "Behaviour layers (idle generators in the show) need --rig: their channels and limits are the rig's.\n"
+      "--engine device samples the integer engine that runs on a microcontroller (avar export): the show's\n"
+      "tracks as 16-bit outputs over each rig channel's min..max, printed in channel units, within one\n"
+      "output unit of the double engine; a grid time falls on the device's tick (chosen so that it does).\n"
       "Examples:\n"
       "  avar sample examples/shows/hello-head.yaml --rate 50 > hello-head.csv\n"
       "      every channel at 50 Hz over the whole show\n"
       "  avar sample SHOW --step 0.01 --from -1 --to 13 --channels neck_pan,jaw\n"
       "      two channels every 10 ms, one second either side of the show\n"
       "  avar sample before.yaml --out a.csv && avar sample after.yaml --out b.csv && diff a.csv b.csv\n"
-      "      see exactly where two versions of a show differ");
+      "      see exactly where two versions of a show differ\n"
+      "  avar sample SHOW --rig RIG --engine device --out device.csv\n"
+      "      what the show does on a microcontroller, to compare with the double engine's CSV");
   return cmd;
 }
 
@@ -220,14 +255,24 @@ int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& er
   try {
     playback::Show show = config::load_show_file(options.show_path);
     const Grid grid = grid_for(options, show.duration);
+    const bool device_engine = options.engine == "device";
+    if (device_engine && !options.rig_path)
+      throw OptionError("--engine device needs --rig RIG: the device engine's output is 16 bits over each channel's min..max");
     const std::optional<rig::Rig> rig = rig_for(options, show);
+    const auto write = [&](std::ostream& stream) {
+      if (device_engine) {
+        write_device_csv(show, *rig, grid, options.channels, stream);
+      } else {
+        write_show_csv(show, rig, grid, options.channels, stream);
+      }
+    };
     if (!options.out_path) {
-      write_show_csv(show, rig, grid, options.channels, out);
+      write(out);
       return kExitOk;
     }
     std::ofstream file(*options.out_path);
     if (!file) throw OptionError("cannot write --out " + *options.out_path + "; expected a writable file path");
-    write_show_csv(show, rig, grid, options.channels, file);
+    write(file);
     file.close();
     if (!file) throw OptionError("writing " + *options.out_path + " failed; expected a writable file path with free space");
     return kExitOk;

@@ -22,6 +22,9 @@ struct SampleOptions {
   std::vector<std::string> channels;      ///< columns in this order; empty: every track, in file order
   std::optional<std::string> out_path;    ///< write the CSV here instead of `out`
   std::optional<std::string> rig_path;    ///< a layered show is composed over this rig's rest pose
+  /// "double" (avar's reference engine) or "device" (the device engine's host build: the show
+  /// encoded as a device image over the rig's channel ranges, 16-bit output back in channel units)
+  std::string engine = "double";
 };
 
 inline constexpr double kDefaultSampleRateHz = 100;
@@ -40,7 +43,9 @@ CLI::App* add_sample_subcommand(CLI::App& app, SampleOptions& options);
 /// column is the channel's curve at t_i as the curve defines it outside its keys: a looping show
 /// is not wrapped. A layered show's columns are every channel its tracks and layers drive,
 /// composed by playback::Sampler (a looping show wraps) over its tracks, else the rig's rest pose
-/// (options.rig_path, whose channels must include the show's), else 0. Numbers are the shortest text that reads back to the same double. Returns
+/// (options.rig_path, whose channels must include the show's), else 0. With engine "device" (needs
+/// the rig) each column is what the device engine outputs for the track at the grid's tick, in
+/// channel units. Numbers are the shortest text that reads back to the same double. Returns
 /// kExitOk, or kExitBadInput after one line on `err` naming the problem.
 int run_sample(const SampleOptions& options, std::ostream& out, std::ostream& err);
 

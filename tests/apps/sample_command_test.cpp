@@ -2,6 +2,7 @@
 // refusals, in-process and as the real binary.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "../support/csv_rows.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/cli.hpp"
+#include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/exit_codes.hpp"
 
@@ -160,6 +162,50 @@ TEST(SampleCommand, TheBinaryWritesCsvToStandardOutputAndTeachesInItsHelp) {
   EXPECT_EQ(help.wait(), kExitOk);
   EXPECT_NE(help.out().find("Examples:"), std::string::npos) << help.out();
   EXPECT_NE(help.out().find("--channels"), std::string::npos) << help.out();
+}
+
+}  // namespace
+}  // namespace avar::app
+
+namespace avar::app {
+namespace {
+
+const std::string kHelloRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+
+// The device engine's CSV has the double engine's grid and columns, and every value within one
+// 16-bit output unit of the double engine's over the rig channel's range.
+TEST(SampleCommandDeviceEngine, MatchesTheDoubleEngineWithinOneOutputUnit) {
+  const Result reference = sample({kSampledShow, "--rig", kHelloRig, "--rate", "50"});
+  const Result device = sample({kSampledShow, "--rig", kHelloRig, "--rate", "50", "--engine", "device"});
+  ASSERT_EQ(reference.code, kExitOk) << reference.err;
+  ASSERT_EQ(device.code, kExitOk) << device.err;
+  const auto a = testing::csv_rows(reference.out), b = testing::csv_rows(device.out);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a[0], b[0]);
+  const rig::Rig rig = config::load_rig_file(kHelloRig);
+  std::size_t compared = 0;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    EXPECT_EQ(a[i][0], b[i][0]);
+    for (std::size_t c = 1; c < a[0].size(); ++c) {
+      const rig::ChannelSpec& channel = rig.channels[rig.find_channel(a[0][c]).value()];
+      const double unit = (channel.max - channel.min) / 65535;
+      EXPECT_LE(std::abs(std::strtod(a[i][c].c_str(), nullptr) - std::strtod(b[i][c].c_str(), nullptr)), 1.5 * unit)
+          << a[0][c] << " at " << a[i][0] << " s";
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 4000u);
+}
+
+TEST(SampleCommandDeviceEngine, NeedsTheRigAndRefusesALayeredShowSayingWhy) {
+  const Result no_rig = sample({kSampledShow, "--engine", "device"});
+  EXPECT_EQ(no_rig.code, kExitBadInput);
+  EXPECT_NE(no_rig.err.find("--engine device needs --rig RIG"), std::string::npos) << no_rig.err;
+  const Result layered = sample({AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml", "--rig", kHelloRig, "--engine", "device"});
+  EXPECT_EQ(layered.code, kExitBadInput);
+  EXPECT_NE(layered.err.find("the device engine plays a show's tracks"), std::string::npos) << layered.err;
+  const Result unknown = sample({kSampledShow, "--rig", kHelloRig, "--engine", "float"});
+  EXPECT_NE(unknown.code, kExitOk);
 }
 
 }  // namespace
