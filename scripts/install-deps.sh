@@ -13,6 +13,7 @@ packages=(cmake ninja-build g++ pkg-config make
           libgtest-dev libgmock-dev libbenchmark-dev
           python3-can
           emscripten node-acorn chromium
+          gcc-avr avr-libc simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           mkdocs mkdocs-material
           clang-format clang-tidy "$@")
 

@@ -3,6 +3,7 @@
 // passes the check samples within the engine's bounds (the sanitizer build checks every access).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -65,9 +66,10 @@ TEST(DeviceShowImage, ACorruptedImageIsRefusedOrPlaysWithinTheEnginesBounds) {
     for (int f = 0; f < flips; ++f) damaged[rng() % damaged.size()] = static_cast<std::uint8_t>(rng());
     try {
       ImageSampler sampler(damaged);
+      // Ticks from -2 s to 15 s at the image's own rate (a damaged rate: within 32 bits).
+      const std::int64_t per_ms = std::min<std::int64_t>(sampler.ticks_per_second() / 1000, 100000);
       for (std::size_t c = 0; c < sampler.channel_count(); ++c)
-        for (std::int32_t tick = -2000; tick < 15000; tick += 97)
-          sampler.output(c, tick * static_cast<std::int32_t>(sampler.ticks_per_second() / 1000));
+        for (std::int64_t ms = -2000; ms < 15000; ms += 97) sampler.output(c, static_cast<std::int32_t>(ms * per_ms));
     } catch (const std::invalid_argument&) {
       ++refused;
     }

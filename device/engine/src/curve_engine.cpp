@@ -72,7 +72,8 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
   while (bits < 32 && (d >> bits) != 0) ++bits;
   c.shift = static_cast<uint8_t>(bits);
   c.reciprocal = static_cast<uint32_t>((static_cast<uint64_t>(1) << (30 + bits)) / d);
-  const int64_t v0 = static_cast<int64_t>(c.k0) << 8, v1 = static_cast<int64_t>(c.k1) << 8;
+  const int64_t v0 = static_cast<int64_t>(c.k0) * 256,
+                v1 = static_cast<int64_t>(c.k1) * 256;  // Q8 (a product: C++14 leaves a negative shifted left undefined)
   c.v0 = v0;
   c.c1 = c.c2 = c.c3 = 0;
   c.ta = ta, c.tb = tb;
@@ -84,7 +85,7 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
     case kCubic:
     case kBezier: {
       // Bernstein control points v0, p1, p2, v1 to the power basis.
-      const int64_t p1 = v0 + (inner1 << 8), p2 = v1 + (inner2 << 8);
+      const int64_t p1 = v0 + inner1 * 256, p2 = v1 + inner2 * 256;
       c.c1 = 3 * (p1 - v0);
       c.c2 = 3 * (v0 - 2 * p1 + p2);
       c.c3 = v1 - v0 + 3 * (p1 - p2);
@@ -92,7 +93,7 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
     }
     case kBack:
       c.c1 = v1 - v0;
-      c.p0 = param1 << 14;  // Q16 to Q30
+      c.p0 = param1 * 16384;  // Q16 to Q30
       break;
     case kElastic: {
       c.c1 = v1 - v0;
@@ -178,7 +179,7 @@ int64_t extrapolated(int64_t value, int64_t slope, int64_t ticks, uint32_t ticks
 
 int64_t extrapolate(const Channel& ch, int32_t t) {
   const bool before = !(t > ch.start);
-  const int64_t value = static_cast<int64_t>(before ? ch.first_value : ch.last_value) << 8;
+  const int64_t value = static_cast<int64_t>(before ? ch.first_value : ch.last_value) * 256;
   if (!(ch.flags & kChannelLinearExtrapolation)) return value;
   return extrapolated(value, before ? ch.slope_before : ch.slope_after, static_cast<int64_t>(t) - (before ? ch.start : ch.end),
                       ch.ticks_per_second);

@@ -60,7 +60,7 @@ int64_t exp2_q30(int64_t x) {
   const int64_t f = x - whole * (static_cast<int64_t>(1) << 30);
   int64_t acc = kExp2Coefficients[10];
   for (int i = 9; i >= 0; --i) acc = kExp2Coefficients[i] + mul_q30(acc, f);
-  if (whole >= 0) return acc << whole;
+  if (whole >= 0) return acc * (static_cast<int64_t>(1) << whole);
   if (whole <= -62) return 0;
   return static_cast<int64_t>(static_cast<uint64_t>(acc) >> static_cast<unsigned>(-whole));
 }

@@ -48,7 +48,7 @@ bool check_key(ByteReader& r, bool first, int64_t& time, int64_t& value, int64_t
       const int64_t shift = r.zigzag();
       ok = blended <= 1 &&
            (blended ? factor_or_amplitude >= 0 && factor_or_amplitude <= (static_cast<int64_t>(1) << 30)
-                    : within(factor_or_amplitude, kMaxValue << 8)) &&
+                    : within(factor_or_amplitude, kMaxValue * 256)) &&
            period > 0 && period <= (static_cast<uint64_t>(1) << 50) && within(shift, static_cast<int64_t>(1) << 49);
       break;
     }
@@ -91,7 +91,7 @@ ImageStatus check_image(const uint8_t* image, uint32_t size, ShowHeader& header)
     if (flags & kChannelCycles) {
       const uint8_t modes = k.u8();
       if ((modes & 0x0fu) > kCycleMirror || (modes >> 4) > kCycleMirror) return kImageBadChannel;
-      if (k.varint() > 0x7fffffffu || k.varint() > 0x7fffffffu || !within(k.zigzag(), kMaxValue << 9)) return kImageBadChannel;
+      if (k.varint() > 0x7fffffffu || k.varint() > 0x7fffffffu || !within(k.zigzag(), kMaxValue * 512)) return kImageBadChannel;
     }
     int64_t time = 0, value = 0, pending = 0;
     for (uint32_t i = 0; i < keys; ++i)
