@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
@@ -256,6 +257,24 @@ std::vector<std::uint8_t> encode_channel_record(const playback::RawCurve& raw, c
     counts->key_bytes += key_bytes;
   }
   return out;
+}
+
+ChannelLimits device_limits(OutputRange range, double rest, double max_velocity, double max_acceleration, double soft_margin,
+                            std::uint32_t rate) {
+  const double q16 = 65536.0, scale = 65535.0 / (range.high - range.low);
+  if (!(max_velocity > 0) || !(max_acceleration > 0) || !(soft_margin >= 0) || rate == 0 || !(range.high > range.low))
+    throw std::invalid_argument(
+        "a channel's device limits need min below max, speed and acceleration above 0, a margin of 0 or more");
+  ChannelLimits l;
+  l.low = rounded(soft_margin * scale * q16);
+  l.high = rounded((65535.0 - soft_margin * scale) * q16);
+  l.rest = rounded(range.to_output(rest) * q16);
+  if (!(l.low <= l.rest && l.rest <= l.high))
+    throw std::invalid_argument("a channel's rest pose lies outside its range less its soft margin");
+  // At least one Q16 step per tick: a limit below it would freeze the channel.
+  l.speed = std::max<std::int64_t>(1, rounded(max_velocity * scale / rate * q16));
+  l.accel = std::max<std::int64_t>(1, rounded(max_acceleration * scale / (static_cast<double>(rate) * rate) * q16));
+  return l;
 }
 
 std::vector<std::uint8_t> single_channel_image(const std::vector<std::uint8_t>& record, std::uint32_t ticks_per_second,

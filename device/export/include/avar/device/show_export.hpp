@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "avar/device/limiter.hpp"
 #include "avar/playback/runtime/curve.hpp"
 #include "avar/playback/runtime/show.hpp"
 
@@ -57,6 +58,14 @@ struct ShowImage {
 /// meets another family with a jump.
 ShowImage encode_show_image(const playback::Show& show, const std::vector<ImageChannel>& channels,
                             const ImageOptions& options = {});
+
+/// A channel's limits for the device's limiter at `rate` control ticks per second, from the rig's
+/// numbers in channel units: the range less the soft margin, the rest pose, the speed (units per
+/// second) and acceleration (units per second squared). Throws std::invalid_argument for limits
+/// the limiter cannot use (no room inside the margin, a rest outside it, speed or acceleration
+/// not above 0).
+ChannelLimits device_limits(OutputRange range, double rest, double max_velocity, double max_acceleration, double soft_margin,
+                            std::uint32_t rate);
 
 /// One curve's channel record (the image's channel layout), for tests and tools.
 std::vector<std::uint8_t> encode_channel_record(const playback::RawCurve& raw, const playback::Curve& curve, OutputRange range,

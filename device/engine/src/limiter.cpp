@@ -1,0 +1,63 @@
+#include "avar/device/limiter.hpp"
+
+#include "avar/device/fixed_math.hpp"
+
+namespace avar {
+namespace device {
+
+LimiterState limiter_at_rest(const ChannelLimits& limits) {
+  const int64_t rest = clamp64(limits.rest, limits.low, limits.high);
+  LimiterState s = {rest, 0, rest, false};
+  return s;
+}
+
+int64_t braking_speed(int64_t distance, int64_t accel) {
+  if (distance <= 0) return 0;
+  // Moving by v, then v - a, v - 2a, ... while positive: n = ceil(v / a) steps cover
+  // S(v) = n v - a n (n - 1) / 2. S grows with v; for each n the largest v of that many steps is
+  // min(n a, (d + a n (n - 1) / 2) / n), valid when above (n - 1) a. The continuous estimate
+  // n ~ sqrt(2 d / a) puts the answer's n within two of n0. Positions are below 2^33 (Q16 of 16
+  // bits): nothing here overflows.
+  const uint64_t a = static_cast<uint64_t>(accel), d = static_cast<uint64_t>(distance);
+  if (a >= d) return distance;  // one step, then a stop
+  const uint64_t n0 = isqrt64(2 * d / a) + 1;
+  int64_t best = 0;
+  for (uint64_t n = n0 > 2 ? n0 - 2 : 1; n <= n0 + 2; ++n) {
+    const uint64_t most = n * a, fits = (d + a * n * (n - 1) / 2) / n;
+    const uint64_t v = most < fits ? most : fits;
+    if (v > (n - 1) * a && static_cast<int64_t>(v) > best) best = static_cast<int64_t>(v);
+  }
+  return best;
+}
+
+void limiter_step(const ChannelLimits& l, LimiterState& s, int64_t target) {
+  target = clamp64(target, l.low, l.high);
+  // The target's own motion this tick (a jump larger than the speed is not motion).
+  int64_t moving = s.tracking ? target - s.target : 0;
+  if (moving > l.speed || moving < -l.speed) moving = 0;
+  s.target = target;
+  s.tracking = true;
+  // With the target's motion, and toward where it was: slow enough to stop on it (and to land
+  // on it); caught up, the position moves with the target exactly.
+  const int64_t distance = target - moving - s.position;
+  const int64_t magnitude = distance < 0 ? -distance : distance;
+  int64_t closing = braking_speed(magnitude, l.accel);
+  if (closing > magnitude) closing = magnitude;
+  const int64_t wanted = clamp64(moving + (distance < 0 ? -closing : closing), -l.speed, l.speed);
+  // The speed changes by at most the acceleration.
+  int64_t v = clamp64(wanted, s.velocity - l.accel, s.velocity + l.accel);
+  // The range's ends are kept by braking in time; with the state within the limits this never
+  // needs more than the acceleration (the stop from the present speed always fits), so it only
+  // guards against a state that did not come from these limits.
+  v = clamp64(v, -braking_speed(s.position - l.low, l.accel), braking_speed(l.high - s.position, l.accel));
+  v = clamp64(v, -l.speed, l.speed);
+  s.velocity = v;
+  s.position = clamp64(s.position + v, l.low, l.high);
+}
+
+uint16_t limiter_output(const LimiterState& state) {
+  return static_cast<uint16_t>(clamp64(shift_floor(state.position + 32768, 16), 0, 65535));
+}
+
+}  // namespace device
+}  // namespace avar
