@@ -3,6 +3,15 @@
 namespace avar {
 namespace device {
 
+int64_t shift_floor(int64_t x, unsigned n) {
+  if (x >= 0) return static_cast<int64_t>(static_cast<uint64_t>(x) >> n);
+  return -static_cast<int64_t>((static_cast<uint64_t>(-(x + 1)) >> n)) - 1;
+}
+
+int64_t mul_q30(int64_t a, int64_t b) { return shift_floor(a * b, 30); }
+
+int64_t clamp64(int64_t a, int64_t lo, int64_t hi) { return a < lo ? lo : (a > hi ? hi : a); }
+
 uint32_t isqrt64(uint64_t x) {
   uint64_t root = 0;
   uint64_t bit = static_cast<uint64_t>(1) << 62;

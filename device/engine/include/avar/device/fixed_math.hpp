@@ -17,17 +17,15 @@ namespace device {
 const int64_t kQ30 = static_cast<int64_t>(1) << 30;
 
 /// x / 2^n rounded toward minus infinity (an arithmetic shift, spelled out: C++14 leaves the
-/// shift of a negative number to the compiler). 0 <= n < 64.
-inline int64_t shift_floor(int64_t x, unsigned n) {
-  if (x >= 0) return static_cast<int64_t>(static_cast<uint64_t>(x) >> n);
-  return -static_cast<int64_t>((static_cast<uint64_t>(-(x + 1)) >> n)) - 1;
-}
+/// shift of a negative number to the compiler). 0 <= n < 64. Out of line, as the other helpers
+/// here: on an 8-bit target each 64-bit operation inlined is a hundred instructions.
+int64_t shift_floor(int64_t x, unsigned n);
 
 /// a * b / 2^30, toward minus infinity. |a| * b must fit in 63 bits.
-inline int64_t mul_q30(int64_t a, int64_t b) { return shift_floor(a * b, 30); }
+int64_t mul_q30(int64_t a, int64_t b);
 
 /// a clamped to [lo, hi].
-inline int64_t clamp64(int64_t a, int64_t lo, int64_t hi) { return a < lo ? lo : (a > hi ? hi : a); }
+int64_t clamp64(int64_t a, int64_t lo, int64_t hi);
 
 /// floor(sqrt(x)), by the digit-by-digit method: 32 fixed steps.
 uint32_t isqrt64(uint64_t x);
