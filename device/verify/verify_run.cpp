@@ -1,6 +1,7 @@
 #include "verify_run.hpp"
 
 #include "avar/device/curve_engine.hpp"
+#include "avar/device/player.hpp"
 #include "avar/device/show_image.hpp"
 
 namespace avar {
@@ -202,12 +203,60 @@ void verify_random(uint32_t seed, uint32_t curves, LineSink sink, VerifyCounts& 
   }
 }
 
+void verify_player(uint32_t seed, uint32_t switches, LineSink sink, VerifyCounts& counts) {
+  Random r = {seed == 0 ? 1u : seed};
+  static uint8_t buffers[4][256];
+  PlayerShow shows[4];
+  for (int s = 0; s < 4; ++s) {
+    shows[s].image = buffers[s];
+    shows[s].size = random_image(r, buffers[s]);
+  }
+  PlayerChannel channel;
+  const int64_t q16 = 65536;
+  channel.limits.low = static_cast<int64_t>(r.below(20000)) * q16;
+  channel.limits.high = channel.limits.low + static_cast<int64_t>(1000 + r.below(40000)) * q16;
+  channel.limits.rest = channel.limits.low + (channel.limits.high - channel.limits.low) / 3;
+  channel.limits.speed = static_cast<int64_t>(1 + r.below(2000)) * q16 / 4;
+  channel.limits.accel = static_cast<int64_t>(1 + r.below(400)) * q16 / 16;
+  Player player;
+  if (player_init(player, &channel, 1, shows, 4, 200) != kPlayerOk || player_start(player, 0) != kPlayerOk) {
+    ++counts.invalid;
+    return;
+  }
+  Hash h = {2166136261u};
+  uint32_t ticks = 0;
+  for (uint32_t i = 0; i < switches; ++i) {
+    const uint32_t run = 1 + r.below(30);
+    for (uint32_t k = 0; k < run; ++k) {
+      const LimiterState before = channel.state;
+      player_tick(player);
+      ++ticks;
+      const LimiterState& now = channel.state;
+      const int64_t dv = now.velocity - before.velocity;
+      const bool ok = now.position >= channel.limits.low && now.position <= channel.limits.high &&
+                      now.velocity <= channel.limits.speed && now.velocity >= -channel.limits.speed &&
+                      dv <= channel.limits.accel && dv >= -channel.limits.accel && now.position - before.position == now.velocity;
+      if (!ok) ++counts.violations;
+      h.add(channel.output, 2);
+    }
+    if (r.below(5) == 0) {
+      player_stop(player);
+    } else if (player_start(player, static_cast<uint8_t>(r.below(4))) != kPlayerOk) {
+      ++counts.invalid;
+    }
+  }
+  counts.samples += ticks;
+  line(sink, "player ", switches, h.value, ticks);
+}
+
 void verify_summary(const VerifyCounts& counts, LineSink sink) {
-  char text[48];
+  char text[64];
   char* at = put_text(text, "samples ");
   at = put_decimal(at, counts.samples);
   at = put_text(at, " invalid ");
   at = put_decimal(at, counts.invalid);
+  at = put_text(at, " violations ");
+  at = put_decimal(at, counts.violations);
   *at = 0;
   sink(text);
 }

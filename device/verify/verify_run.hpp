@@ -15,7 +15,8 @@ typedef void (*LineSink)(const char* line);
 
 struct VerifyCounts {
   uint32_t samples;
-  uint32_t invalid;  ///< random images check_image refused (the generator's own bug: must be 0)
+  uint32_t invalid;     ///< random images check_image refused (the generator's own bug: must be 0)
+  uint32_t violations;  ///< player ticks over a speed, acceleration or range limit: must be 0
 };
 
 /// Samples every channel of `image` (in RAM) every `step` ticks from two seconds before its
@@ -27,7 +28,13 @@ void verify_image(const uint8_t* image, uint32_t size, int32_t step, LineSink si
 /// per 1000 curves: "random B HASH SAMPLES".
 void verify_random(uint32_t seed, uint32_t curves, LineSink sink, VerifyCounts& counts);
 
-/// The closing line: "samples N invalid M".
+/// The player on `switches` seeded switches: 4 random one-channel shows and a stop, one of them
+/// every 1 to 30 control ticks, mid-motion, through random limits; every tick's position, speed
+/// and speed change checked against the limits on the device itself. One line:
+/// "player SWITCHES HASH TICKS" and the count of ticks over a limit in counts.violations.
+void verify_player(uint32_t seed, uint32_t switches, LineSink sink, VerifyCounts& counts);
+
+/// The closing line: "samples N invalid M violations V".
 void verify_summary(const VerifyCounts& counts, LineSink sink);
 
 }  // namespace device

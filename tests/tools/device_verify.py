@@ -31,7 +31,7 @@ def clean(text, target):
             if not line.endswith("."):
                 continue
             line = line[:-1]
-        if re.match(r"^(golden|golden-invalid|random) \d+ [0-9a-f]{8} \d+$", line) or line.startswith("samples "):
+        if re.match(r"^(golden|golden-invalid|random|player) \d+ [0-9a-f]{8} \d+$", line) or line.startswith("samples "):
             lines.append(line)
     return lines
 
@@ -58,7 +58,8 @@ def main():
                          timeout=args.timeout, stdin=subprocess.DEVNULL)
     seconds = time.monotonic() - started
     device = clean(run.stdout + run.stderr, args.target)
-    samples = int(host[-1].split()[1])
+    summary = host[-1].split()
+    samples, violations = int(summary[1]), int(summary[5])
     mismatched_lines = [(h, d) for h, d in zip(host, device) if h != d]
     mismatches = sum(int(h.split()[3]) for h, _ in mismatched_lines if not h.startswith("samples"))
     if len(device) != len(host):
@@ -66,11 +67,12 @@ def main():
               f"{device[-1] if device else '(nothing)'}")
         print((run.stdout + run.stderr)[-2000:])
         return 1
+    device_violations = int(device[-1].split()[5])
     print(f"{args.target}: {samples} samples, {mismatches} mismatches ({len(host) - 1} hashed groups, "
-          f"{seconds:.1f} s under {os.path.basename(args.emulator)})")
+          f"{seconds:.1f} s under {os.path.basename(args.emulator)}); player: {device_violations} ticks over a limit")
     for h, d in mismatched_lines[:10]:
         print(f"  host   {h}\n  device {d}")
-    return 0 if not mismatched_lines else 1
+    return 0 if not mismatched_lines and violations == 0 and device_violations == 0 else 1
 
 
 if __name__ == "__main__":

@@ -5,6 +5,15 @@
 namespace avar {
 namespace device {
 
+int64_t stopping_distance(int64_t speed, int64_t accel) {
+  if (speed <= 0 || accel <= 0) return 0;
+  const uint64_t v = static_cast<uint64_t>(speed), a = static_cast<uint64_t>(accel);
+  const uint64_t n = (v + a - 1) / a;
+  return static_cast<int64_t>(n * v - a * n * (n - 1) / 2);
+}
+
+void limiter_prepare(ChannelLimits& limits) { limits.reach = stopping_distance(limits.speed, limits.accel); }
+
 LimiterState limiter_at_rest(const ChannelLimits& limits) {
   const int64_t rest = clamp64(limits.rest, limits.low, limits.high);
   LimiterState s = {rest, 0, rest, false};
@@ -41,7 +50,10 @@ void limiter_step(const ChannelLimits& l, LimiterState& s, int64_t target) {
   // on it); caught up, the position moves with the target exactly.
   const int64_t distance = target - moving - s.position;
   const int64_t magnitude = distance < 0 ? -distance : distance;
-  int64_t closing = braking_speed(magnitude, l.accel);
+  // The closing speed, relative to the target: at most the speed, the braking speed (beyond the
+  // stop from full speed that is the speed itself: not computed) and the distance.
+  int64_t closing = magnitude > l.reach ? l.speed : braking_speed(magnitude, l.accel);
+  if (closing > l.speed) closing = l.speed;
   if (closing > magnitude) closing = magnitude;
   const int64_t wanted = clamp64(moving + (distance < 0 ? -closing : closing), -l.speed, l.speed);
   // The speed changes by at most the acceleration.
@@ -49,7 +61,9 @@ void limiter_step(const ChannelLimits& l, LimiterState& s, int64_t target) {
   // The range's ends are kept by braking in time; with the state within the limits this never
   // needs more than the acceleration (the stop from the present speed always fits), so it only
   // guards against a state that did not come from these limits.
-  v = clamp64(v, -braking_speed(s.position - l.low, l.accel), braking_speed(l.high - s.position, l.accel));
+  const int64_t to_low = s.position - l.low, to_high = l.high - s.position;
+  v = clamp64(v, to_low > l.reach ? -l.speed : -braking_speed(to_low, l.accel),
+              to_high > l.reach ? l.speed : braking_speed(to_high, l.accel));
   v = clamp64(v, -l.speed, l.speed);
   s.velocity = v;
   s.position = clamp64(s.position + v, l.low, l.high);

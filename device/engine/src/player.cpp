@@ -31,6 +31,7 @@ PlayerStatus player_init(Player& p, PlayerChannel* channels, uint8_t channel_cou
   }
   for (uint8_t c = 0; c < channel_count; ++c) {
     if (!usable(channels[c].limits)) return kPlayerBadLimits;
+    limiter_prepare(channels[c].limits);
     channels[c].state = limiter_at_rest(channels[c].limits);
     channels[c].output = limiter_output(channels[c].state);
     reset_cache(channels[c].cache);

@@ -274,6 +274,7 @@ ChannelLimits device_limits(OutputRange range, double rest, double max_velocity,
   // At least one Q16 step per tick: a limit below it would freeze the channel.
   l.speed = std::max<std::int64_t>(1, rounded(max_velocity * scale / rate * q16));
   l.accel = std::max<std::int64_t>(1, rounded(max_acceleration * scale / (static_cast<double>(rate) * rate) * q16));
+  limiter_prepare(l);
   return l;
 }
 

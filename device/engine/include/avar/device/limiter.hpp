@@ -18,7 +18,16 @@ struct ChannelLimits {
   int64_t rest;       ///< where the channel starts at power-up and goes on stop, within the range
   int64_t speed;      ///< at most this much per tick, > 0
   int64_t accel;      ///< the speed changes by at most this much per tick, > 0
+  /// stopping_distance(speed, accel): farther than this from an end (or from the target), the
+  /// limiter needs no braking there, and skips computing it. Set by limiter_prepare.
+  int64_t reach;
 };
+
+/// The distance a channel covers stopping from `speed` (first moving by it) decelerating by
+/// `accel` per tick: speed + (speed - accel) + ... while positive.
+int64_t stopping_distance(int64_t speed, int64_t accel);
+/// Fills limits.reach from its speed and acceleration (player_init does it for every channel).
+void limiter_prepare(ChannelLimits& limits);
 
 struct LimiterState {
   int64_t position;  ///< Q16 output units
