@@ -6,7 +6,9 @@
 #include <stdexcept>
 
 #include "avar/control/threaded_link.hpp"
+#include "avar/firmware_iface/linux_i2c_bus.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/sim/sim_i2c_bus.hpp"
 #include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/usb_device_host.hpp"
 
@@ -20,6 +22,8 @@ struct FigureLinks::Entry {
   std::unique_ptr<sim::UsbDeviceHost> usb_host;                ///< a simulated device on USB
   std::unique_ptr<firmware_iface::SerialTransport> transport;  ///< null for links that are no serial port
   std::shared_ptr<firmware_iface::GpioChip> chip;              ///< a gpio link's chip
+  std::shared_ptr<firmware_iface::I2cBus> i2c;                 ///< an I2C link's bus
+  std::shared_ptr<sim::SimI2cBus> sim_i2c;                     ///< the same, when simulated
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
@@ -62,6 +66,21 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
     if (protocol.on_gpio_chip) {
       entry->chip = open_chip(rig, i, port, entry->simulated, selection, gpio_chips_);
       at.chip = entry->chip;
+    } else if (protocol.on_i2c_bus) {
+      if (entry->simulated) {
+        // The link's board, at its address, on a bus of its own.
+        entry->sim_i2c = std::make_shared<sim::SimI2cBus>();
+        entry->sim_i2c->add_pca9685(static_cast<std::uint8_t>(rig.links[i].options_as<rig::Pca9685Options>().address));
+        entry->i2c = entry->sim_i2c;
+      } else {
+        try {
+          entry->i2c = firmware_iface::open_i2c_bus(port);
+        } catch (const std::runtime_error& e) {
+          const rig::LinkSpec& spec = rig.links[i];
+          throw InputError({rig.file, spec.where.line, spec.where.column}, "link '" + spec.name + "': " + e.what());
+        }
+      }
+      at.i2c = entry->i2c;
     } else if (entry->simulated) {
       entry->device = protocol.make_simulated(rig, i);
       if (entry->device.network_node) {
@@ -104,6 +123,7 @@ FigureLinks::~FigureLinks() {
     e->transport.reset();
     e->usb_host.reset();
     e->chip.reset();
+    e->i2c.reset();
   }
 }
 
@@ -123,8 +143,8 @@ bool FigureLinks::all_simulated() const {
 
 std::string FigureLinks::describe(std::size_t link) const {
   const Entry& e = *entries_[link];
-  // (A simulated chip says so itself.)
-  return (e.simulated && !e.chip ? "simulated " : "") + e.link->describe();
+  // (A simulated chip or I2C bus says so itself.)
+  return (e.simulated && !e.chip && !e.i2c ? "simulated " : "") + e.link->describe();
 }
 
 sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return entries_.at(link)->device.network_node.get(); }
@@ -157,6 +177,19 @@ std::string FigureLinks::channel_problem(std::size_t channel) const {
 void FigureLinks::advance(double dt_s) {
   for (const auto& e : entries_) {
     if (!e->simulated) continue;
+    if (e->sim_i2c) {
+      // A simulated board's outputs change as they are written: read each one's pulse.
+      const auto& o = rig_.links[e->link_index].options_as<rig::Pca9685Options>();
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        const double pulse =
+            e->sim_i2c->pulse_us(static_cast<std::uint8_t>(o.address), static_cast<std::uint8_t>(a.device_channel),
+                                 static_cast<std::uint32_t>(o.clock_hz));
+        if (pulse <= 0) continue;  // no pulse: a limp servo stays where it is
+        truth_[a.channel.value] = a.calibration.to_channel(pulse);
+        truth_known_[a.channel.value] = 1;
+      }
+      continue;
+    }
     if (e->chip) {
       // A simulated chip's lines change as they are set: read what each output drives.
       for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {

@@ -9,14 +9,15 @@
 #include "avar/assembly/gpio_protocol.hpp"
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/assembly/network_dmx_protocol.hpp"
+#include "avar/assembly/pca9685_protocol.hpp"
 #include "avar/assembly/ssc32_protocol.hpp"
 
 namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
-  static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(),
-                                                &ssc32_protocol(),   &dmx_protocol(),       &can_protocol(),
-                                                &gpio_protocol(),    &artnet_protocol(),    &sacn_protocol()};
+  static const std::vector<const Protocol*> all{
+      &maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(), &ssc32_protocol(), &dmx_protocol(),
+      &can_protocol(),     &gpio_protocol(),      &artnet_protocol(),  &sacn_protocol(),  &pca9685_protocol()};
   return all;
 }
 

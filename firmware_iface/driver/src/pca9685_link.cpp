@@ -36,7 +36,11 @@ Pca9685Link::Pca9685Link(std::shared_ptr<I2cBus> bus, Pca9685LinkConfig config)
 
 Status Pca9685Link::write(const std::uint8_t* bytes, std::size_t length) noexcept {
   const Status s = bus_->write(config_.address, std::span<const std::uint8_t>(bytes, length));
-  if (s != Status::ok) counters_.add(&LinkCounters::device_errors);
+  if (s != Status::ok) {
+    counters_.add(&LinkCounters::device_errors);
+  } else {
+    counters_.add(&LinkCounters::bytes_sent, length);
+  }
   return s;
 }
 

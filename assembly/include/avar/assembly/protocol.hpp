@@ -16,6 +16,7 @@
 #include "avar/firmware_iface/actuator_link.hpp"
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/gpio_chip.hpp"
+#include "avar/firmware_iface/i2c_bus.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/assembly/sim_offer.hpp"
@@ -54,7 +55,8 @@ struct DriverTuning {
   }
 };
 
-/// Where a link's driver talks: one of a port, a byte transport, a USB device or a GPIO chip.
+/// Where a link's driver talks: one of a port, a byte transport, a USB device, a GPIO chip or an
+/// I2C bus.
 struct LinkEndpoint {
   /// A serial device (/dev/ttyACM0, or a simulated device's pseudo-terminal), a SocketCAN
   /// interface (can0), a network destination (HOST[:PORT]), or "" for a device the rig finds
@@ -68,6 +70,8 @@ struct LinkEndpoint {
   std::unique_ptr<firmware_iface::UsbControlTransport> usb = nullptr;
   /// Instead of a port: the GPIO chip of a link on a chip's lines (real, or simulated).
   std::shared_ptr<firmware_iface::GpioChip> chip = nullptr;
+  /// Instead of a port: the I2C bus of a link on a bus (real, or simulated with its board).
+  std::shared_ptr<firmware_iface::I2cBus> i2c = nullptr;
   DriverTuning tuning = {};
 };
 
@@ -84,10 +88,13 @@ struct Protocol {
   /// settings for a device that cannot be reached as the rig says.
   OpenedLink (*open)(const rig::Rig& rig, std::size_t link, LinkEndpoint at);
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
-  /// nullptr for links on a GPIO chip, which FigureLinks simulates as a chip.
+  /// nullptr for links on a GPIO chip or an I2C bus, which FigureLinks simulates itself.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
   /// The link's port names a GPIO chip: FigureLinks opens it (real or simulated) for `open`.
   bool on_gpio_chip = false;
+  /// The link's port names an I2C bus: FigureLinks opens it (real, or simulated with the
+  /// link's board on it) for `open`.
+  bool on_i2c_bus = false;
   /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;

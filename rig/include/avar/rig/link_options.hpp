@@ -66,6 +66,15 @@ struct DmxOptions {};
 /// `gpio: {}`: no settings of its own (the port names the chip).
 struct GpioOptions {};
 
+/// `pca9685: {address, frequency, clock, outputs}`: a PCA9685 board on the I2C bus the port
+/// names (/dev/i2c-1).
+struct Pca9685Options {
+  int address = 0x40;             ///< 7-bit I2C address (0x40 with no jumper)
+  int frequency_hz = 50;          ///< the pulses' rate: 50 for hobby servos
+  long long clock_hz = 25000000;  ///< the board's oscillator (a measured value, or an external clock)
+  bool totem_pole = true;         ///< outputs: totem_pole (the boards') or open_drain
+};
+
 /// How a CAN link reaches its bus.
 enum class CanInterface {
   by_port,    ///< not written: SLCAN for a device path (/dev/...), SocketCAN otherwise
@@ -118,7 +127,7 @@ struct SacnOptions {
 
 /// One link's settings, by protocol (monostate only in a LinkSpec not read from a file).
 using LinkOptions = std::variant<std::monostate, MaestroOptions, DynamixelOptions, FeetechOptions, Ssc32Options, DmxOptions,
-                                 CanOptions, GpioOptions, ArtnetOptions, SacnOptions>;
+                                 CanOptions, GpioOptions, ArtnetOptions, SacnOptions, Pca9685Options>;
 
 /// A GPIO output line's own setting.
 struct GpioOutputOptions {

@@ -59,7 +59,8 @@ class Pca9685Link final : public ActuatorLink {
   void release_channel(std::size_t channel) noexcept override { table_.release_channel(channel); }
   std::uint64_t saturated_pulses() const noexcept override { return table_.saturated(); }
   const std::string& describe() const noexcept override { return config_.description; }
-  /// exchanges: send() calls; device_errors: writes not acknowledged.
+  /// exchanges: send() calls; bytes_sent: the bytes of acknowledged writes (without the address);
+  /// device_errors: writes not acknowledged.
   LinkCounters counters() const noexcept override { return counters_.snapshot(); }
 
   std::uint8_t prescale() const noexcept { return prescale_; }
