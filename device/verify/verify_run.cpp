@@ -19,7 +19,11 @@ struct Random {
   }
   /// Uniform enough in [0, n).
   uint32_t below(uint32_t n) { return next() % n; }
-  int32_t between(int32_t lo, int32_t hi) { return lo + static_cast<int32_t>(below(static_cast<uint32_t>(hi - lo) + 1u)); }
+  /// In [lo, hi], hi - lo < 2^32 - 1 (unsigned arithmetic: no signed overflow on any target).
+  int32_t between(int32_t lo, int32_t hi) {
+    const uint32_t offset = below(static_cast<uint32_t>(hi) - static_cast<uint32_t>(lo) + 1u);
+    return static_cast<int32_t>(static_cast<uint32_t>(lo) + offset);
+  }
 };
 
 // FNV-1a over bytes.
