@@ -28,6 +28,16 @@ Status SimI2cBus::write(std::uint8_t address, std::span<const std::uint8_t> byte
   return pca9685::apply(b.registers, bytes.data(), bytes.size()) ? Status::ok : Status::io_error;
 }
 
+void SimI2cBus::settle(std::uint32_t us) {
+  const std::lock_guard lock(mutex_);
+  settled_us_ += us;
+}
+
+std::uint64_t SimI2cBus::settled_us() const {
+  const std::lock_guard lock(mutex_);
+  return settled_us_;
+}
+
 pca9685::Registers SimI2cBus::registers(std::uint8_t address) const {
   const std::lock_guard lock(mutex_);
   return boards_.at(address).registers;

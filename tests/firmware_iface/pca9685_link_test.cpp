@@ -42,6 +42,7 @@ TEST(Pca9685Link, StartsTheBoardAt50HzWithEveryOutputOff) {
   ASSERT_EQ(writes.size(), 6u);
   EXPECT_EQ(writes[0], (std::vector<std::uint8_t>{0x00, 0x31}));
   EXPECT_EQ(writes[5], (std::vector<std::uint8_t>{0xfa, 0x00, 0x00, 0x00, 0x10}));
+  EXPECT_EQ(bus->settled_us(), 500u) << "the oscillator's start-up, waited on the bus";
 }
 
 TEST(Pca9685Link, PutsEachChannelsPulseOnItsOutputAndWritesOnlyChanges) {

@@ -1,9 +1,7 @@
 #include "avar/firmware_iface/pca9685_link.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
 #include "avar/firmware_iface/pca9685_codec.hpp"
 
@@ -53,7 +51,7 @@ Status Pca9685Link::start() {
                        " does not answer (check the address jumpers, the wiring and the board's power)";
       return Status::io_error;
     }
-    if (steps[i].wait_us) std::this_thread::sleep_for(std::chrono::microseconds(steps[i].wait_us));
+    if (steps[i].wait_us) bus_->settle(steps[i].wait_us);
   }
   const pca9685::Write off = pca9685::all_off();
   return write(off.bytes, off.length);

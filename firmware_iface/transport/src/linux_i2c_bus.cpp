@@ -7,8 +7,10 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
+#include <thread>
 
 namespace avar::firmware_iface {
 namespace {
@@ -39,6 +41,7 @@ class LinuxI2cBus final : public I2cBus {
     i2c_rdwr_ioctl_data transfer{&message, 1};
     return ::ioctl(fd_, I2C_RDWR, &transfer) < 0 ? Status::io_error : Status::ok;
   }
+  void settle(std::uint32_t us) override { std::this_thread::sleep_for(std::chrono::microseconds(us)); }
   const std::string& describe() const noexcept override { return description_; }
 
  private:

@@ -25,6 +25,9 @@ class SimI2cBus final : public firmware_iface::I2cBus {
   void set_answering(std::uint8_t address, bool answering);
 
   Status write(std::uint8_t address, std::span<const std::uint8_t> bytes) noexcept override;
+  /// A simulated board settles at once; the waits asked for are summed (settled_us).
+  void settle(std::uint32_t us) override;
+  std::uint64_t settled_us() const;
   const std::string& describe() const noexcept override { return description_; }
 
   /// The board's registers (a copy), and one output's pulse width in µs from its registers and
@@ -42,6 +45,7 @@ class SimI2cBus final : public firmware_iface::I2cBus {
   };
   mutable std::mutex mutex_;
   std::map<std::uint8_t, Board> boards_;
+  std::uint64_t settled_us_ = 0;
   std::string description_ = "simulated I2C bus";
 };
 

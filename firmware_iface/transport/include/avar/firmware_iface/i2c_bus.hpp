@@ -19,6 +19,9 @@ class I2cBus {
   /// One write transaction (start, address, the bytes, stop). io_error when the device does not
   /// acknowledge or the bus fails. Real-time safe in every implementation: one kernel call at most.
   virtual Status write(std::uint8_t address, std::span<const std::uint8_t> bytes) noexcept = 0;
+  /// Waits `us` microseconds for a device on the bus to settle (a PCA9685's oscillator after
+  /// waking). A real bus sleeps; a simulated one has nothing to wait for. Load-time only.
+  virtual void settle(std::uint32_t us) = 0;
   /// "I2C bus /dev/i2c-1", "simulated I2C bus".
   virtual const std::string& describe() const noexcept = 0;
 };
