@@ -6,6 +6,7 @@
 
 #include "avar/check_command.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/export_command.hpp"
 #include "avar/fit_command.hpp"
 #include "avar/idle_options.hpp"
 #include "avar/inputs_command.hpp"
@@ -103,6 +104,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      write the show's curves as CSV, to inspect, plot or diff (no rig needed)\n"
       "  avar fit recording.csv --tolerance 0.1 --out take.yaml [--smooth butterworth --cutoff 4]\n"
       "      turn recorded samples into a show of few Bezier keys within the tolerance\n"
+      "  avar export SHOW --rig RIG --target atmega328p --out DIR\n"
+      "      a library that plays the show on a microcontroller (an Uno with a PCA9685 board), standalone\n"
       "  avar mocap info walk.bvh   /   avar mocap joints walk.bvh --out joints.csv\n"
       "      show a motion-capture file's skeleton, or write its joints' positions per frame as CSV\n"
       "  avar jaw voice.wav --rig RIG --channel jaw --out jaw.yaml\n"
@@ -189,6 +192,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* sample_cmd = add_sample_subcommand(app, sample);
   FitOptions fit;
   CLI::App* fit_cmd = add_fit_subcommand(app, fit);
+  ExportOptions export_options;
+  CLI::App* export_cmd = add_export_subcommand(app, export_options);
   JawCommandOptions jaw;
   CLI::App* jaw_cmd = add_jaw_subcommand(app, jaw);
   VisemesCommandOptions visemes;
@@ -242,6 +247,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   if (*check_cmd) return run_check(check_show, check_rig, retime, out, err);
   if (*sample_cmd) return run_sample(sample, out, err);
   if (*fit_cmd) return run_fit(fit, out, err);
+  if (*export_cmd) return run_export(export_options, out, err);
   if (*jaw_cmd) return run_jaw(jaw, out, err);
   if (*visemes_cmd) return run_visemes(visemes, out, err);
   if (*sims.sim) return run_sim(sims, out, err);

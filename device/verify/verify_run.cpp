@@ -217,11 +217,16 @@ void verify_player(uint32_t seed, uint32_t switches, LineSink sink, VerifyCounts
   }
   PlayerChannel channel;
   const int64_t q16 = 65536;
-  channel.limits.low = static_cast<int64_t>(r.below(20000)) * q16;
-  channel.limits.high = channel.limits.low + static_cast<int64_t>(1000 + r.below(40000)) * q16;
-  channel.limits.rest = channel.limits.low + (channel.limits.high - channel.limits.low) / 3;
-  channel.limits.speed = static_cast<int64_t>(1 + r.below(2000)) * q16 / 4;
-  channel.limits.accel = static_cast<int64_t>(1 + r.below(400)) * q16 / 16;
+  ChannelLimits limits;
+  limits.low = static_cast<int64_t>(r.below(20000)) * q16;
+  limits.high = limits.low + static_cast<int64_t>(1000 + r.below(40000)) * q16;
+  limits.rest = limits.low + (limits.high - limits.low) / 3;
+  limits.speed = static_cast<int64_t>(1 + r.below(2000)) * q16 / 4;
+  limits.accel = static_cast<int64_t>(1 + r.below(400)) * q16 / 16;
+  limiter_prepare(limits);
+  static uint8_t stored[kLimitsSize];
+  write_limits(limits, stored);
+  channel.limits = stored;
   Player player;
   if (player_init(player, &channel, 1, shows, 4, 200) != kPlayerOk || player_start(player, 0) != kPlayerOk) {
     ++counts.invalid;
@@ -237,9 +242,9 @@ void verify_player(uint32_t seed, uint32_t switches, LineSink sink, VerifyCounts
       ++ticks;
       const LimiterState& now = channel.state;
       const int64_t dv = now.velocity - before.velocity;
-      const bool ok = now.position >= channel.limits.low && now.position <= channel.limits.high &&
-                      now.velocity <= channel.limits.speed && now.velocity >= -channel.limits.speed &&
-                      dv <= channel.limits.accel && dv >= -channel.limits.accel && now.position - before.position == now.velocity;
+      const bool ok = now.position >= limits.low && now.position <= limits.high && now.velocity <= limits.speed &&
+                      now.velocity >= -limits.speed && dv <= limits.accel && dv >= -limits.accel &&
+                      now.position - before.position == now.velocity;
       if (!ok) ++counts.violations;
       h.add(channel.output, 2);
     }

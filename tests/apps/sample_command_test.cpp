@@ -170,19 +170,19 @@ TEST(SampleCommand, TheBinaryWritesCsvToStandardOutputAndTeachesInItsHelp) {
 namespace avar::app {
 namespace {
 
-const std::string kHelloRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
+const std::string kSampledRig = AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml";
 
 // The device engine's CSV has the double engine's grid and columns, and every value within one
 // 16-bit output unit of the double engine's over the rig channel's range.
 TEST(SampleCommandDeviceEngine, MatchesTheDoubleEngineWithinOneOutputUnit) {
-  const Result reference = sample({kSampledShow, "--rig", kHelloRig, "--rate", "50"});
-  const Result device = sample({kSampledShow, "--rig", kHelloRig, "--rate", "50", "--engine", "device"});
+  const Result reference = sample({kSampledShow, "--rig", kSampledRig, "--rate", "50"});
+  const Result device = sample({kSampledShow, "--rig", kSampledRig, "--rate", "50", "--engine", "device"});
   ASSERT_EQ(reference.code, kExitOk) << reference.err;
   ASSERT_EQ(device.code, kExitOk) << device.err;
   const auto a = testing::csv_rows(reference.out), b = testing::csv_rows(device.out);
   ASSERT_EQ(a.size(), b.size());
   ASSERT_EQ(a[0], b[0]);
-  const rig::Rig rig = config::load_rig_file(kHelloRig);
+  const rig::Rig rig = config::load_rig_file(kSampledRig);
   std::size_t compared = 0;
   for (std::size_t i = 1; i < a.size(); ++i) {
     EXPECT_EQ(a[i][0], b[i][0]);
@@ -201,10 +201,11 @@ TEST(SampleCommandDeviceEngine, NeedsTheRigAndRefusesALayeredShowSayingWhy) {
   const Result no_rig = sample({kSampledShow, "--engine", "device"});
   EXPECT_EQ(no_rig.code, kExitBadInput);
   EXPECT_NE(no_rig.err.find("--engine device needs --rig RIG"), std::string::npos) << no_rig.err;
-  const Result layered = sample({AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml", "--rig", kHelloRig, "--engine", "device"});
+  const Result layered =
+      sample({AVAR_SOURCE_DIR "/examples/shows/layered-head.yaml", "--rig", kSampledRig, "--engine", "device"});
   EXPECT_EQ(layered.code, kExitBadInput);
   EXPECT_NE(layered.err.find("the device engine plays a show's tracks"), std::string::npos) << layered.err;
-  const Result unknown = sample({kSampledShow, "--rig", kHelloRig, "--engine", "float"});
+  const Result unknown = sample({kSampledShow, "--rig", kSampledRig, "--engine", "float"});
   EXPECT_NE(unknown.code, kExitOk);
 }
 

@@ -3,7 +3,9 @@
 // (and stops) mid-motion with no tick over a speed or acceleration limit or outside the range.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -48,10 +50,18 @@ std::vector<std::uint8_t> random_show(std::mt19937& rng, int channels) {
   return encode_show_image(show, image_channels).bytes;
 }
 
+/// Limits as the player reads them (stored bytes), kept beside the numbers for the checks.
+struct StoredLimits {
+  ChannelLimits limits;
+  std::array<std::uint8_t, kLimitsSize> bytes{};
+  explicit StoredLimits(const ChannelLimits& l) : limits(l) { write_limits(l, bytes.data()); }
+};
+
 struct Figure {
   std::vector<std::vector<std::uint8_t>> images;
   std::vector<PlayerShow> shows;
   std::vector<PlayerChannel> channels;
+  std::vector<std::unique_ptr<StoredLimits>> limits;
   Player player{};
 };
 
@@ -59,9 +69,11 @@ void set_up(Figure& f, std::mt19937& rng, int channels, int shows) {
   for (int s = 0; s < shows; ++s) f.images.push_back(random_show(rng, channels));
   for (const auto& image : f.images) f.shows.push_back({image.data(), static_cast<std::uint32_t>(image.size())});
   f.channels.resize(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c)
-    f.channels[static_cast<std::size_t>(c)].limits =
-        device_limits({-100, 100}, -50 + 10 * c, 150 + 100 * c, 600 + 400 * c, c == 0 ? 0.0 : 5.0, kRate);
+  for (int c = 0; c < channels; ++c) {
+    f.limits.push_back(std::make_unique<StoredLimits>(
+        device_limits({-100, 100}, -50 + 10 * c, 150 + 100 * c, 600 + 400 * c, c == 0 ? 0.0 : 5.0, kRate)));
+    f.channels[static_cast<std::size_t>(c)].limits = f.limits.back()->bytes.data();
+  }
   ASSERT_EQ(player_init(f.player, f.channels.data(), static_cast<std::uint8_t>(channels), f.shows.data(),
                         static_cast<std::uint8_t>(shows), kRate),
             kPlayerOk);
@@ -72,7 +84,7 @@ TEST(DevicePlayer, StartsAtRestAndEasesBackToRestOnStop) {
   Figure f;
   set_up(f, rng, 3, 2);
   for (const PlayerChannel& c : f.channels) {
-    EXPECT_EQ(c.state.position, c.limits.rest);
+    EXPECT_EQ(c.state.position, read_limits(c.limits).rest);
     EXPECT_EQ(c.state.velocity, 0);
   }
   ASSERT_EQ(player_start(f.player, 1), kPlayerOk);
@@ -81,7 +93,7 @@ TEST(DevicePlayer, StartsAtRestAndEasesBackToRestOnStop) {
   EXPECT_EQ(f.player.mode, kPlayerStopping);
   for (int i = 0; i < 5000 && f.player.mode != kPlayerResting; ++i) player_tick(f.player);
   EXPECT_EQ(f.player.mode, kPlayerResting);
-  for (const PlayerChannel& c : f.channels) EXPECT_EQ(c.state.position, c.limits.rest);
+  for (const PlayerChannel& c : f.channels) EXPECT_EQ(c.state.position, read_limits(c.limits).rest);
   EXPECT_EQ(player_start(f.player, 2), kPlayerBadShow);
 }
 
@@ -105,7 +117,8 @@ TEST(DevicePlayer, PlaysAShowWithinItsLimitsExactlyOnceCaughtUp) {
   const std::vector<std::uint8_t> image = encode_show_image(show, {{"neck", {-100, 100}}}).bytes;
   const PlayerShow shows[] = {{image.data(), static_cast<std::uint32_t>(image.size())}};
   PlayerChannel channel{};
-  channel.limits = device_limits({-100, 100}, 0, 200, 1000, 0, kRate);  // the sine asks 126 deg/s, 400 deg/s^2
+  const StoredLimits limits(device_limits({-100, 100}, 0, 200, 1000, 0, kRate));  // the sine asks 126 deg/s, 400 deg/s^2
+  channel.limits = limits.bytes.data();
   Player player{};
   ASSERT_EQ(player_init(player, &channel, 1, shows, 1, kRate), kPlayerOk);
   ASSERT_EQ(player_start(player, 0), kPlayerOk);
@@ -141,7 +154,7 @@ TEST(DevicePlayer, TenThousandSwitchesMidMotionStayWithinEveryLimit) {
       player_tick(f.player);
       ++ticks;
       for (std::size_t c = 0; c < f.channels.size(); ++c) {
-        const ChannelLimits& l = f.channels[c].limits;
+        const ChannelLimits& l = f.limits[c]->limits;
         const LimiterState& s = f.channels[c].state;
         const bool ok = s.position >= l.low && s.position <= l.high && std::abs(s.velocity) <= l.speed &&
                         std::abs(s.velocity - before[c].velocity) <= l.accel && s.position - before[c].position == s.velocity;
@@ -168,7 +181,15 @@ TEST(DevicePlayer, RefusesShowsAndLimitsItCannotPlay) {
   Player p{};
   EXPECT_EQ(player_init(p, one, 1, f.shows.data(), 1, kRate), kPlayerBadChannels) << "a 2-channel show on 1 channel";
   std::vector<PlayerChannel> channels = f.channels;
-  channels[1].limits.speed = 0;
+  ChannelLimits stopped = f.limits[1]->limits;
+  stopped.speed = 0;
+  const StoredLimits no_speed(stopped);
+  channels[1].limits = no_speed.bytes.data();
+  EXPECT_EQ(player_init(p, channels.data(), 2, f.shows.data(), 1, kRate), kPlayerBadLimits);
+  ChannelLimits unprepared = f.limits[1]->limits;
+  unprepared.reach += 1;  // a stored reach the limiter would not compute: a damaged record
+  const StoredLimits bad_reach(unprepared);
+  channels[1].limits = bad_reach.bytes.data();
   EXPECT_EQ(player_init(p, channels.data(), 2, f.shows.data(), 1, kRate), kPlayerBadLimits);
   std::vector<std::uint8_t> damaged = f.images[0];
   damaged[0] = 'x';

@@ -48,10 +48,17 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
       inner2 = r.zigzag();
       if (c.kind == kBezier) {
         const bool wide = (k.header & kKeyWideBezier) != 0;
-        ta = r.fixed(wide ? 3 : 2) << (wide ? 7 : 15);  // Q23 or Q15 to Q30
-        tb = r.fixed(wide ? 3 : 2) << (wide ? 7 : 15);
+        if (k.header & kKeySameHandleTimes) {
+          // The previous Bezier key's, still in the cache: segments load in key order from the
+          // first (check_image made sure a Bezier key came before).
+          ta = c.ta, tb = c.tb;
+        } else {
+          ta = r.fixed(wide ? 3 : 2) << (wide ? 7 : 15);  // Q23 or Q15 to Q30
+          tb = r.fixed(wide ? 3 : 2) << (wide ? 7 : 15);
+        }
       }
       break;
+#if AVAR_DEVICE_EASINGS
     case kBack: param1 = r.zigzag(); break;
     case kElastic:
       blended = r.u8() != 0;
@@ -59,6 +66,7 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
       param2 = r.varint();
       param3 = r.zigzag();
       break;
+#endif
     default: break;
   }
   c.next_at = r.at;
@@ -76,9 +84,13 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
                 v1 = static_cast<int64_t>(c.k1) * 256;  // Q8 (a product: C++14 leaves a negative shifted left undefined)
   c.v0 = v0;
   c.c1 = c.c2 = c.c3 = 0;
-  c.ta = ta, c.tb = tb;
+  if (c.kind == kBezier) c.ta = ta, c.tb = tb;  // kept across other segments for the next Bezier key
+#if AVAR_DEVICE_EASINGS
   c.p0 = c.p1 = c.p2 = c.p3 = 0;
   c.q0 = c.q1 = 0;
+#else
+  (void)blended, (void)param1, (void)param2, (void)param3;
+#endif
   switch (c.kind) {
     case kStep: break;
     case kLinear: c.c1 = v1 - v0; break;
@@ -91,6 +103,7 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
       c.c3 = v1 - v0 + 3 * (p1 - p2);
       break;
     }
+#if AVAR_DEVICE_EASINGS
     case kBack:
       c.c1 = v1 - v0;
       c.p0 = param1 * 16384;  // Q16 to Q30
@@ -106,6 +119,7 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
       c.q1 = e.per_period;
       break;
     }
+#endif
     default: c.c1 = v1 - v0; break;
   }
 }
@@ -148,11 +162,15 @@ int64_t evaluate_in(const SegmentCache& c, int32_t t) {
     case kLinear: return c.v0 + mul_q30(c.c1, s);
     case kCubic: return cubic_at(c, s);
     case kBezier: return cubic_at(c, bezier_parameter(c, static_cast<uint32_t>(s)));
+#if AVAR_DEVICE_EASINGS
     case kElastic: {
       const ElasticSegment e = {c.easing, c.p0 != 0, c.c1, c.p1, c.p2, c.p3, c.q0, c.q1};
       return c.v0 + elastic_offset_q8(e, s);
     }
     default: return c.v0 + mul_q30(c.c1, ease_fraction_q30(c.kind, c.easing, s, c.p0));
+#else
+    default: return c.v0;  // not reached: check_image refuses the families this build left out
+#endif
   }
 }
 
@@ -163,6 +181,7 @@ int32_t snapped_to_ends(const Channel& ch, int32_t t) {
   return t;
 }
 
+#if AVAR_DEVICE_EXTRAPOLATION
 const int64_t kHuge = static_cast<int64_t>(1) << 40;  // Q8 far beyond any output
 
 // value + slope (Q8 per second) * ticks / ticks_per_second, saturated far beyond the output.
@@ -177,12 +196,17 @@ int64_t extrapolated(int64_t value, int64_t slope, int64_t ticks, uint32_t ticks
   return value + (negative ? -static_cast<int64_t>(change) : static_cast<int64_t>(change));
 }
 
+#endif
+
 int64_t extrapolate(const Channel& ch, int32_t t) {
   const bool before = !(t > ch.start);
   const int64_t value = static_cast<int64_t>(before ? ch.first_value : ch.last_value) * 256;
-  if (!(ch.flags & kChannelLinearExtrapolation)) return value;
-  return extrapolated(value, before ? ch.slope_before : ch.slope_after, static_cast<int64_t>(t) - (before ? ch.start : ch.end),
-                      ch.ticks_per_second);
+#if AVAR_DEVICE_EXTRAPOLATION
+  if (ch.flags & kChannelLinearExtrapolation)
+    return extrapolated(value, before ? ch.slope_before : ch.slope_after, static_cast<int64_t>(t) - (before ? ch.start : ch.end),
+                        ch.ticks_per_second);
+#endif
+  return value;
 }
 
 // Moves the cache to the segment holding t (start < t < end).
@@ -206,6 +230,7 @@ int64_t evaluate_keys(const Channel& ch, SegmentCache& c, int32_t t) {
   return evaluate_in(c, t);
 }
 
+#if AVAR_DEVICE_CYCLES
 // Blender's Cycles time map in integer ticks (avar's Curve::cycle_time, exact here): t outside
 // the keys mapped into them, with the value offset of repeat_offset. Returns false past the count.
 bool cycle_time(const Channel& ch, int32_t t, int32_t& mapped, int64_t& offset) {
@@ -237,6 +262,7 @@ bool cycle_time(const Channel& ch, int32_t t, int32_t& mapped, int64_t& offset) 
   }
   return true;
 }
+#endif
 
 }  // namespace
 
@@ -250,14 +276,18 @@ bool open_channel(const uint8_t* image, uint32_t size, uint8_t index, Channel& c
   ch.snap_ticks = header.snap_ticks;
   ch.flags = r.u8();
   ch.key_count = static_cast<uint16_t>(r.fixed(2));
+  // (check_image refused the features this build left out)
+#if AVAR_DEVICE_EXTRAPOLATION
   ch.slope_before = ch.slope_after = 0;
-  ch.cycle_before = ch.cycle_after = kCycleNone;
-  ch.before_count = ch.after_count = 0;
-  ch.cycle_offset = 0;
   if (ch.flags & kChannelLinearExtrapolation) {
     ch.slope_before = r.zigzag();
     ch.slope_after = r.zigzag();
   }
+#endif
+#if AVAR_DEVICE_CYCLES
+  ch.cycle_before = ch.cycle_after = kCycleNone;
+  ch.before_count = ch.after_count = 0;
+  ch.cycle_offset = 0;
   if (ch.flags & kChannelCycles) {
     const uint8_t modes = r.u8();
     ch.cycle_before = modes & 0x0fu;
@@ -266,6 +296,7 @@ bool open_channel(const uint8_t* image, uint32_t size, uint8_t index, Channel& c
     ch.after_count = static_cast<uint32_t>(r.varint());
     ch.cycle_offset = r.zigzag();
   }
+#endif
   ch.keys_at = r.at;
   // The first and last keys: the last by walking the keys once.
   int32_t time = 0, value = 0;
@@ -277,7 +308,8 @@ bool open_channel(const uint8_t* image, uint32_t size, uint8_t index, Channel& c
       case kCubic: r.zigzag(), r.zigzag(); break;
       case kBezier: {
         const unsigned bytes = k.header & kKeyWideBezier ? 3 : 2;
-        r.zigzag(), r.zigzag(), r.fixed(bytes), r.fixed(bytes);
+        r.zigzag(), r.zigzag();
+        if (!(k.header & kKeySameHandleTimes)) r.fixed(bytes), r.fixed(bytes);
         break;
       }
       case kBack: r.zigzag(); break;
@@ -296,6 +328,7 @@ void reset_cache(SegmentCache& cache) {
 }
 
 int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
+#if AVAR_DEVICE_CYCLES
   if (!(ch.flags & kChannelCycles)) return evaluate_keys(ch, cache, tick);
   const int32_t t = snapped_to_ends(ch, tick);  // before the cycle map: the end key, not the next cycle
   if (t >= ch.start && t <= ch.end) return evaluate_keys(ch, cache, t);
@@ -303,6 +336,9 @@ int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
   int64_t offset = 0;
   if (!cycle_time(ch, t, mapped, offset)) return evaluate_keys(ch, cache, t);
   return evaluate_keys(ch, cache, mapped) + offset;
+#else
+  return evaluate_keys(ch, cache, tick);
+#endif
 }
 
 uint16_t sample(const Channel& ch, SegmentCache& cache, int32_t tick) {

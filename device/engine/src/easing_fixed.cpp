@@ -3,6 +3,9 @@
 #include "avar/device/fixed_math.hpp"
 #include "avar/device/show_image.hpp"
 
+// A build without the easings (config.hpp) compiles none of this.
+#if AVAR_DEVICE_EASINGS
+
 namespace avar {
 namespace device {
 namespace {
@@ -167,3 +170,5 @@ int64_t elastic_offset_q8(const ElasticSegment& e, int64_t t) {
 
 }  // namespace device
 }  // namespace avar
+
+#endif  // AVAR_DEVICE_EASINGS

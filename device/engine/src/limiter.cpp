@@ -14,6 +14,24 @@ int64_t stopping_distance(int64_t speed, int64_t accel) {
 
 void limiter_prepare(ChannelLimits& limits) { limits.reach = stopping_distance(limits.speed, limits.accel); }
 
+ChannelLimits read_limits(const uint8_t* stored) {
+  int64_t fields[6];
+  const uint8_t* at = stored;
+  for (uint8_t f = 0; f < 6; ++f) {
+    uint64_t v = 0;
+    for (uint8_t b = 0; b < 8; ++b) v |= static_cast<uint64_t>(AVAR_DEVICE_READ_BYTE(at++)) << (8 * b);
+    fields[f] = static_cast<int64_t>(v);
+  }
+  ChannelLimits l = {fields[0], fields[1], fields[2], fields[3], fields[4], fields[5]};
+  return l;
+}
+
+void write_limits(const ChannelLimits& limits, uint8_t* out) {
+  const int64_t fields[6] = {limits.low, limits.high, limits.rest, limits.speed, limits.accel, limits.reach};
+  for (uint8_t f = 0; f < 6; ++f)
+    for (uint8_t b = 0; b < 8; ++b) *out++ = static_cast<uint8_t>(static_cast<uint64_t>(fields[f]) >> (8 * b));
+}
+
 LimiterState limiter_at_rest(const ChannelLimits& limits) {
   const int64_t rest = clamp64(limits.rest, limits.low, limits.high);
   LimiterState s = {rest, 0, rest, false};

@@ -6,7 +6,9 @@ namespace avar {
 namespace device {
 namespace {
 
-bool usable(const ChannelLimits& l) { return l.low <= l.rest && l.rest <= l.high && l.speed > 0 && l.accel > 0; }
+bool usable(const ChannelLimits& l) {
+  return l.low <= l.rest && l.rest <= l.high && l.speed > 0 && l.accel > 0 && l.reach == stopping_distance(l.speed, l.accel);
+}
 
 }  // namespace
 
@@ -30,9 +32,9 @@ PlayerStatus player_init(Player& p, PlayerChannel* channels, uint8_t channel_cou
     if (h.channel_count != channel_count) return kPlayerBadChannels;
   }
   for (uint8_t c = 0; c < channel_count; ++c) {
-    if (!usable(channels[c].limits)) return kPlayerBadLimits;
-    limiter_prepare(channels[c].limits);
-    channels[c].state = limiter_at_rest(channels[c].limits);
+    const ChannelLimits limits = read_limits(channels[c].limits);
+    if (!usable(limits)) return kPlayerBadLimits;
+    channels[c].state = limiter_at_rest(limits);
     channels[c].output = limiter_output(channels[c].state);
     reset_cache(channels[c].cache);
   }
@@ -76,15 +78,17 @@ void player_tick(Player& p) {
   }
   for (uint8_t c = 0; c < p.channel_count; ++c) {
     PlayerChannel& ch = p.channels[c];
+    const ChannelLimits limits = read_limits(ch.limits);
     // The show's value in Q8 output units, to Q16; on stop (or rest) the rest pose.
-    const int64_t target = p.mode == kPlayerPlaying ? sample_q8(ch.curve, ch.cache, tick) * 256 : ch.limits.rest;
-    limiter_step(ch.limits, ch.state, target);
+    const int64_t target = p.mode == kPlayerPlaying ? sample_q8(ch.curve, ch.cache, tick) * 256 : limits.rest;
+    limiter_step(limits, ch.state, target);
     ch.output = limiter_output(ch.state);
   }
   if (p.mode == kPlayerStopping) {
     bool resting = true;
     for (uint8_t c = 0; c < p.channel_count; ++c)
-      resting = resting && p.channels[c].state.position == p.channels[c].limits.rest && p.channels[c].state.velocity == 0;
+      resting =
+          resting && p.channels[c].state.position == read_limits(p.channels[c].limits).rest && p.channels[c].state.velocity == 0;
     if (resting) p.mode = kPlayerResting;
   }
 }

@@ -8,14 +8,21 @@ const int64_t kMaxValue = static_cast<int64_t>(1) << 20;  // output units: 16 ra
 
 bool within(int64_t x, int64_t limit) { return x >= -limit && x <= limit; }
 
+// The features this build plays (config.hpp).
+const uint8_t kBuiltFeatures =
+    static_cast<uint8_t>((AVAR_DEVICE_EASINGS ? kFeatureEasings : 0) | (AVAR_DEVICE_CYCLES ? kFeatureCycles : 0) |
+                         (AVAR_DEVICE_EXTRAPOLATION ? kFeatureExtrapolation : 0));
+
 // Reads one key as the engine does and checks its numbers against the engine's bounds: times
 // strictly increasing within 32 bits, values and control points within kMaxValue, parameters
 // within their fields' ranges. False when it does not decode or is out of bounds.
 // `pending` carries the previous key's second inner control point, relative to this key's value.
-bool check_key(ByteReader& r, bool first, int64_t& time, int64_t& value, int64_t& pending) {
+// `bezier_seen`: a Bezier key came before (whose handle times a later one may repeat).
+bool check_key(ByteReader& r, bool first, int64_t& time, int64_t& value, int64_t& pending, uint8_t& features, bool& bezier_seen) {
   const uint8_t header = r.u8();
   const uint8_t kind = header & 0x1fu;
   if (kind >= kKindCount || ((header >> 5) & 3u) > kEaseInOut) return false;
+  if (kind > kBezier) features |= kFeatureEasings;
   if (first) {
     time = r.zigzag();
   } else {
@@ -36,7 +43,13 @@ bool check_key(ByteReader& r, bool first, int64_t& time, int64_t& value, int64_t
       if (kind == kBezier) {
         const unsigned bytes = header & kKeyWideBezier ? 3 : 2;
         const uint32_t one = static_cast<uint32_t>(1) << (8 * bytes - 1);  // fractions Q15 or Q23, at most 1
-        ok = ok && r.fixed(bytes) <= one && r.fixed(bytes) <= one;
+        if (header & 0x40u) return false;                                  // no easing on a Bezier key
+        if (header & kKeySameHandleTimes) {
+          ok = ok && bezier_seen;
+        } else {
+          ok = ok && r.fixed(bytes) <= one && r.fixed(bytes) <= one;
+        }
+        bezier_seen = true;
       }
       break;
     }
@@ -75,6 +88,7 @@ ImageStatus check_image(const uint8_t* image, uint32_t size, ShowHeader& header)
   h.snap_ticks = r.u8();
   h.ticks_per_second = r.fixed(4);
   h.duration = static_cast<int32_t>(r.fixed(4));
+  h.features = 0;
   if (h.channel_count == 0 || h.channel_count > kMaxChannels) return kImageBadChannelCount;
   if (h.ticks_per_second == 0) return kImageBadTicksPerSecond;
   if (size < kHeaderSize + 4u * h.channel_count) return kImageTooShort;
@@ -84,6 +98,8 @@ ImageStatus check_image(const uint8_t* image, uint32_t size, ShowHeader& header)
     const uint8_t flags = k.u8();
     const uint32_t keys = k.fixed(2);
     if (keys == 0 || (flags & ~(kChannelLinearExtrapolation | kChannelCycles)) != 0) return kImageBadChannel;
+    if (flags & kChannelLinearExtrapolation) h.features |= kFeatureExtrapolation;
+    if (flags & kChannelCycles) h.features |= kFeatureCycles;
     if (flags & kChannelLinearExtrapolation) {
       if (!within(k.zigzag(), static_cast<int64_t>(1) << 40) || !within(k.zigzag(), static_cast<int64_t>(1) << 40))
         return kImageBadChannel;
@@ -94,12 +110,13 @@ ImageStatus check_image(const uint8_t* image, uint32_t size, ShowHeader& header)
       if (k.varint() > 0x7fffffffu || k.varint() > 0x7fffffffu || !within(k.zigzag(), kMaxValue * 512)) return kImageBadChannel;
     }
     int64_t time = 0, value = 0, pending = 0;
+    bool bezier_seen = false;
     for (uint32_t i = 0; i < keys; ++i)
-      if (!check_key(k, i == 0, time, value, pending)) return kImageBadChannel;
+      if (!check_key(k, i == 0, time, value, pending, h.features, bezier_seen)) return kImageBadChannel;
     if (pending != 0) return kImageBadChannel;  // the last key starts no segment
   }
   header = h;
-  return kImageOk;
+  return (h.features & ~kBuiltFeatures) != 0 ? kImageNeedsFeature : kImageOk;
 }
 
 }  // namespace device

@@ -15,6 +15,7 @@ const char* to_string(ImageStatus status) {
     case kImageBadChannelCount: return "a channel count outside 1..64";
     case kImageBadTicksPerSecond: return "0 ticks per second";
     case kImageBadChannel: return "a channel record or key that does not decode within the engine's bounds";
+    case kImageNeedsFeature: return "a segment family or channel feature this build of the engine left out";
   }
   return "an unknown image status";
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "avar/core/format.hpp"
@@ -169,6 +170,13 @@ std::vector<std::uint8_t> encode_channel_record(const playback::RawCurve& raw, c
     values[i] = rounded(output(v, i));
   }
   std::size_t key_bytes = 0;
+  // The handle times of the channel's last Bezier key, as encoded.
+  struct HandleTimes {
+    std::uint32_t a, b;
+    bool wide;
+    bool operator==(const HandleTimes&) const = default;
+  };
+  std::optional<HandleTimes> previous_times;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t begin = out.size();
     std::vector<std::uint8_t> params;
@@ -206,12 +214,24 @@ std::vector<std::uint8_t> encode_channel_record(const playback::RawCurve& raw, c
                                                     "the device engine plays Bezier segments whose time runs forward");
           a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0);
           inner(s.e1, s.e2);
+          // Handles at a third of the segment each: time runs linearly, u = s, and the segment is
+          // the cubic family, without the handle times.
+          if (std::abs(a - 1.0 / 3) < 1e-9 && std::abs(b - 2.0 / 3) < 1e-9) {
+            header = kCubic;
+            break;
+          }
           const bool wide = narrow_time_error(a, b, s.e1 * scale, s.e2 * scale, s.e3 * scale) > kNarrowTimeError;
           const int bytes = wide ? 3 : 2;
-          const auto fraction = [&](double x) { return static_cast<std::uint64_t>(rounded(std::ldexp(x, 8 * bytes - 1))); };
-          put_fixed(params, fraction(a), bytes);
-          put_fixed(params, fraction(b), bytes);
+          const auto fraction = [&](double x) { return static_cast<std::uint32_t>(rounded(std::ldexp(x, 8 * bytes - 1))); };
+          const HandleTimes times{fraction(a), fraction(b), wide};
           if (wide) header |= kKeyWideBezier;
+          if (previous_times && *previous_times == times) {
+            header |= kKeySameHandleTimes;  // Blender's auto handles between evenly spaced keys: 4 bytes less
+          } else {
+            put_fixed(params, times.a, bytes);
+            put_fixed(params, times.b, bytes);
+          }
+          previous_times = times;
           if (counts) ++counts->bezier_keys;
           break;
         }

@@ -26,12 +26,16 @@ struct Channel {
   uint16_t key_count;
   uint8_t flags;  ///< kChannelLinearExtrapolation, kChannelCycles
   uint8_t snap_ticks;
+  int32_t start, end;               ///< first and last key's ticks
+  int32_t first_value, last_value;  ///< output units
+#if AVAR_DEVICE_CYCLES
   uint8_t cycle_before, cycle_after;  ///< CycleMode
   uint32_t before_count, after_count;
+  int64_t cycle_offset;  ///< Q8 output units: last key's value - first key's
+#endif
+#if AVAR_DEVICE_EXTRAPOLATION
   int64_t slope_before, slope_after;  ///< Q8 output units per second
-  int64_t cycle_offset;               ///< Q8 output units: last key's value - first key's
-  int32_t start, end;                 ///< first and last key's ticks
-  int32_t first_value, last_value;    ///< output units
+#endif
 };
 
 /// The segment a channel last sampled, decoded: one per channel per player, owned by the caller
@@ -47,11 +51,13 @@ struct SegmentCache {
   int64_t v0;          ///< Q8
   int64_t c1, c2, c3;  ///< value polynomial (Q8) in s or, for Bezier, in u; easing: c1 the change
   uint32_t ta, tb;     ///< Bezier: the handles' times, Q30 of the segment
+#if AVAR_DEVICE_EASINGS
   /// Easing parameters: back: p0 the overshoot (Q30); elastic: p0 1 when blended, p1 the wave's
   /// amplitude (Q8), p2 the blend's factor (Q30), p3 the shift (Q30 of the duration), q0 and q1
   /// the reciprocals of the shift and the period (ElasticSegment).
   int64_t p0, p1, p2, p3;
   uint64_t q0, q1;
+#endif
 };
 const uint16_t kNoSegment = 0xffffu;
 

@@ -9,6 +9,8 @@
 
 #include <stdint.h>
 
+#include "avar/device/config.hpp"
+
 namespace avar {
 namespace device {
 
@@ -22,6 +24,14 @@ struct ChannelLimits {
   /// limiter needs no braking there, and skips computing it. Set by limiter_prepare.
   int64_t reach;
 };
+
+/// A channel's limits as stored (in flash, beside the shows): low, high, rest, speed, accel and
+/// reach, each a little-endian 64-bit two's complement integer.
+const uint8_t kLimitsSize = 48;
+/// Reads stored limits (through AVAR_DEVICE_READ_BYTE: from program memory on AVR).
+ChannelLimits read_limits(const uint8_t* stored);
+/// Stores limits in kLimitsSize bytes at `out` (the host's exporter, a test's RAM copy).
+void write_limits(const ChannelLimits& limits, uint8_t* out);
 
 /// The distance a channel covers stopping from `speed` (first moving by it) decelerating by
 /// `accel` per tick: speed + (speed - accel) + ... while positive.

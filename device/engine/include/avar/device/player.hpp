@@ -15,7 +15,9 @@ namespace device {
 
 /// One channel of the figure: its limits, its limiter state and what it outputs.
 struct PlayerChannel {
-  ChannelLimits limits;
+  /// The channel's limits, stored (kLimitsSize bytes, write_limits; in flash on AVR): read each
+  /// tick, so RAM holds only the state.
+  const uint8_t* limits;
   LimiterState state;
   uint16_t output;  ///< the last tick's 16-bit command
   Channel curve;    ///< channel c of the playing show
@@ -48,7 +50,8 @@ struct Player {
 enum PlayerStatus : uint8_t { kPlayerOk = 0, kPlayerBadShow, kPlayerBadChannels, kPlayerBadLimits };
 
 /// Sets the player up at rest. Every show must check whole and have the player's channel count;
-/// every channel's limits must be usable (low <= rest <= high, speed and acceleration above 0).
+/// every channel's limits must be usable (low <= rest <= high, speed and acceleration above 0,
+/// reach as limiter_prepare sets it).
 PlayerStatus player_init(Player& player, PlayerChannel* channels, uint8_t channel_count, const PlayerShow* shows,
                          uint8_t show_count, uint32_t rate);
 /// Plays show `index` from its start (a show already playing hands its motion over).

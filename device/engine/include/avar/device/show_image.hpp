@@ -26,15 +26,17 @@
 //           varint after count (0: forever), zigzag last - first key value (Q8 output units)
 //   the keys
 // Key (the segment that starts at it follows its time and value):
-//   u8  kind (bits 0..4, SegmentKind), easing (bits 5..6, EasingMode), bit 7: wide Bezier times
+//   u8  kind (bits 0..4, SegmentKind), easing (bits 5..6, EasingMode); a Bezier key has no easing:
+//       bit 5 says its handle times are the channel's previous Bezier key's (and are not stored),
+//       bit 7 that they are wide
 //   time: the first key's as a zigzag tick, the others' as a varint of ticks after the previous key
 //   value: zigzag change from the previous key's value (the first key's from 0)
 //   what the segment needs:
 //     step, linear, the last key: nothing
 //     cubic: zigzag first inner control point - this key's value, zigzag second inner control
 //            point - the next key's value (the value cubic in Bernstein form, time linear)
-//     bezier: as cubic, then the handles' times as fractions of the segment, at most 1: u16 each
-//             (Q15), or with bit 7 u24 each (Q23)
+//     bezier: as cubic, then (without bit 5) the handles' times as fractions of the segment, at
+//             most 1: u16 each (Q15), or with bit 7 u24 each (Q23)
 //     back: zigzag overshoot (Q16)
 //     elastic: u8 1 when blended (Blender's amplitude 0 or below |change|), then zigzag the blend's
 //              factor (Q30) or the wave's amplitude (Q8 output units), varint period (Q30 of the
@@ -45,11 +47,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-// How the engine reads one byte of an image: a plain load, or on AVR a read from program memory
-// (avr/pgmspace.h's pgm_read_byte), defined by the device build before this header.
-#ifndef AVAR_DEVICE_READ_BYTE
-#define AVAR_DEVICE_READ_BYTE(pointer) (*(pointer))
-#endif
+#include "avar/device/config.hpp"
 
 namespace avar {
 namespace device {
@@ -82,6 +80,7 @@ const uint8_t kChannelLinearExtrapolation = 1;
 const uint8_t kChannelCycles = 2;
 const uint8_t kShowLoops = 1;
 const uint8_t kKeyWideBezier = 0x80;
+const uint8_t kKeySameHandleTimes = 0x20;  ///< a Bezier key: its handle times are the last Bezier key's
 
 /// Reads an image sequentially; past the end (a bad image) it reads zeros and remembers it.
 struct ByteReader {
@@ -119,6 +118,11 @@ struct ByteReader {
   }
 };
 
+/// What an image asks of the engine beyond steps, lines and cubics (config.hpp's switches).
+const uint8_t kFeatureEasings = 1;
+const uint8_t kFeatureCycles = 2;
+const uint8_t kFeatureExtrapolation = 4;
+
 /// The header of an image, read and checked.
 struct ShowHeader {
   uint8_t channel_count;
@@ -126,6 +130,7 @@ struct ShowHeader {
   uint8_t snap_ticks;
   uint32_t ticks_per_second;
   int32_t duration;
+  uint8_t features;  ///< kFeature* bits of what its channels and keys use
 };
 
 enum ImageStatus : uint8_t {
@@ -135,11 +140,13 @@ enum ImageStatus : uint8_t {
   kImageBadVersion,
   kImageBadChannelCount,
   kImageBadTicksPerSecond,
-  kImageBadChannel,  ///< a channel record or key that does not decode within the image
+  kImageBadChannel,    ///< a channel record or key that does not decode within the image
+  kImageNeedsFeature,  ///< a segment family or channel feature this build left out (config.hpp)
 };
 
 /// Reads and checks an image's header and every channel record and key, whole, before anything
-/// plays. On kImageOk, `header` is filled.
+/// plays. On kImageOk and kImageNeedsFeature (the image is sound, this build cannot play it),
+/// `header` is filled.
 ImageStatus check_image(const uint8_t* image, uint32_t size, ShowHeader& header);
 
 /// The offset of channel c's record (c < header.channel_count of a checked image).

@@ -1,0 +1,124 @@
+#include "avar/export_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <filesystem>
+#include <ostream>
+#include <stdexcept>
+
+#include "avar/config/rig_file.hpp"
+#include "avar/config/show_file.hpp"
+#include "avar/core/format.hpp"
+#include "avar/device/project_export.hpp"
+#include "avar/exit_codes.hpp"
+
+namespace avar::app {
+namespace {
+
+InputError option_error(const std::string& option, const std::string& problem) { return InputError({option, 0, 0}, problem); }
+
+/// A show given by its name or its 1-based number among the exported shows: its 0-based index.
+int show_index(const std::string& text, const std::vector<playback::Show>& shows, const std::string& option) {
+  if (text.empty()) return -1;
+  for (std::size_t i = 0; i < shows.size(); ++i)
+    if (shows[i].name == text) return static_cast<int>(i);
+  int number = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (ec == std::errc() && end == text.data() + text.size() && number >= 1 && number <= static_cast<int>(shows.size()))
+    return number - 1;
+  std::string names;
+  for (const auto& s : shows) names += (names.empty() ? "" : ", ") + s.name;
+  throw option_error(
+      option, "found '" + text + "'; expected a show's name or number (1 to " + std::to_string(shows.size()) + "): " + names);
+}
+
+}  // namespace
+
+CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
+  CLI::App* cmd =
+      app.add_subcommand("export", "Write a microcontroller project (Arduino / PlatformIO library) that plays shows standalone");
+  cmd->add_option("shows", o.show_paths, "Show files (YAML), at most 9: played by serial commands 1..9")->required();
+  cmd->add_option("--rig", o.rig_path, "Rig file: its channels on PCA9685 links are the device's figure")->required();
+  cmd->add_option("--target", o.target, "Microcontroller: " + device::device_target_names())->required();
+  cmd->add_option("--out", o.out_dir, "Directory to write the library into (an Arduino libraries/ folder's entry)")->required();
+  cmd->add_option("--name", o.name, "Library name (default avar_RIG)");
+  cmd->add_option("--boot", o.boot, "Show (name or number) to play at power-up, after the soft start");
+  cmd->add_option("--idle", o.idle, "Show to play whenever nothing else plays");
+  cmd->add_option("--button", o.button, "PIN[:SHOW]: a button from PIN to ground plays SHOW (default the first)");
+  cmd->add_option("--baud", o.baud, "Serial commands' baud rate (default 115200)")->check(CLI::Range(300L, 2000000L));
+  std::string targets;
+  for (const device::DeviceTarget& t : device::device_targets())
+    targets += "  " + std::string(t.name) + std::string(16 - std::min<std::size_t>(15, t.name.size()), ' ') +
+               std::string(t.boards) + "\n";
+  cmd->footer("Targets:\n" + targets +
+              "The figure is the rig's channels with an actuator; each must be a hobby servo on a PCA9685 board\n"
+              "(a pca9685 link). Every show is encoded for the device engine (a channel a show has no track for\n"
+              "holds its rest pose); the project carries the engine's sources with only the features the shows\n"
+              "use, the figure and shows as data in flash, and an example sketch wired from the rig. The export\n"
+              "adds up flash and RAM for the target first and refuses, with the figures, what does not fit.\n"
+              "On the board: the channels' limits apply, servos glide from rest at power-up and ease to rest on\n"
+              "stop; serial commands '1'..'9' play a show, 's' stops.\n"
+              "Examples:\n"
+              "  avar export examples/shows/hello-head.yaml --rig examples/rigs/pca9685-head.yaml \\\n"
+              "      --target atmega328p --out ~/Arduino/libraries/avar_pca9685_head\n"
+              "      then in the Arduino IDE: File > Examples > avar_pca9685_head, upload to an Uno\n"
+              "  avar export intro.yaml scare.yaml --rig prop.yaml --target cortex-m0plus --out prop \\\n"
+              "      --idle intro --button 15:scare\n"
+              "      a Pico that loops intro and plays scare when the button on GP15 is pressed");
+  return cmd;
+}
+
+int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
+  try {
+    const device::DeviceTarget* target = device::find_device_target(o.target);
+    if (target == nullptr)
+      throw option_error("--target", "found '" + o.target + "'; expected one of " + device::device_target_names());
+    const rig::Rig rig = config::load_rig_file(o.rig_path);
+    std::vector<playback::Show> shows;
+    for (const std::string& path : o.show_paths) shows.push_back(config::load_show_file(path));
+    device::ExportOptions options;
+    options.library_name = o.name;
+    options.url = "file://" + std::filesystem::absolute(o.out_dir).lexically_normal().string();
+    options.triggers.boot_show = show_index(o.boot, shows, "--boot");
+    options.triggers.idle_show = show_index(o.idle, shows, "--idle");
+    options.triggers.serial_baud = o.baud;
+    if (!o.button.empty()) {
+      const std::size_t colon = o.button.find(':');
+      const std::string pin = o.button.substr(0, colon);
+      int number = -1;
+      const auto [end, ec] = std::from_chars(pin.data(), pin.data() + pin.size(), number);
+      if (ec != std::errc() || end != pin.data() + pin.size() || number < 0 || number > 255)
+        throw option_error("--button", "found '" + o.button + "'; expected PIN or PIN:SHOW with PIN a number 0 to 255");
+      options.triggers.button_pin = number;
+      options.triggers.button_show = colon == std::string::npos ? 0 : show_index(o.button.substr(colon + 1), shows, "--button");
+    }
+    const device::Project project = device::export_project(rig, shows, *target, options);
+    device::write_project(project, o.out_dir);
+    out << "wrote " << o.out_dir << ": library " << project.library_name << " for " << target->name << " (" << target->boards
+        << "), " << project.files.size() << " files\n";
+    out << "figure: " << project.figure.channels.size() << " channels at " << project.figure.rate << " Hz on "
+        << project.figure.boards.size() << " PCA9685 board(s); I2C on " << target->i2c_pins << "\n";
+    for (std::size_t s = 0; s < project.shows.size(); ++s) {
+      const device::ShowImage& image = project.shows[s].image;
+      out << "show " << s + 1 << ": " << project.shows[s].name << ", " << image.keys << " keys in " << image.bytes.size()
+          << " bytes ("
+          << format_number(static_cast<double>(image.key_bytes) / static_cast<double>(std::max<std::size_t>(1, image.keys)))
+          << " bytes per key)\n";
+    }
+    out << device::describe_budget(project.budget);
+    out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
+    return kExitOk;
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    err << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+}
+
+}  // namespace avar::app

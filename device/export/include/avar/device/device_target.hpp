@@ -1,0 +1,48 @@
+#pragma once
+// The microcontrollers avar exports to, with what they offer a sketch and what the exported
+// player costs on each: the numbers an export's fit check adds up. Engine and RAM figures were
+// measured by building the engine and the figure for each target (avr-g++ 5.4 -Os, arm-none-eabi-g++
+// 12 -Os, sections collected) and are checked against a fresh build by a test where the compiler is
+// present; the Arduino core's share (Serial, Wire, the loop) is an estimate with margin.
+
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "avar/device/show_image.hpp"
+
+namespace avar::device {
+
+struct DeviceTarget {
+  std::string_view name;          ///< what --target takes
+  std::string_view boards;        ///< boards of this kind, for messages and docs
+  std::string_view architecture;  ///< library.properties' architectures
+  std::string_view platformio;    ///< library.json's platforms
+  std::string_view i2c_pins;      ///< where a PCA9685 board's SDA and SCL go
+  std::size_t flash = 0;          ///< program flash a sketch may use (bytes, the bootloader's taken off)
+  std::size_t ram = 0;            ///< RAM (bytes)
+  /// Flash for data read in place: on AVR pgm_read_byte reaches the first 64 KiB only.
+  std::size_t data_limit = 0;
+  std::size_t core_flash = 0;  ///< the Arduino core with Serial and Wire, and the sketch's glue
+  std::size_t core_ram = 0;    ///< their buffers and state, and a reserve for the stack
+  /// The engine, the limiter, the player, the figure and the PCA9685 codec with nothing but
+  /// steps, lines and cubics; and what each feature adds (config.hpp).
+  std::size_t engine_flash = 0, easings_flash = 0, cycles_flash = 0, extrapolation_flash = 0;
+  /// RAM per channel (PlayerChannel and FigureOutput), and what each feature adds to it.
+  std::size_t channel_ram = 0, easings_channel_ram = 0, cycles_channel_ram = 0, extrapolation_channel_ram = 0;
+  std::size_t figure_ram = 0;  ///< the Figure and player themselves
+  std::size_t board_ram = 0;   ///< per PCA9685 board
+  std::size_t show_ram = 0;    ///< per show (its PlayerShow entry)
+
+  std::size_t engine_flash_for(std::uint8_t features) const noexcept;
+  std::size_t channel_ram_for(std::uint8_t features) const noexcept;
+};
+
+/// Every target, in the order --help lists them.
+std::span<const DeviceTarget> device_targets();
+/// The target named `name`, or nullptr.
+const DeviceTarget* find_device_target(std::string_view name);
+/// "atmega328p, atmega2560, ...": for messages.
+std::string device_target_names();
+
+}  // namespace avar::device

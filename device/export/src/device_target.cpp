@@ -1,0 +1,117 @@
+#include "avar/device/device_target.hpp"
+
+#include <array>
+#include <string>
+
+namespace avar::device {
+namespace {
+
+constexpr std::size_t kKiB = 1024;
+
+// Measured 2026-12 (see the header): engine figures are the linked size of the engine, figure and
+// codec rounded up; channel RAM is sizeof(PlayerChannel) + sizeof(FigureOutput) on the target.
+constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::string_view i2c_pins, std::size_t flash,
+                           std::size_t ram, std::size_t engine) {
+  DeviceTarget t;
+  t.name = name;
+  t.boards = boards;
+  t.architecture = "avr";
+  t.platformio = "atmelavr";
+  t.i2c_pins = i2c_pins;
+  t.flash = flash;
+  t.ram = ram;
+  t.data_limit = 65536 - 512;  // the vectors and the runtime's own tables come first
+  t.core_flash = 4608;
+  t.core_ram = 448 + 320;  // Serial and Wire buffers; a stack reserve (the engine's 64-bit arithmetic)
+  t.engine_flash = engine;
+  t.easings_flash = 11520;
+  t.cycles_flash = 1792;
+  t.extrapolation_flash = 768;
+  t.channel_ram = 144;
+  t.easings_channel_ram = 48;
+  t.cycles_channel_ram = 18;
+  t.extrapolation_channel_ram = 16;
+  t.figure_ram = 33;
+  t.board_ram = 7;
+  t.show_ram = 6;
+  return t;
+}
+
+constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::string_view architecture,
+                           std::string_view platformio, std::string_view i2c_pins, std::size_t flash, std::size_t ram,
+                           std::size_t core_flash, std::size_t core_ram, bool m0) {
+  DeviceTarget t;
+  t.name = name;
+  t.boards = boards;
+  t.architecture = architecture;
+  t.platformio = platformio;
+  t.i2c_pins = i2c_pins;
+  t.flash = flash;
+  t.ram = ram;
+  t.data_limit = flash;
+  t.core_flash = core_flash;
+  t.core_ram = core_ram;
+  t.engine_flash = m0 ? 8192 : 7168;
+  t.easings_flash = m0 ? 3328 : 3072;
+  t.cycles_flash = 832;
+  t.extrapolation_flash = 512;
+  t.channel_ram = 168;
+  t.easings_channel_ram = 48;
+  t.cycles_channel_ram = 24;
+  t.extrapolation_channel_ram = 24;
+  t.figure_ram = 56;
+  t.board_ram = 8;
+  t.show_ram = 8;
+  return t;
+}
+
+const std::array<DeviceTarget, 6> kTargets = {
+    avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 18432),
+    avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 18688),
+    arm("cortex-m0plus", "Raspberry Pi Pico (RP2040; the arduino-pico core)", "rp2040", "raspberrypi", "SDA GP4, SCL GP5",
+        2048 * kKiB - 64 * kKiB, 264 * kKiB, 96 * kKiB, 16 * kKiB, true),
+    arm("cortex-m3", "STM32F103C8 (Blue Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6", 64 * kKiB, 20 * kKiB,
+        24 * kKiB, 3 * kKiB, false),
+    arm("cortex-m4", "STM32F411CE (Black Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6", 512 * kKiB,
+        128 * kKiB, 32 * kKiB, 4 * kKiB, false),
+    [] {
+      // RISC-V: no compiler here to measure with; the ARM figures doubled, and the ESP32 core's
+      // own size (its Wi-Fi libraries are not linked by this sketch).
+      DeviceTarget t = arm("esp32c3", "ESP32-C3 boards (the arduino-esp32 core)", "esp32", "espressif32", "SDA 8, SCL 9",
+                           1280 * kKiB, 320 * kKiB, 256 * kKiB, 48 * kKiB, false);
+      t.engine_flash *= 2;
+      t.easings_flash *= 2;
+      t.cycles_flash *= 2;
+      t.extrapolation_flash *= 2;
+      return t;
+    }(),
+};
+
+}  // namespace
+
+std::size_t DeviceTarget::engine_flash_for(std::uint8_t features) const noexcept {
+  return engine_flash + (features & kFeatureEasings ? easings_flash : 0) + (features & kFeatureCycles ? cycles_flash : 0) +
+         (features & kFeatureExtrapolation ? extrapolation_flash : 0);
+}
+
+std::size_t DeviceTarget::channel_ram_for(std::uint8_t features) const noexcept {
+  return channel_ram + (features & kFeatureEasings ? easings_channel_ram : 0) +
+         (features & kFeatureCycles ? cycles_channel_ram : 0) +
+         (features & kFeatureExtrapolation ? extrapolation_channel_ram : 0);
+}
+
+std::span<const DeviceTarget> device_targets() { return kTargets; }
+
+const DeviceTarget* find_device_target(std::string_view name) {
+  for (const DeviceTarget& t : kTargets)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+std::string device_target_names() {
+  std::string names;
+  for (const DeviceTarget& t : kTargets) names += (names.empty() ? "" : ", ") + std::string(t.name);
+  return names;
+}
+
+}  // namespace avar::device

@@ -1,0 +1,282 @@
+#include "avar/device/project_export.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "avar/core/format.hpp"
+#include "avar/core/input_error.hpp"
+#include "avar/device/show_image.hpp"
+
+namespace avar::device {
+namespace {
+
+#include "avar_device_sources.inc"
+
+/// The show with one track per figure channel, in figure order: a channel without a track holds
+/// its rest pose. A layered show or one with targets passes through (the encoder refuses it).
+playback::Show for_figure(const playback::Show& show, const FigureSpec& figure) {
+  if (show.layered() || !show.targets.empty()) return show;
+  playback::Show out;
+  out.name = show.name;
+  out.duration = show.duration;
+  out.loop = show.loop;
+  out.where = show.where;
+  for (const FigureChannelSpec& c : figure.channels) {
+    const auto found = std::find_if(show.tracks.begin(), show.tracks.end(), [&](const auto& t) { return t.channel == c.name; });
+    if (found != show.tracks.end()) {
+      out.tracks.push_back(*found);
+      continue;
+    }
+    playback::RawKey rest;
+    rest.value = c.rest;
+    rest.interpolation = playback::Interpolation::step;
+    playback::RawCurve raw({rest}, show.where);
+    playback::Curve curve = playback::Curve::build(raw);
+    out.tracks.push_back({c.name, std::move(raw), std::move(curve), show.where});
+  }
+  return out;
+}
+
+std::string identifier(const std::string& name) {
+  std::string id;
+  for (const char ch : name) id += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+  if (id.empty() || std::isdigit(static_cast<unsigned char>(id.front()))) id.insert(0, "_");
+  return id;
+}
+
+std::string with_commas(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i != 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string byte_array(const std::vector<std::uint8_t>& bytes) {
+  std::string text;
+  char hex[8];
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    text += i % 16 == 0 ? "\n    " : " ";
+    std::snprintf(hex, sizeof hex, "0x%02x,", bytes[i]);
+    text += hex;
+  }
+  return text + "\n";
+}
+
+std::string show_list(const Project& p) {
+  std::string text;
+  for (std::size_t s = 0; s < p.shows.size(); ++s)
+    text += "//   " + std::to_string(s + 1) + "  " + p.shows[s].name + " (" +
+            format_number(static_cast<double>(p.shows[s].image.keys)) + " keys, " + with_commas(p.shows[s].image.bytes.size()) +
+            " bytes)\n";
+  return text;
+}
+
+std::string config_header(std::uint8_t features) {
+  std::string text = "// Written by avar export: this project's shows use only what is switched on here.\n";
+  text += std::string("#define AVAR_DEVICE_EASINGS ") + (features & kFeatureEasings ? "1" : "0") + "\n";
+  text += std::string("#define AVAR_DEVICE_CYCLES ") + (features & kFeatureCycles ? "1" : "0") + "\n";
+  text += std::string("#define AVAR_DEVICE_EXTRAPOLATION ") + (features & kFeatureExtrapolation ? "1" : "0") + "\n";
+  return text;
+}
+
+std::string shows_header(const Project& p, const ExportTriggers& t) {
+  std::string h = "#pragma once\n// Written by avar export from rig '" + p.figure.rig + "' for " + std::string(p.target->name) +
+                  ": the figure and its shows. Do not edit; export again.\n";
+  h += "#include <stdint.h>\n\n#include \"avar/device/player.hpp\"\n\n";
+  h += "#define AVAR_CHANNEL_COUNT " + std::to_string(p.figure.channels.size()) + "\n";
+  h += "#define AVAR_BOARD_COUNT " + std::to_string(p.figure.boards.size()) + "\n";
+  h += "#define AVAR_SHOW_COUNT " + std::to_string(p.shows.size()) + "\n";
+  h += "#define AVAR_RATE_HZ " + std::to_string(p.figure.rate) + "\n";
+  h += "#define AVAR_BOOT_SHOW " + std::to_string(t.boot_show) + "\n";
+  h += "#define AVAR_IDLE_SHOW " + std::to_string(t.idle_show) + "\n";
+  h += "#define AVAR_BUTTON_PIN " + std::to_string(t.button_pin) + "\n";
+  h += "#define AVAR_BUTTON_SHOW " + std::to_string(t.button_show) + "\n";
+  h += "#ifndef AVAR_SERIAL_BAUD\n#define AVAR_SERIAL_BAUD " + std::to_string(t.serial_baud) + "\n#endif\n\n";
+  h += "namespace avar_shows {\n\n";
+  h += "extern const uint8_t kFigure[" + std::to_string(p.figure_record.size()) + "];\n";
+  h += "extern const avar::device::PlayerShow kShows[AVAR_SHOW_COUNT];\n\n}  // namespace avar_shows\n";
+  return h;
+}
+
+std::string shows_source(const Project& p) {
+  std::string s = "// Written by avar export: the figure record and the show images (docs: reference/device-engine).\n";
+  s += "#include \"avar_shows.h\"\n\nnamespace avar_shows {\n\n";
+  s += "// The figure: " + std::to_string(p.figure.channels.size()) + " channels at " + std::to_string(p.figure.rate) + " Hz\n";
+  for (const FigureChannelSpec& c : p.figure.channels)
+    s += "//   " + c.name + ": board 0x" +
+         [&] {
+           char hex[4];
+           std::snprintf(hex, sizeof hex, "%02x", p.figure.boards[c.board].address);
+           return std::string(hex);
+         }() +
+         " output " + std::to_string(c.output) + ", " + format_number(c.at_low_ns / 1000.0) + " to " +
+         format_number(c.at_high_ns / 1000.0) + " us\n";
+  s += "extern const uint8_t kFigure[" + std::to_string(p.figure_record.size()) + "] AVAR_DEVICE_FLASH = {" +
+       byte_array(p.figure_record) + "};\n\n";
+  s += "// The shows:\n" + show_list(p);
+  for (std::size_t i = 0; i < p.shows.size(); ++i)
+    s += "const uint8_t kShow" + std::to_string(i) + "[" + std::to_string(p.shows[i].image.bytes.size()) +
+         "] AVAR_DEVICE_FLASH = {" + byte_array(p.shows[i].image.bytes) + "};\n";
+  s += "\nconst avar::device::PlayerShow kShows[AVAR_SHOW_COUNT] = {\n";
+  for (std::size_t i = 0; i < p.shows.size(); ++i)
+    s += "    {kShow" + std::to_string(i) + ", sizeof kShow" + std::to_string(i) + "},\n";
+  s += "};\n\n}  // namespace avar_shows\n";
+  return s;
+}
+
+std::string boards_text(const Project& p) {
+  std::string text;
+  for (const FigureBoardSpec& b : p.figure.boards) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02x", b.address);
+    text += (text.empty() ? "" : ", ") + std::string("a PCA9685 at ") + hex + " (link " + b.link + ", " +
+            std::to_string(b.frequency_hz) + " Hz)";
+  }
+  return text;
+}
+
+std::string sketch(const Project& p, const ExportTriggers& t) {
+  std::string s = "// " + p.figure.rig + " on " + std::string(p.target->boards) + ", exported by avar export.\n";
+  s += "// Wiring: " + boards_text(p) + " on I2C (" + std::string(p.target->i2c_pins) +
+       "); the servos' own 5-6 V supply on the board's\n// power terminal, grounds joined.\n";
+  s += "// Outputs:\n";
+  for (const FigureChannelSpec& c : p.figure.channels) s += "//   " + std::to_string(c.output) + "  " + c.name + "\n";
+  s += "// Shows:\n" + show_list(p);
+  s += "// Serial monitor at " + std::to_string(t.serial_baud) + " baud: send 1..9 to play a show, s to stop.\n";
+  if (t.boot_show >= 0) s += "// At power-up it plays " + p.shows[static_cast<std::size_t>(t.boot_show)].name + ".\n";
+  if (t.idle_show >= 0) s += "// Between shows it plays " + p.shows[static_cast<std::size_t>(t.idle_show)].name + ".\n";
+  if (t.button_pin >= 0)
+    s += "// A button from pin " + std::to_string(t.button_pin) + " to ground plays " +
+         p.shows[static_cast<std::size_t>(t.button_show)].name + ".\n";
+  s += "\n#include <avar_figure.h>\n\nvoid setup() { avar_figure::begin(); }\n\nvoid loop() { avar_figure::run(); }\n";
+  return s;
+}
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string show_names(const Project& p) {
+  std::string names;
+  for (const ExportedShow& s : p.shows) names += (names.empty() ? "" : ", ") + s.name;
+  return names;
+}
+
+void add_files(Project& p, const ExportOptions& o) {
+  const std::string sentence = "The figure " + p.figure.rig + " and its shows, played by avar's device engine.";
+  const std::string paragraph = "Exported by avar export for " + std::string(p.target->name) + " (" +
+                                std::string(p.target->boards) + "). Shows: " + show_names(p) + ".";
+  p.files.push_back({"library.properties",
+                     "name=" + p.library_name + "\nversion=" + o.version +
+                         "\nauthor=avar export\nmaintainer=avar export\nsentence=" + sentence + "\nparagraph=" + paragraph +
+                         "\ncategory=Device Control\nurl=" + (o.url.empty() ? "file:///" + p.library_name : o.url) +
+                         "\narchitectures=" + std::string(p.target->architecture) + "\nincludes=avar_figure.h\n"});
+  p.files.push_back({"library.json", "{\n  \"name\": " + json_string(p.library_name) + ",\n  \"version\": " +
+                                         json_string(o.version) + ",\n  \"description\": " + json_string(sentence) +
+                                         ",\n  \"keywords\": [\"avar\", \"animatronics\", \"servo\", \"pca9685\"],\n"
+                                         "  \"frameworks\": \"arduino\",\n  \"platforms\": " +
+                                         json_string(std::string(p.target->platformio)) + "\n}\n"});
+  for (const EmbeddedSource& e : kEmbeddedSources) {
+    const std::string path = e.path;
+    p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features) + e.text : e.text});
+  }
+  p.files.push_back({"src/avar_shows.h", shows_header(p, o.triggers)});
+  p.files.push_back({"src/avar_shows.cpp", shows_source(p)});
+  p.files.push_back({"examples/" + p.library_name + "/" + p.library_name + ".ino", sketch(p, o.triggers)});
+}
+
+void check_trigger(int show, std::size_t count, const char* what) {
+  if (show < -1 || show >= static_cast<int>(count))
+    throw std::invalid_argument(std::string(what) + " names show " + std::to_string(show + 1) + "; the export has " +
+                                std::to_string(count) + " show(s)");
+}
+
+ExportBudget budget_for(const Project& p) {
+  const DeviceTarget& t = *p.target;
+  ExportBudget b;
+  std::size_t data = p.figure_record.size();
+  for (const ExportedShow& s : p.shows) data += s.image.bytes.size();
+  b.flash = {{"the Arduino core, Serial, Wire and the sketch (estimate)", t.core_flash},
+             {"the device engine and figure", t.engine_flash_for(p.features)},
+             {"the figure record", p.figure_record.size()}};
+  for (const ExportedShow& s : p.shows) b.flash.push_back({"show " + s.name, s.image.bytes.size()});
+  const std::size_t channels = p.figure.channels.size();
+  b.ram = {{"the Arduino core's buffers and the stack (estimate)", t.core_ram},
+           {"the player", t.figure_ram + t.board_ram * p.figure.boards.size() + t.show_ram * p.shows.size()},
+           {std::to_string(channels) + " channels", channels * t.channel_ram_for(p.features)}};
+  for (const BudgetItem& i : b.flash) b.flash_used += i.bytes;
+  for (const BudgetItem& i : b.ram) b.ram_used += i.bytes;
+  b.flash_size = t.flash;
+  b.ram_size = t.ram;
+  b.data_used = data;
+  b.data_limit = t.data_limit;
+  return b;
+}
+
+}  // namespace
+
+std::string describe_budget(const ExportBudget& b) {
+  const auto line = [](const char* what, std::size_t used, std::size_t size) {
+    return std::string(what) + with_commas(used) + " of " + with_commas(size) + " bytes (" +
+           std::to_string(size == 0 ? 0 : (used * 100 + size - 1) / size) + " %)" + (used > size ? ": does not fit" : "") + "\n";
+  };
+  std::string text = line("flash ", b.flash_used, b.flash_size);
+  for (const BudgetItem& i : b.flash) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
+  text += line("RAM   ", b.ram_used, b.ram_size);
+  for (const BudgetItem& i : b.ram) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
+  if (b.data_used > b.data_limit) text += line("data read in place ", b.data_used, b.data_limit);
+  return text;
+}
+
+Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& shows, const DeviceTarget& target,
+                       const ExportOptions& options) {
+  if (shows.empty()) throw std::invalid_argument("no show to export; give at least one");
+  if (shows.size() > 9)
+    throw std::invalid_argument("expected at most 9 shows (serial commands 1..9), found " + std::to_string(shows.size()));
+  check_trigger(options.triggers.boot_show, shows.size(), "--boot");
+  check_trigger(options.triggers.idle_show, shows.size(), "--idle");
+  if (options.triggers.button_pin >= 0) check_trigger(options.triggers.button_show, shows.size(), "--button");
+  Project p;
+  p.target = &target;
+  p.figure = figure_from_rig(rig);
+  p.library_name = options.library_name.empty() ? "avar_" + identifier(rig.name) : options.library_name;
+  p.figure_record = encode_figure_record(p.figure);
+  const std::vector<ImageChannel> channels = image_channels(p.figure);
+  for (const playback::Show& show : shows) {
+    ExportedShow exported{show.name, encode_show_image(for_figure(show, p.figure), channels)};
+    ShowHeader header;
+    const ImageStatus status =
+        check_image(exported.image.bytes.data(), static_cast<std::uint32_t>(exported.image.bytes.size()), header);
+    if (status != kImageOk) throw std::logic_error("an exported show image does not check (" + std::to_string(status) + ")");
+    p.features |= header.features;
+    p.shows.push_back(std::move(exported));
+  }
+  p.budget = budget_for(p);
+  if (!p.budget.fits())
+    throw InputError(SourceLocation{rig.file, 1, 1}, "the figure '" + rig.name + "' with " + show_names(p) +
+                                                         " does not fit the " + std::string(target.name) + " (" +
+                                                         std::string(target.boards) + "):\n" + describe_budget(p.budget));
+  add_files(p, options);
+  return p;
+}
+
+void write_project(const Project& project, const std::filesystem::path& directory) {
+  for (const ProjectFile& f : project.files) {
+    const std::filesystem::path path = directory / f.path;
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream out(path, std::ios::binary);
+    out << f.text;
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+  }
+}
+
+}  // namespace avar::device
