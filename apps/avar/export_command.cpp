@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "avar/config/rig_file.hpp"
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
+#include "avar/device/export_verify.hpp"
 #include "avar/device/project_export.hpp"
 #include "avar/exit_codes.hpp"
 
@@ -47,6 +49,9 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
   cmd->add_option("--idle", o.idle, "Show to play whenever nothing else plays");
   cmd->add_option("--button", o.button, "PIN[:SHOW]: a button from PIN to ground plays SHOW (default the first)");
   cmd->add_option("--baud", o.baud, "Serial commands' baud rate (default 115200)")->check(CLI::Range(300L, 2000000L));
+  cmd->add_flag("--verify", o.verify,
+                "Then build the project for the host and the target, run it under the target's emulator (simavr, "
+                "QEMU) and compare every tick");
   std::string targets;
   for (const device::DeviceTarget& t : device::device_targets())
     targets += "  " + std::string(t.name) + std::string(16 - std::min<std::size_t>(15, t.name.size()), ' ') +
@@ -65,7 +70,10 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
               "      then in the Arduino IDE: File > Examples > avar_pca9685_head, upload to an Uno\n"
               "  avar export intro.yaml scare.yaml --rig prop.yaml --target cortex-m0plus --out prop \\\n"
               "      --idle intro --button 15:scare\n"
-              "      a Pico that loops intro and plays scare when the button on GP15 is pressed");
+              "      a Pico that loops intro and plays scare when the button on GP15 is pressed\n"
+              "  avar export SHOW --rig RIG --target atmega328p --out DIR --verify\n"
+              "      and prove it: the project built for the host and for the Uno, run under simavr, every\n"
+              "      control tick's I2C bytes and outputs compared: 'atmega328p: N samples, 0 mismatches'");
   return cmd;
 }
 
@@ -108,14 +116,21 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
     }
     out << device::describe_budget(project.budget);
     out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
-    return kExitOk;
+    if (!o.verify) return kExitOk;
+    const device::ExportVerification v = device::verify_export(project, o.out_dir, out);
+    out << target->name << ": " << v.samples << " samples, " << v.mismatches << " mismatches (" << v.ticks
+        << " control ticks of every show, " << format_number(std::round(v.emulator_seconds * 10) / 10) << " s under "
+        << v.emulator << "); the build: " << v.flash_bytes << " bytes of flash, " << v.ram_bytes
+        << " of RAM without the Arduino core\n";
+    for (const std::string& d : v.differing) out << "  host | " << target->name << ": " << d << "\n";
+    return v.mismatches == 0 && v.differing.empty() ? kExitOk : kExitFault;
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
-  } catch (const std::filesystem::filesystem_error& e) {
+  } catch (const std::runtime_error& e) {  // a missing tool, a failed build or run (and file errors)
     err << "error: " << e.what() << '\n';
     return kExitBadInput;
   }

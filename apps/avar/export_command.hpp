@@ -22,13 +22,17 @@ struct ExportOptions {
   std::string idle;    ///< a show played whenever nothing else plays
   std::string button;  ///< PIN or PIN:SHOW
   long baud = 115200;
+  bool verify = false;  ///< build for the host and the target, run under its emulator, compare
 };
 
 CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& options);
 
 /// Loads and checks the rig and every show whole, builds the project (refusing, with the budget,
 /// one that does not fit the target), writes it and prints what it wrote and the budget. Returns
-/// kExitOk, or kExitBadInput after one message on `err`; nothing is written on an error.
+/// kExitOk, or kExitBadInput after one message on `err`; nothing is written on an error. With
+/// verify, then builds and runs it on the host and under the target's emulator and prints
+/// "TARGET: N samples, M mismatches": kExitFault on a mismatch, kExitBadInput when a tool is
+/// missing or a build fails.
 int run_export(const ExportOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace avar::app

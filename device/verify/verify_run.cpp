@@ -1,5 +1,7 @@
 #include "verify_run.hpp"
 
+#include "verify_lines.hpp"
+
 #include "avar/device/curve_engine.hpp"
 #include "avar/device/player.hpp"
 #include "avar/device/show_image.hpp"
@@ -26,53 +28,11 @@ struct Random {
   }
 };
 
-// FNV-1a over bytes.
-struct Hash {
-  uint32_t value;
-  void add(uint32_t x, unsigned bytes) {
-    for (unsigned i = 0; i < bytes; ++i) {
-      value ^= (x >> (8 * i)) & 0xffu;
-      value *= 16777619u;
-    }
-  }
-};
-
 void add_sample(Hash& h, const Channel& ch, SegmentCache& cache, int32_t tick) {
   const int64_t q8 = sample_q8(ch, cache, tick);
   h.add(static_cast<uint32_t>(static_cast<uint64_t>(q8)), 4);
   h.add(static_cast<uint32_t>(static_cast<uint64_t>(q8) >> 32), 4);
   h.add(sample(ch, cache, tick), 2);
-}
-
-// Decimal and hexadecimal text without a library.
-char* put_text(char* at, const char* text) {
-  while (*text) *at++ = *text++;
-  return at;
-}
-char* put_decimal(char* at, uint32_t v) {
-  char digits[10];
-  int n = 0;
-  do {
-    digits[n++] = static_cast<char>('0' + v % 10);
-    v /= 10;
-  } while (v != 0);
-  while (n > 0) *at++ = digits[--n];
-  return at;
-}
-char* put_hex(char* at, uint32_t v) {
-  for (int i = 7; i >= 0; --i) *at++ = "0123456789abcdef"[(v >> (4 * i)) & 0xfu];
-  return at;
-}
-void line(LineSink sink, const char* label, uint32_t index, uint32_t hash, uint32_t samples) {
-  char text[48];
-  char* at = put_text(text, label);
-  at = put_decimal(at, index);
-  *at++ = ' ';
-  at = put_hex(at, hash);
-  *at++ = ' ';
-  at = put_decimal(at, samples);
-  *at = 0;
-  sink(text);
 }
 
 // A small image writer (the engine's format, show_image.hpp).

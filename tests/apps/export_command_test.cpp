@@ -3,6 +3,7 @@
 // naming no show. Nothing is written on an error.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -32,6 +33,35 @@ TEST(ExportCommand, ExportsTheBundledHeadForAnUno) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/examples/avar_pca9685_head/avar_pca9685_head.ino"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/src/avar/device/curve_engine.cpp"));
   std::filesystem::remove_all(dir);
+}
+
+bool installed(const std::string& program) { return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0; }
+
+// The bundled example of the standalone guide: hello-head on an Uno with a PCA9685 board, proved
+// under simavr (and on a Pico-class Cortex-M0+ under QEMU): every control tick's I2C bytes and
+// outputs equal the host build's.
+TEST(ExportCommand, VerifyProvesTheExportUnderTheEmulators) {
+  for (const std::string target : {"atmega328p", "cortex-m0plus"}) {
+    const bool avr = target == "atmega328p";
+    if (!installed(avr ? "avr-g++" : "arm-none-eabi-g++") || !installed(avr ? "simavr" : "qemu-system-arm"))
+      GTEST_SKIP() << "the " << target << "'s compiler or emulator is not installed (scripts/install-deps.sh installs them)";
+    const std::string dir = testing::temp_path("avar_verify_" + target);
+    std::filesystem::remove_all(dir);
+    const auto r = run_avar({"export", kExportHeadShow, "--rig", kExportHeadRig, "--target", target, "--out", dir, "--verify",
+                             "--name", "avar_verify_" + target, "--button", "2", "--idle", "1"});
+    EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
+    EXPECT_NE(r.out.find(target + ": 4824 samples, 0 mismatches"), std::string::npos) << r.out << r.err;
+    if (avr) {
+      // The Arduino glue and the sketch compile as the Arduino IDE compiles them (gnu++11),
+      // against the Arduino API's declarations.
+      const std::string compile = "avr-g++ -mmcu=atmega328p -std=gnu++11 -fsyntax-only -Wall -Wextra -Werror -I" +
+                                  std::string(AVAR_TEST_DATA_DIR) + "/arduino_api -I" + dir + "/src ";
+      EXPECT_EQ(std::system((compile + dir + "/src/avar_figure.cpp").c_str()), 0);
+      EXPECT_EQ(std::system((compile + "-x c++ " + dir + "/examples/avar_verify_atmega328p/avar_verify_atmega328p.ino").c_str()),
+                0);
+    }
+    std::filesystem::remove_all(dir);
+  }
 }
 
 TEST(ExportCommand, RefusesWhatItCannotExportAndWritesNothing) {

@@ -12,10 +12,8 @@ namespace {
 
 using namespace avar::device;
 
-PlayerChannel channels[AVAR_CHANNEL_COUNT];
-FigureOutput outputs[AVAR_CHANNEL_COUNT];
-FigureBoard boards[AVAR_BOARD_COUNT];
-Figure figure;
+FigureStorage<AVAR_CHANNEL_COUNT, AVAR_BOARD_COUNT> storage;
+Figure& figure = storage.figure;
 bool running = false;
 uint32_t next_tick_us = 0;
 const uint32_t kTickUs = 1000000UL / AVAR_RATE_HZ;
@@ -63,8 +61,7 @@ bool begin() {
 #if AVAR_BUTTON_PIN >= 0
   pinMode(AVAR_BUTTON_PIN, INPUT_PULLUP);
 #endif
-  const FigureStatus opened = figure_open(figure, avar_shows::kFigure, sizeof avar_shows::kFigure, channels, outputs,
-                                          AVAR_CHANNEL_COUNT, boards, AVAR_BOARD_COUNT, avar_shows::kShows, AVAR_SHOW_COUNT);
+  const FigureStatus opened = storage.open(avar_shows::kFigure, sizeof avar_shows::kFigure, avar_shows::kShows, AVAR_SHOW_COUNT);
   if (opened != kFigureOk) {
     say(opened == kFigureBadShow ? F("a show does not check (export again with this avar)")
                                  : F("the figure record does not check (export again with this avar)"));

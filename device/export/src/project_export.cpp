@@ -187,6 +187,7 @@ void add_files(Project& p, const ExportOptions& o) {
                                          json_string(std::string(p.target->platformio)) + "\n}\n"});
   for (const EmbeddedSource& e : kEmbeddedSources) {
     const std::string path = e.path;
+    if (path.rfind("src/", 0) != 0) continue;  // avar export --verify's own run
     p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features) + e.text : e.text});
   }
   p.files.push_back({"src/avar_shows.h", shows_header(p, o.triggers)});

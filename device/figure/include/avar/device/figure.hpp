@@ -86,6 +86,20 @@ FigureStatus figure_begin(Figure& figure, const FigureIo& io);
 /// One control tick: the player's tick, then each channel's pulse to its board where it changed.
 /// A board that does not acknowledge releases every output (io_fault) and the figure stays still.
 void figure_tick(Figure& figure, const FigureIo& io);
+/// A figure with its storage for `Channels` channels and `Boards` boards (a board's sketch keeps
+/// one as a global).
+template <uint8_t Channels, uint8_t Boards>
+struct FigureStorage {
+  PlayerChannel channels[Channels];
+  FigureOutput outputs[Channels];
+  FigureBoard boards[Boards];
+  Figure figure;
+
+  FigureStatus open(const uint8_t* record, uint32_t size, const PlayerShow* shows, uint8_t show_count) {
+    return figure_open(figure, record, size, channels, outputs, Channels, boards, Boards, shows, show_count);
+  }
+};
+
 /// Every output of every board fully off (a servo without pulses goes limp): the fail-safe. The
 /// figure stays released (io_fault) until it is opened and begun again.
 void figure_release(Figure& figure, const FigureIo& io);
