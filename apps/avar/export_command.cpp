@@ -14,11 +14,10 @@
 #include "avar/device/export_verify.hpp"
 #include "avar/device/project_export.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/option_error.hpp"
 
 namespace avar::app {
 namespace {
-
-InputError option_error(const std::string& option, const std::string& problem) { return InputError({option, 0, 0}, problem); }
 
 /// A show given by its name or its 1-based number among the exported shows: its 0-based index.
 int show_index(const std::string& text, const std::vector<playback::Show>& shows, const std::string& option) {

@@ -13,6 +13,7 @@
 #include "avar/config/show_file.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/option_error.hpp"
 #include "avar/playback/offline/track_fit.hpp"
 #include "avar/playback/offline/smoothing.hpp"
 #include "avar/config/recording_csv.hpp"
@@ -24,9 +25,6 @@ using config::Recording;
 using playback::fit_track;
 using playback::max_fit_error;
 namespace {
-
-/// A bad command-line value, reported like a file problem with the option as its place.
-InputError option_error(const std::string& option, const std::string& problem) { return InputError({option, 0, 0}, problem); }
 
 /// Sample rate of evenly spaced samples, or an InputError at the first row that breaks the spacing.
 double even_sample_rate(const Recording& r, const std::string& path) {

@@ -14,11 +14,10 @@
 #include "avar/config/show_writer.hpp"
 #include "avar/core/format.hpp"
 #include "avar/exit_codes.hpp"
+#include "avar/option_error.hpp"
 
 namespace avar::app {
 namespace {
-
-InputError jaw_option_error(const std::string& option, const std::string& problem) { return InputError({option, 0, 0}, problem); }
 
 /// "LO-HI" in Hz.
 std::pair<double, double> parse_band(const std::string& text) {
@@ -30,7 +29,7 @@ std::pair<double, double> parse_band(const std::string& text) {
   double lo = 0, hi = 0;
   if (dash == std::string::npos || !number(std::string_view(text).substr(0, dash), lo) ||
       !number(std::string_view(text).substr(dash + 1), hi) || !(lo > 0) || !(hi > lo))
-    throw jaw_option_error("--band", "found '" + text + "'; expected LO-HI in Hz with 0 < LO < HI, e.g. 300-3000");
+    throw option_error("--band", "found '" + text + "'; expected LO-HI in Hz with 0 < LO < HI, e.g. 300-3000");
   return {lo, hi};
 }
 
@@ -81,23 +80,21 @@ int run_jaw(const JawCommandOptions& options, std::ostream& out, std::ostream& e
     const rig::Rig rig = config::load_rig_file(options.rig_path);
     const auto index = rig.find_channel(options.channel);
     if (!index)
-      throw jaw_option_error("--channel",
-                             "rig '" + rig.name + "' has no channel '" + options.channel + "'; expected one of its channels");
+      throw option_error("--channel",
+                         "rig '" + rig.name + "' has no channel '" + options.channel + "'; expected one of its channels");
     const rig::ChannelSpec& channel = rig.channels[*index];
     if (channel.digital())
-      throw jaw_option_error("--channel",
-                             "channel '" + channel.name + "' is digital (on/off); expected an analog channel for a jaw");
+      throw option_error("--channel", "channel '" + channel.name + "' is digital (on/off); expected an analog channel for a jaw");
     playback::JawOptions jaw;
     jaw.closed = options.closed.value_or(channel.rest);
     const double low = channel.min + channel.soft_margin, high = channel.max - channel.soft_margin;
     jaw.open = options.open.value_or(std::abs(high - channel.rest) >= std::abs(channel.rest - low) ? high : low);
     for (const auto& [name, value] : {std::pair{"--closed", jaw.closed}, std::pair{"--open", jaw.open}})
       if (value < channel.min || value > channel.max)
-        throw jaw_option_error(name, "found " + format_number(value) + " " + channel.unit + "; expected within channel '" +
-                                         channel.name + "' limits [" + format_number(channel.min) + ", " +
-                                         format_number(channel.max) + "]");
-    if (jaw.open == jaw.closed)
-      throw jaw_option_error("--open", "the open mouth equals the closed one; expected a different value");
+        throw option_error(name, "found " + format_number(value) + " " + channel.unit + "; expected within channel '" +
+                                     channel.name + "' limits [" + format_number(channel.min) + ", " +
+                                     format_number(channel.max) + "]");
+    if (jaw.open == jaw.closed) throw option_error("--open", "the open mouth equals the closed one; expected a different value");
     if (options.gate_db) jaw.gate_db = *options.gate_db;
     if (options.full_db) jaw.full_db = *options.full_db;
     if (options.hysteresis_db) jaw.hysteresis_db = *options.hysteresis_db;
@@ -106,8 +103,8 @@ int run_jaw(const JawCommandOptions& options, std::ostream& out, std::ostream& e
     if (options.curve) jaw.curve = *options.curve;
     if (options.band) std::tie(jaw.band_low_hz, jaw.band_high_hz) = parse_band(*options.band);
     if (!(jaw.full_db > jaw.gate_db))
-      throw jaw_option_error("--full", "found " + format_number(jaw.full_db) + " dBFS; expected above the gate (" +
-                                           format_number(jaw.gate_db) + " dBFS)");
+      throw option_error("--full", "found " + format_number(jaw.full_db) + " dBFS; expected above the gate (" +
+                                       format_number(jaw.gate_db) + " dBFS)");
     const bool stated_lead = options.lead_ms.has_value();
     jaw.lead_s = stated_lead ? *options.lead_ms / 1000
                              : playback::time_to_half_open(jaw.open - jaw.closed, channel.max_velocity, channel.max_acceleration);

@@ -2,7 +2,6 @@
 # avar export writes the very sources this avar was built and tested with. Run by
 # device/CMakeLists.txt with -DOUT=... -DENTRIES="destination=source|..." (sources absolute).
 set(text "// Generated from the sources at build time (device/export/embed_sources.cmake): do not edit.\n")
-string(APPEND text "struct EmbeddedSource {\n  const char* path;\n  const char* text;\n};\n")
 string(APPEND text "const EmbeddedSource kEmbeddedSources[] = {\n")
 string(REPLACE "|" ";" ENTRIES "${ENTRIES}")
 foreach(entry IN LISTS ENTRIES)

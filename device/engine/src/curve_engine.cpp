@@ -122,6 +122,8 @@ void load_segment(const Channel& ch, SegmentCache& c, uint32_t at, uint16_t inde
 #endif
     default: c.c1 = v1 - v0; break;
   }
+  const auto magnitude = [](int64_t x) { return x < 0 ? -x : x; };
+  c.narrow = magnitude(c.v0) + magnitude(c.c1) + magnitude(c.c2) + magnitude(c.c3) < (static_cast<int64_t>(1) << 31);
 }
 
 // The cubic (Q8 coefficients) at x (Q30), by Horner.
@@ -132,33 +134,58 @@ int64_t cubic_at(const SegmentCache& c, int64_t x) { return c.v0 + mul_q30(c.c1 
 // additions and shifts, keeping the half that holds s.
 int64_t bezier_parameter(const SegmentCache& c, uint32_t s) {
   uint32_t p0 = 0, p1 = c.ta, p2 = c.tb, p3 = static_cast<uint32_t>(kQ30);
-  uint32_t u = 0;
-  for (int step = 0; step < kBezierSteps; ++step) {
+  uint32_t u = 0, bit = static_cast<uint32_t>(1) << 29;  // this step's bit of u
+  for (int step = 0; step < kBezierSteps; ++step, bit >>= 1) {
     const uint32_t p01 = (p0 + p1) >> 1, p12 = (p1 + p2) >> 1, p23 = (p2 + p3) >> 1;
     const uint32_t p012 = (p01 + p12) >> 1, p123 = (p12 + p23) >> 1;
     const uint32_t mid = (p012 + p123) >> 1;
     // On the midpoint: its parameter (where the time polynomial is flat, the halves beyond it
     // may hold the same time to the last bit, and either end of them is off).
-    if (s == mid) return static_cast<int64_t>(u | (static_cast<uint32_t>(1) << (29 - step)));
+    if (s == mid) return static_cast<int64_t>(u | bit);
     if (s < mid) {
       p1 = p01, p2 = p012, p3 = mid;
     } else {
       p0 = mid, p1 = p123, p2 = p23;
-      u |= static_cast<uint32_t>(1) << (29 - step);
+      u |= bit;
     }
   }
   return static_cast<int64_t>(u) + (static_cast<int64_t>(1) << (29 - kBezierSteps));
 }
 
+// x << k for k < 32, a byte at a time first (an 8-bit core shifts a bit per instruction per byte).
+uint32_t shifted_left(uint32_t x, uint8_t k) {
+  for (; k >= 8; k = static_cast<uint8_t>(k - 8)) x <<= 8;
+  return x << k;
+}
+
+// floor(dt 2^30 / d) for the segment's duration d = t1 - t0 and 0 <= dt < d, exactly: the
+// reciprocal's estimate is at most one below it, and the remainder says which.
+uint32_t normalised_time(const SegmentCache& c, uint32_t dt) {
+  const uint32_t d = static_cast<uint32_t>(c.t1) - static_cast<uint32_t>(c.t0);
+  if (c.shift <= 31) {
+    // dt < 2^shift: shifted to the top of a word, the estimate is the high word of one
+    // 32 x 32-bit product; the remainder dt 2^30 - q d lies in [0, 2d) < 2^32, so its low word
+    // is all of it.
+    uint32_t q = mul_wide(shifted_left(dt, static_cast<uint8_t>(32 - c.shift)), c.reciprocal).high;
+    const uint32_t remainder = ((dt & 3u) << 30) - q * d;
+    if (remainder >= d) ++q;
+    return q;
+  }
+  uint64_t q = (static_cast<uint64_t>(dt) * c.reciprocal) >> c.shift;
+  if ((q + 1) * d <= (static_cast<uint64_t>(dt) << 30)) ++q;
+  return static_cast<uint32_t>(q);
+}
+
+// The normalised time (Q30) of tick t of the segment, t0 <= t < t1.
+uint32_t segment_time(const SegmentCache& c, int32_t t) {
+  return normalised_time(c, static_cast<uint32_t>(t) - static_cast<uint32_t>(c.t0));
+}
+
 // The segment's value at tick t, t0 <= t < t1, Q8.
 int64_t evaluate_in(const SegmentCache& c, int32_t t) {
-  const uint64_t dt = static_cast<uint64_t>(static_cast<int64_t>(t) - c.t0);
-  // floor(dt 2^30 / d), exactly: the reciprocal's estimate is at most one below it.
-  uint64_t q = (dt * c.reciprocal) >> c.shift;
-  if ((q + 1) * static_cast<uint64_t>(static_cast<int64_t>(c.t1) - c.t0) <= (dt << 30)) ++q;
-  const auto s = static_cast<int64_t>(q);  // Q30, < 2^30
+  if (c.kind == kStep) return c.v0;
+  const auto s = static_cast<int64_t>(segment_time(c, t));  // Q30, < 2^30
   switch (c.kind) {
-    case kStep: return c.v0;
     case kLinear: return c.v0 + mul_q30(c.c1, s);
     case kCubic: return cubic_at(c, s);
     case kBezier: return cubic_at(c, bezier_parameter(c, static_cast<uint32_t>(s)));
@@ -174,10 +201,15 @@ int64_t evaluate_in(const SegmentCache& c, int32_t t) {
   }
 }
 
+// |a - b| as an unsigned word, exactly (32-bit arithmetic: a small core's 64-bit compares are
+// library calls).
+uint32_t distance(int32_t a, int32_t b) {
+  return a >= b ? static_cast<uint32_t>(a) - static_cast<uint32_t>(b) : static_cast<uint32_t>(b) - static_cast<uint32_t>(a);
+}
+
 int32_t snapped_to_ends(const Channel& ch, int32_t t) {
-  const int64_t from_start = static_cast<int64_t>(t) - ch.start, from_end = static_cast<int64_t>(t) - ch.end;
-  if (from_start >= -ch.snap_ticks && from_start <= ch.snap_ticks) return ch.start;
-  if (from_end >= -ch.snap_ticks && from_end <= ch.snap_ticks) return ch.end;
+  if (distance(t, ch.start) <= ch.snap_ticks) return ch.start;
+  if (distance(t, ch.end) <= ch.snap_ticks) return ch.end;
   return t;
 }
 
@@ -215,19 +247,52 @@ void find_segment(const Channel& ch, SegmentCache& c, int32_t t) {
   while (t >= c.t1) load_segment(ch, c, c.next_at, static_cast<uint16_t>(c.index + 1), c.t0, c.k0);
 }
 
+// t in the cached segment (found for t), or the key it is within the snap of (the nearer, should
+// both be; the next key moves the cache to its segment).
+int32_t snapped_in_segment(const Channel& ch, SegmentCache& c, int32_t t) {
+  const uint32_t after_start = static_cast<uint32_t>(t) - static_cast<uint32_t>(c.t0),
+                 before_end = static_cast<uint32_t>(c.t1) - static_cast<uint32_t>(t);
+  if (before_end <= ch.snap_ticks && before_end < after_start) {
+    find_segment(ch, c, c.t1);
+    return c.t0;
+  }
+  return after_start <= ch.snap_ticks ? c.t0 : t;
+}
+
 int64_t evaluate_keys(const Channel& ch, SegmentCache& c, int32_t t) {
   t = snapped_to_ends(ch, t);
   if (!(t > ch.start) || t >= ch.end) return extrapolate(ch, t);
   find_segment(ch, c, t);
-  // Within the snap of one of the segment's keys: that key (the nearer, should both be).
-  const int64_t after_start = static_cast<int64_t>(t) - c.t0, before_end = static_cast<int64_t>(c.t1) - t;
-  if (before_end <= ch.snap_ticks && before_end < after_start) {
-    t = c.t1;
-    find_segment(ch, c, t);
-  } else if (after_start <= ch.snap_ticks) {
-    t = c.t0;
+  return evaluate_in(c, snapped_in_segment(ch, c, t));
+}
+
+// The fast path of a sample, in 32-bit words only: a channel without Cycles or linear
+// extrapolation, at a tick outside its keys or in a step, linear or narrow cubic or Bezier
+// segment. False where the general path is needed; the value is the general path's, bit for bit.
+bool sample_narrow(const Channel& ch, SegmentCache& c, int32_t tick, int32_t& q8) {
+  if (ch.flags != 0) return false;
+  const int32_t t = snapped_to_ends(ch, tick);
+  if (!(t > ch.start) || t >= ch.end) {
+    q8 = (t > ch.start ? ch.last_value : ch.first_value) * 256;  // constant extrapolation
+    return true;
   }
-  return evaluate_in(c, t);
+  find_segment(ch, c, t);
+  const int32_t at = snapped_in_segment(ch, c, t);
+  switch (c.kind) {
+    case kStep: q8 = static_cast<int32_t>(c.v0); return true;
+    case kLinear: q8 = static_cast<int32_t>(c.v0) + mul_q30_narrow(static_cast<int32_t>(c.c1), segment_time(c, at)); return true;
+    case kCubic:
+    case kBezier: {
+      if (!c.narrow) return false;
+      const uint32_t s = segment_time(c, at);
+      const uint32_t x = c.kind == kBezier ? static_cast<uint32_t>(bezier_parameter(c, s)) : s;
+      const int32_t inner = static_cast<int32_t>(c.c2) + mul_q30_narrow(static_cast<int32_t>(c.c3), x);
+      const int32_t middle = static_cast<int32_t>(c.c1) + mul_q30_narrow(inner, x);
+      q8 = static_cast<int32_t>(c.v0) + mul_q30_narrow(middle, x);
+      return true;
+    }
+    default: return false;
+  }
 }
 
 #if AVAR_DEVICE_CYCLES
@@ -328,6 +393,8 @@ void reset_cache(SegmentCache& cache) {
 }
 
 int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
+  int32_t narrow = 0;
+  if (sample_narrow(ch, cache, tick, narrow)) return narrow;
 #if AVAR_DEVICE_CYCLES
   if (!(ch.flags & kChannelCycles)) return evaluate_keys(ch, cache, tick);
   const int32_t t = snapped_to_ends(ch, tick);  // before the cycle map: the end key, not the next cycle
@@ -342,8 +409,18 @@ int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
 }
 
 uint16_t sample(const Channel& ch, SegmentCache& cache, int32_t tick) {
-  const int64_t units = shift_floor(sample_q8(ch, cache, tick) + 128, 8);
-  return static_cast<uint16_t>(clamp64(units, 0, 65535));
+  // Rounded to the nearest unit and saturated: below 0 is 0; a shift by a whole byte otherwise.
+  int32_t narrow = 0;
+  if (sample_narrow(ch, cache, tick, narrow)) {
+    const int32_t rounded = narrow + 128;  // |narrow| < 2^31 - 2^8: the narrow path's bound
+    if (rounded < 0) return 0;
+    const uint32_t units = static_cast<uint32_t>(rounded) >> 8;
+    return units > 65535u ? static_cast<uint16_t>(65535u) : static_cast<uint16_t>(units);
+  }
+  const int64_t q8 = sample_q8(ch, cache, tick) + 128;
+  if (q8 < 0) return 0;
+  const uint64_t units = static_cast<uint64_t>(q8) >> 8;
+  return units > 65535u ? static_cast<uint16_t>(65535u) : static_cast<uint16_t>(units);
 }
 
 }  // namespace device

@@ -10,6 +10,16 @@ int64_t shift_floor(int64_t x, unsigned n) {
 
 int64_t mul_q30(int64_t a, int64_t b) { return shift_floor(a * b, 30); }
 
+int32_t mul_q30_narrow(int32_t a, uint32_t x) {
+  const bool negative = a < 0;
+  const uint32_t magnitude = negative ? 0u - static_cast<uint32_t>(a) : static_cast<uint32_t>(a);
+  const WideProduct p = mul_wide(magnitude, x);
+  uint32_t q = (p.high << 2) | (p.low >> 30);
+  if (!negative) return static_cast<int32_t>(q);
+  if ((p.low & 0x3fffffffu) != 0) ++q;  // toward minus infinity
+  return -static_cast<int32_t>(q);
+}
+
 int64_t clamp64(int64_t a, int64_t lo, int64_t hi) { return a < lo ? lo : (a > hi ? hi : a); }
 
 uint32_t isqrt64(uint64_t x) {

@@ -8,11 +8,10 @@
 #include <stdexcept>
 
 #include "avar/device/tool_process.hpp"
+#include "embedded_sources.hpp"
 
 namespace avar::device {
 namespace {
-
-#include "avar_device_sources.inc"
 
 constexpr double kBuildTimeout = 600, kRunTimeout = 1800;
 
@@ -107,7 +106,7 @@ ExportVerification verify_export(const Project& project, const std::filesystem::
       std::filesystem::remove_all(dir, ignored);
     }
   } cleanup{work};
-  for (const EmbeddedSource& e : kEmbeddedSources) {
+  for (const EmbeddedSource& e : embedded_sources()) {
     const std::string path = e.path;
     if (path.rfind("verify/", 0) != 0) continue;
     std::ofstream(work / path.substr(7), std::ios::binary) << e.text;

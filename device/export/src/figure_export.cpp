@@ -7,13 +7,10 @@
 #include "avar/core/input_error.hpp"
 #include "avar/device/figure.hpp"
 #include "avar/firmware_iface/pca9685_codec.hpp"
+#include "little_endian.hpp"
 
 namespace avar::device {
 namespace {
-
-void put_fixed(std::vector<std::uint8_t>& out, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
 
 std::int32_t pulse_ns(double us) { return static_cast<std::int32_t>(std::lround(us * 1000.0)); }
 

@@ -8,11 +8,10 @@
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/device/show_image.hpp"
+#include "embedded_sources.hpp"
 
 namespace avar::device {
 namespace {
-
-#include "avar_device_sources.inc"
 
 /// The show with one track per figure channel, in figure order: a channel without a track holds
 /// its rest pose. A layered show or one with targets passes through (the encoder refuses it).
@@ -185,7 +184,7 @@ void add_files(Project& p, const ExportOptions& o) {
                                          ",\n  \"keywords\": [\"avar\", \"animatronics\", \"servo\", \"pca9685\"],\n"
                                          "  \"frameworks\": \"arduino\",\n  \"platforms\": " +
                                          json_string(std::string(p.target->platformio)) + "\n}\n"});
-  for (const EmbeddedSource& e : kEmbeddedSources) {
+  for (const EmbeddedSource& e : embedded_sources()) {
     const std::string path = e.path;
     if (path.rfind("src/", 0) != 0) continue;  // avar export --verify's own run
     p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features) + e.text : e.text});

@@ -10,6 +10,7 @@
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/device/show_image.hpp"
+#include "little_endian.hpp"
 
 namespace avar::device {
 namespace {
@@ -24,9 +25,6 @@ constexpr double kMaxOutput = 1 << 20;  // the engine's bound on values and cont
 constexpr double kNarrowTimeError = 0.1;
 
 void put_u8(std::vector<std::uint8_t>& out, unsigned v) { out.push_back(static_cast<std::uint8_t>(v)); }
-void put_fixed(std::vector<std::uint8_t>& out, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
 void put_varint(std::vector<std::uint8_t>& out, std::uint64_t v) {
   while (v >= 0x80) {
     out.push_back(static_cast<std::uint8_t>(v | 0x80));

@@ -48,6 +48,9 @@ struct SegmentCache {
   uint32_t reciprocal;  ///< (t - t0) * reciprocal >> shift is the normalised time in Q30
   uint8_t shift;
   uint8_t kind, easing;
+  /// The value polynomial's coefficients and v0 add up to less than 2^31 in magnitude: every
+  /// step of its evaluation fits a 32-bit word (the fast path on small cores).
+  bool narrow;
   int64_t v0;          ///< Q8
   int64_t c1, c2, c3;  ///< value polynomial (Q8) in s or, for Bezier, in u; easing: c1 the change
   uint32_t ta, tb;     ///< Bezier: the handles' times, Q30 of the segment
