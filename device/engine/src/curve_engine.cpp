@@ -167,7 +167,8 @@ uint32_t normalised_time(const SegmentCache& c, uint32_t dt) {
     // 32 x 32-bit product; the remainder dt 2^30 - q d lies in [0, 2d) < 2^32, so its low word
     // is all of it.
     uint32_t q = mul_wide(shifted_left(dt, static_cast<uint8_t>(32 - c.shift)), c.reciprocal).high;
-    const uint32_t remainder = ((dt & 3u) << 30) - q * d;
+    // (dt's low two bits placed at the top by a byte move and a small shift, not a loop)
+    const uint32_t remainder = (static_cast<uint32_t>(static_cast<uint8_t>((static_cast<uint8_t>(dt) & 3u) << 6)) << 24) - q * d;
     if (remainder >= d) ++q;
     return q;
   }

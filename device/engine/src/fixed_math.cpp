@@ -14,7 +14,8 @@ int32_t mul_q30_narrow(int32_t a, uint32_t x) {
   const bool negative = a < 0;
   const uint32_t magnitude = negative ? 0u - static_cast<uint32_t>(a) : static_cast<uint32_t>(a);
   const WideProduct p = mul_wide(magnitude, x);
-  uint32_t q = (p.high << 2) | (p.low >> 30);
+  // (the low word's top two bits from its top byte: avr-gcc shifts a word by 30 in a loop)
+  uint32_t q = (p.high << 2) | static_cast<uint8_t>(static_cast<uint8_t>(p.low >> 24) >> 6);
   if (!negative) return static_cast<int32_t>(q);
   if ((p.low & 0x3fffffffu) != 0) ++q;  // toward minus infinity
   return -static_cast<int32_t>(q);
