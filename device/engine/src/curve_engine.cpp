@@ -132,24 +132,45 @@ int64_t cubic_at(const SegmentCache& c, int64_t x) { return c.v0 + mul_q30(c.c1 
 // The parameter u (Q30) where the segment's time polynomial, with control times 0, ta, tb, 1
 // (non-decreasing: the exporter checked), reaches s: de Casteljau halving, which needs only
 // additions and shifts, keeping the half that holds s.
-int64_t bezier_parameter(const SegmentCache& c, uint32_t s) {
-  uint32_t p0 = 0, p1 = c.ta, p2 = c.tb, p3 = static_cast<uint32_t>(kQ30);
-  uint32_t u = 0, bit = static_cast<uint32_t>(1) << 29;  // this step's bit of u
-  for (int step = 0; step < kBezierSteps; ++step, bit >>= 1) {
-    const uint32_t p01 = (p0 + p1) >> 1, p12 = (p1 + p2) >> 1, p23 = (p2 + p3) >> 1;
-    const uint32_t p012 = (p01 + p12) >> 1, p123 = (p12 + p23) >> 1;
-    const uint32_t mid = (p012 + p123) >> 1;
+//
+// The control times are kept relative to the first (d1, d2, d3, and s less it): every midpoint is
+// the first plus the midpoint of the differences, so the halving is the same to the bit, and once
+// the part left spans less than 2^15 the rest runs on 16-bit words (half the work on small cores).
+template <typename Word>
+bool bisect(Word& d1, Word& d2, Word& d3, Word& s, uint32_t& u, uint32_t& bit, int& step, bool wide) {
+  for (; step < kBezierSteps; ++step, bit >>= 1) {
+    if (wide && d3 < 0x8000u) return false;  // the rest in 16 bits
+    const Word p01 = static_cast<Word>(d1 >> 1), p12 = static_cast<Word>((d1 + d2) >> 1), p23 = static_cast<Word>((d2 + d3) >> 1);
+    const Word p012 = static_cast<Word>((p01 + p12) >> 1), p123 = static_cast<Word>((p12 + p23) >> 1);
+    const Word mid = static_cast<Word>((p012 + p123) >> 1);
     // On the midpoint: its parameter (where the time polynomial is flat, the halves beyond it
     // may hold the same time to the last bit, and either end of them is off).
-    if (s == mid) return static_cast<int64_t>(u | bit);
+    if (s == mid) {
+      u |= bit;
+      return true;
+    }
     if (s < mid) {
-      p1 = p01, p2 = p012, p3 = mid;
+      d1 = p01, d2 = p012, d3 = mid;
     } else {
-      p0 = mid, p1 = p123, p2 = p23;
+      s = static_cast<Word>(s - mid), d1 = static_cast<Word>(p123 - mid), d2 = static_cast<Word>(p23 - mid);
+      d3 = static_cast<Word>(d3 - mid);
       u |= bit;
     }
   }
-  return static_cast<int64_t>(u) + (static_cast<int64_t>(1) << (29 - kBezierSteps));
+  u += static_cast<uint32_t>(1) << (29 - kBezierSteps);  // the last interval's middle
+  return true;
+}
+
+int64_t bezier_parameter(const SegmentCache& c, uint32_t s) {
+  uint32_t d1 = c.ta, d2 = c.tb, d3 = static_cast<uint32_t>(kQ30), rest = s;
+  uint32_t u = 0, bit = static_cast<uint32_t>(1) << 29;  // this step's bit of u
+  int step = 0;
+  if (!bisect<uint32_t>(d1, d2, d3, rest, u, bit, step, true)) {
+    uint16_t e1 = static_cast<uint16_t>(d1), e2 = static_cast<uint16_t>(d2), e3 = static_cast<uint16_t>(d3),
+             r = static_cast<uint16_t>(rest);
+    bisect<uint16_t>(e1, e2, e3, r, u, bit, step, false);
+  }
+  return static_cast<int64_t>(u);
 }
 
 // x << k for k < 32, a byte at a time first (an 8-bit core shifts a bit per instruction per byte).

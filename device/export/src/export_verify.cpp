@@ -3,7 +3,6 @@
 #include <fstream>
 #include <map>
 #include <ostream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -28,24 +27,51 @@ const std::map<std::string, EmulatedTarget>& emulations() {
 
 const char* kInstall = " (scripts/install-deps.sh installs gcc-avr, avr-libc, simavr, gcc-arm-none-eabi and qemu-system-arm)";
 
+/// `line` without terminal colour codes (ESC [ ... m) and surrounding blanks.
+std::string plain(const std::string& line) {
+  std::string out;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (line[i] == '\x1b' && i + 1 < line.size() && line[i + 1] == '[') {
+      const std::size_t m = line.find('m', i);
+      if (m == std::string::npos) break;
+      i = m;
+      continue;
+    }
+    out += line[i];
+  }
+  const std::size_t first = out.find_first_not_of(" \r"), last = out.find_last_not_of(" \r");
+  return first == std::string::npos ? std::string() : out.substr(first, last - first + 1);
+}
+
+/// Whether `line` is one the verification run prints: "show S SECOND HASH SAMPLES", "end S HASH
+/// SAMPLES", "samples N ticks T", or a refusal.
+bool run_line(const std::string& line) {
+  if (line == "figure refused" || line == "show refused") return true;
+  std::stringstream in(line);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  const auto number = [](const std::string& w) { return !w.empty() && w.find_first_not_of("0123456789") == std::string::npos; };
+  const auto hash = [](const std::string& w) {
+    return w.size() == 8 && w.find_first_not_of("0123456789abcdef") == std::string::npos;
+  };
+  if (words.size() == 5 && words[0] == "show") return number(words[1]) && number(words[2]) && hash(words[3]) && number(words[4]);
+  if (words.size() == 4 && words[0] == "end") return number(words[1]) && hash(words[2]) && number(words[3]);
+  if (words.size() == 4 && words[0] == "samples") return number(words[1]) && words[2] == "ticks" && number(words[3]);
+  return false;
+}
+
 /// The lines a run printed that the comparison reads: simavr colours each UART line and shows its
 /// newline as a '.' before the line break.
 std::vector<std::string> run_lines(const std::string& output, bool avr) {
-  static const std::regex colour("\x1b\\[[0-9;]*m");
-  static const std::regex wanted(
-      "^(show \\d+ \\d+ [0-9a-f]{8} \\d+|end \\d+ [0-9a-f]{8} \\d+|samples \\d+ ticks \\d+|"
-      "figure refused|show refused)$");
   std::vector<std::string> lines;
   std::stringstream in(output);
   for (std::string raw; std::getline(in, raw);) {
-    std::string line = std::regex_replace(raw, colour, "");
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    while (!line.empty() && line.front() == ' ') line.erase(line.begin());
+    std::string line = plain(raw);
     if (avr) {
       if (line.empty() || line.back() != '.') continue;
       line.pop_back();
     }
-    if (std::regex_match(line, wanted)) lines.push_back(line);
+    if (run_line(line)) lines.push_back(line);
   }
   return lines;
 }
