@@ -71,6 +71,7 @@ TEST(ProjectExport, WritesAnArduinoLibraryWithTheEnginesSourcesAndTheShowsAsData
   EXPECT_NE(find_file(p, "library.json")->text.find("\"platforms\": \"atmelavr\""), std::string::npos);
   // hello-head has steps, lines and Beziers only: the engine is built without the rest.
   EXPECT_EQ(p.features, 0);
+  EXPECT_TRUE(p.fast);
   const std::string config = find_file(p, "src/avar/device/config.hpp")->text;
   EXPECT_EQ(config.find("#define AVAR_DEVICE_EASINGS 0\n"), config.find("#define AVAR_DEVICE_EASINGS"));
   const std::string sketch = find_file(p, "examples/avar_pca9685_head/avar_pca9685_head.ino")->text;
@@ -87,6 +88,9 @@ TEST(ProjectExport, TheUnoHoldsEightChannelsForTwoMinutesAtAKeyASecond) {
   const rig::Rig rig = config::load_rig_file(kExportRig);
   const Project p = export_project(rig, {long_show(rig, 120)}, *find_device_target("atmega328p"));
   EXPECT_TRUE(p.budget.fits()) << describe_budget(p.budget);
+  EXPECT_FALSE(p.fast) << "the 32-bit fast path is left out to fit";
+  EXPECT_NE(find_file(p, "src/avar/device/config.hpp")->text.find("#define AVAR_DEVICE_FAST 0\n"), std::string::npos);
+  EXPECT_NE(describe_budget(p.budget).find("without its 32-bit fast path, to fit"), std::string::npos);
   EXPECT_LE(p.budget.ram_used, 2048u);
   EXPECT_EQ(p.shows[0].image.keys, 8u * 121u);
   EXPECT_LE(static_cast<double>(p.shows[0].image.key_bytes) / static_cast<double>(p.shows[0].image.keys), 12.0);

@@ -288,6 +288,7 @@ int64_t evaluate_keys(const Channel& ch, SegmentCache& c, int32_t t) {
   return evaluate_in(c, snapped_in_segment(ch, c, t));
 }
 
+#if AVAR_DEVICE_FAST
 // The fast path of a sample, in 32-bit words only: a channel without Cycles or linear
 // extrapolation, at a tick outside its keys or in a step, linear or narrow cubic or Bezier
 // segment. False where the general path is needed; the value is the general path's, bit for bit.
@@ -316,6 +317,7 @@ bool sample_narrow(const Channel& ch, SegmentCache& c, int32_t tick, int32_t& q8
     default: return false;
   }
 }
+#endif
 
 #if AVAR_DEVICE_CYCLES
 // Blender's Cycles time map in integer ticks (avar's Curve::cycle_time, exact here): t outside
@@ -415,8 +417,10 @@ void reset_cache(SegmentCache& cache) {
 }
 
 int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
+#if AVAR_DEVICE_FAST
   int32_t narrow = 0;
   if (sample_narrow(ch, cache, tick, narrow)) return narrow;
+#endif
 #if AVAR_DEVICE_CYCLES
   if (!(ch.flags & kChannelCycles)) return evaluate_keys(ch, cache, tick);
   const int32_t t = snapped_to_ends(ch, tick);  // before the cycle map: the end key, not the next cycle
@@ -432,6 +436,7 @@ int64_t sample_q8(const Channel& ch, SegmentCache& cache, int32_t tick) {
 
 uint16_t sample(const Channel& ch, SegmentCache& cache, int32_t tick) {
   // Rounded to the nearest unit and saturated: below 0 is 0; a shift by a whole byte otherwise.
+#if AVAR_DEVICE_FAST
   int32_t narrow = 0;
   if (sample_narrow(ch, cache, tick, narrow)) {
     const int32_t rounded = narrow + 128;  // |narrow| < 2^31 - 2^8: the narrow path's bound
@@ -439,6 +444,7 @@ uint16_t sample(const Channel& ch, SegmentCache& cache, int32_t tick) {
     const uint32_t units = static_cast<uint32_t>(rounded) >> 8;
     return units > 65535u ? static_cast<uint16_t>(65535u) : static_cast<uint16_t>(units);
   }
+#endif
   const int64_t q8 = sample_q8(ch, cache, tick) + 128;
   if (q8 < 0) return 0;
   const uint64_t units = static_cast<uint64_t>(q8) >> 8;

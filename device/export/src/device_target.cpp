@@ -8,8 +8,8 @@ namespace {
 
 constexpr std::size_t kKiB = 1024;
 
-// Measured 2026-12 (see the header): engine figures are the linked size of the engine, figure and
-// codec rounded up; channel RAM is sizeof(PlayerChannel) + sizeof(FigureOutput) on the target.
+// Measured 2026-12-07 (see the header): engine figures are the linked size of the engine, figure
+// and codec rounded up; channel RAM is sizeof(PlayerChannel) + sizeof(FigureOutput) on the target.
 constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::string_view i2c_pins, std::size_t flash,
                            std::size_t ram, std::size_t engine) {
   DeviceTarget t;
@@ -24,10 +24,11 @@ constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::
   t.core_flash = 4608;
   t.core_ram = 448 + 320;  // Serial and Wire buffers; a stack reserve (the engine's 64-bit arithmetic)
   t.engine_flash = engine;
-  t.easings_flash = 11520;
+  t.easings_flash = 10752;
   t.cycles_flash = 1792;
-  t.extrapolation_flash = 768;
-  t.channel_ram = 144;
+  t.extrapolation_flash = 1024;
+  t.fast_flash = 1280;
+  t.channel_ram = 145;
   t.easings_channel_ram = 48;
   t.cycles_channel_ram = 18;
   t.extrapolation_channel_ram = 16;
@@ -51,10 +52,11 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
   t.data_limit = flash;
   t.core_flash = core_flash;
   t.core_ram = core_ram;
-  t.engine_flash = m0 ? 8192 : 7168;
+  t.engine_flash = m0 ? 8704 : 7680;
   t.easings_flash = m0 ? 3328 : 3072;
-  t.cycles_flash = 832;
-  t.extrapolation_flash = 512;
+  t.cycles_flash = 640;
+  t.extrapolation_flash = m0 ? 512 : 384;
+  t.fast_flash = 320;
   t.channel_ram = 168;
   t.easings_channel_ram = 48;
   t.cycles_channel_ram = 24;
@@ -66,8 +68,8 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
 }
 
 const std::array<DeviceTarget, 6> kTargets = {
-    avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 18432),
-    avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 18688),
+    avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 20480),
+    avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 20608),
     arm("cortex-m0plus", "Raspberry Pi Pico (RP2040; the arduino-pico core)", "rp2040", "raspberrypi", "SDA GP4, SCL GP5",
         2048 * kKiB - 64 * kKiB, 264 * kKiB, 96 * kKiB, 16 * kKiB, true),
     arm("cortex-m3", "STM32F103C8 (Blue Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6", 64 * kKiB, 20 * kKiB,
@@ -83,15 +85,16 @@ const std::array<DeviceTarget, 6> kTargets = {
       t.easings_flash *= 2;
       t.cycles_flash *= 2;
       t.extrapolation_flash *= 2;
+      t.fast_flash *= 2;
       return t;
     }(),
 };
 
 }  // namespace
 
-std::size_t DeviceTarget::engine_flash_for(std::uint8_t features) const noexcept {
-  return engine_flash + (features & kFeatureEasings ? easings_flash : 0) + (features & kFeatureCycles ? cycles_flash : 0) +
-         (features & kFeatureExtrapolation ? extrapolation_flash : 0);
+std::size_t DeviceTarget::engine_flash_for(std::uint8_t features, bool fast) const noexcept {
+  return engine_flash - (fast ? 0 : fast_flash) + (features & kFeatureEasings ? easings_flash : 0) +
+         (features & kFeatureCycles ? cycles_flash : 0) + (features & kFeatureExtrapolation ? extrapolation_flash : 0);
 }
 
 std::size_t DeviceTarget::channel_ram_for(std::uint8_t features) const noexcept {

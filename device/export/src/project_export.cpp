@@ -74,11 +74,12 @@ std::string show_list(const Project& p) {
   return text;
 }
 
-std::string config_header(std::uint8_t features) {
+std::string config_header(std::uint8_t features, bool fast) {
   std::string text = "// Written by avar export: this project's shows use only what is switched on here.\n";
   text += std::string("#define AVAR_DEVICE_EASINGS ") + (features & kFeatureEasings ? "1" : "0") + "\n";
   text += std::string("#define AVAR_DEVICE_CYCLES ") + (features & kFeatureCycles ? "1" : "0") + "\n";
   text += std::string("#define AVAR_DEVICE_EXTRAPOLATION ") + (features & kFeatureExtrapolation ? "1" : "0") + "\n";
+  text += std::string("#define AVAR_DEVICE_FAST ") + (fast ? "1" : "0") + "\n";
   return text;
 }
 
@@ -187,7 +188,7 @@ void add_files(Project& p, const ExportOptions& o) {
   for (const EmbeddedSource& e : embedded_sources()) {
     const std::string path = e.path;
     if (path.rfind("src/", 0) != 0) continue;  // avar export --verify's own run
-    p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features) + e.text : e.text});
+    p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features, p.fast) + e.text : e.text});
   }
   p.files.push_back({"src/avar_shows.h", shows_header(p, o.triggers)});
   p.files.push_back({"src/avar_shows.cpp", shows_source(p)});
@@ -206,7 +207,8 @@ ExportBudget budget_for(const Project& p) {
   std::size_t data = p.figure_record.size();
   for (const ExportedShow& s : p.shows) data += s.image.bytes.size();
   b.flash = {{"the Arduino core, Serial, Wire and the sketch (estimate)", t.core_flash},
-             {"the device engine and figure", t.engine_flash_for(p.features)},
+             {p.fast ? "the device engine and figure" : "the device engine and figure (without its 32-bit fast path, to fit)",
+              t.engine_flash_for(p.features, p.fast)},
              {"the figure record", p.figure_record.size()}};
   for (const ExportedShow& s : p.shows) b.flash.push_back({"show " + s.name, s.image.bytes.size()});
   const std::size_t channels = p.figure.channels.size();
@@ -261,6 +263,12 @@ Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& s
     p.shows.push_back(std::move(exported));
   }
   p.budget = budget_for(p);
+  if (!p.budget.fits()) {
+    p.fast = false;  // slower samples rather than no project
+    const ExportBudget slow = budget_for(p);
+    if (slow.fits()) p.budget = slow;
+    else p.fast = true;
+  }
   if (!p.budget.fits())
     throw InputError(SourceLocation{rig.file, 1, 1}, "the figure '" + rig.name + "' with " + show_names(p) +
                                                          " does not fit the " + std::string(target.name) + " (" +

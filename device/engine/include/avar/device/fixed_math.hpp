@@ -27,53 +27,11 @@ int64_t mul_q30(int64_t a, int64_t b);
 /// The 64-bit product of two 32-bit numbers as its two words. On AVR, sixteen byte products with
 /// the MUL instruction (about 100 cycles; avr-gcc makes a 64-bit product a library call of several
 /// hundred); elsewhere the compiler's widening multiply. The device tests compare the two bit for
-/// bit (the AVR build against the host's under simavr).
+/// bit (the AVR build against the host's under simavr). Out of line: one copy of the 16 products.
 struct WideProduct {
   uint32_t high, low;
 };
-inline WideProduct mul_wide(uint32_t a, uint32_t b) {
-  WideProduct p;
-#if defined(__AVR__) && defined(__AVR_HAVE_MUL__)
-  uint8_t zero;
-  __asm__(
-      "clr %[z]\n\t"
-      // the diagonal: a0 b0, a1 b1, a2 b2, a3 b3 at bytes 0, 2, 4, 6
-      "mul %A[a],%A[b]\n\tmovw %A[lo],r0\n\t"
-      "mul %B[a],%B[b]\n\tmovw %C[lo],r0\n\t"
-      "mul %C[a],%C[b]\n\tmovw %A[hi],r0\n\t"
-      "mul %D[a],%D[b]\n\tmovw %C[hi],r0\n\t"
-      // byte 1: a0 b1, a1 b0
-      "mul %A[a],%B[b]\n\tadd %B[lo],r0\n\tadc %C[lo],r1\n\tadc %D[lo],%[z]\n\tadc %A[hi],%[z]\n\tadc %B[hi],%[z]\n\tadc "
-      "%C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      "mul %B[a],%A[b]\n\tadd %B[lo],r0\n\tadc %C[lo],r1\n\tadc %D[lo],%[z]\n\tadc %A[hi],%[z]\n\tadc %B[hi],%[z]\n\tadc "
-      "%C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      // byte 2: a0 b2, a2 b0
-      "mul %A[a],%C[b]\n\tadd %C[lo],r0\n\tadc %D[lo],r1\n\tadc %A[hi],%[z]\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc "
-      "%D[hi],%[z]\n\t"
-      "mul %C[a],%A[b]\n\tadd %C[lo],r0\n\tadc %D[lo],r1\n\tadc %A[hi],%[z]\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc "
-      "%D[hi],%[z]\n\t"
-      // byte 3: a0 b3, a3 b0, a1 b2, a2 b1
-      "mul %A[a],%D[b]\n\tadd %D[lo],r0\n\tadc %A[hi],r1\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      "mul %D[a],%A[b]\n\tadd %D[lo],r0\n\tadc %A[hi],r1\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      "mul %B[a],%C[b]\n\tadd %D[lo],r0\n\tadc %A[hi],r1\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      "mul %C[a],%B[b]\n\tadd %D[lo],r0\n\tadc %A[hi],r1\n\tadc %B[hi],%[z]\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      // byte 4: a1 b3, a3 b1
-      "mul %B[a],%D[b]\n\tadd %A[hi],r0\n\tadc %B[hi],r1\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      "mul %D[a],%B[b]\n\tadd %A[hi],r0\n\tadc %B[hi],r1\n\tadc %C[hi],%[z]\n\tadc %D[hi],%[z]\n\t"
-      // byte 5: a2 b3, a3 b2
-      "mul %C[a],%D[b]\n\tadd %B[hi],r0\n\tadc %C[hi],r1\n\tadc %D[hi],%[z]\n\t"
-      "mul %D[a],%C[b]\n\tadd %B[hi],r0\n\tadc %C[hi],r1\n\tadc %D[hi],%[z]\n\t"
-      "clr __zero_reg__"
-      : [lo] "=&r"(p.low), [hi] "=&r"(p.high), [z] "=&r"(zero)
-      : [a] "r"(a), [b] "r"(b)
-      : "r0", "r1");
-#else
-  const uint64_t product = static_cast<uint64_t>(a) * b;
-  p.high = static_cast<uint32_t>(product >> 32);
-  p.low = static_cast<uint32_t>(product);
-#endif
-  return p;
-}
+WideProduct mul_wide(uint32_t a, uint32_t b);
 
 /// a * x / 2^30 toward minus infinity, as mul_q30, for 0 <= x <= 2^30 (the result fits 32 bits).
 int32_t mul_q30_narrow(int32_t a, uint32_t x);

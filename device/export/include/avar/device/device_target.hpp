@@ -26,15 +26,16 @@ struct DeviceTarget {
   std::size_t core_flash = 0;  ///< the Arduino core with Serial and Wire, and the sketch's glue
   std::size_t core_ram = 0;    ///< their buffers and state, and a reserve for the stack
   /// The engine, the limiter, the player, the figure and the PCA9685 codec with nothing but
-  /// steps, lines and cubics; and what each feature adds (config.hpp).
-  std::size_t engine_flash = 0, easings_flash = 0, cycles_flash = 0, extrapolation_flash = 0;
+  /// steps, lines and cubics and the 32-bit fast path; what each feature adds, and what the fast
+  /// path takes (config.hpp).
+  std::size_t engine_flash = 0, easings_flash = 0, cycles_flash = 0, extrapolation_flash = 0, fast_flash = 0;
   /// RAM per channel (PlayerChannel and FigureOutput), and what each feature adds to it.
   std::size_t channel_ram = 0, easings_channel_ram = 0, cycles_channel_ram = 0, extrapolation_channel_ram = 0;
   std::size_t figure_ram = 0;  ///< the Figure and player themselves
   std::size_t board_ram = 0;   ///< per PCA9685 board
   std::size_t show_ram = 0;    ///< per show (its PlayerShow entry)
 
-  std::size_t engine_flash_for(std::uint8_t features) const noexcept;
+  std::size_t engine_flash_for(std::uint8_t features, bool fast) const noexcept;
   std::size_t channel_ram_for(std::uint8_t features) const noexcept;
 };
 

@@ -67,6 +67,8 @@ struct Project {
   std::vector<std::uint8_t> figure_record;
   std::vector<ExportedShow> shows;
   std::uint8_t features = 0;  ///< kFeature* the shows use (the engine is built with only these)
+  /// The engine's 32-bit fast path is in (left out only where the project would not fit with it).
+  bool fast = true;
   ExportBudget budget;
   std::vector<ProjectFile> files;
 };
@@ -74,7 +76,8 @@ struct Project {
 /// The project for `shows` on `rig`'s figure for `target`. Every show is encoded for the figure's
 /// channels (a channel a show has no track for holds its rest pose; tracks of channels the device
 /// does not drive are left out). Throws InputError for what the device cannot play or drive, and
-/// for a project that does not fit its target (the message gives the budget).
+/// for a project that does not fit its target (the message gives the budget). The fast path is
+/// left out, and the budget says so, when that makes the project fit.
 Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& shows, const DeviceTarget& target,
                        const ExportOptions& options = {});
 
