@@ -19,19 +19,13 @@
 namespace avar::app {
 namespace {
 
-/// A show given by its name or its 1-based number among the exported shows: its 0-based index.
+/// exported_show_index, its refusal reported at the option.
 int show_index(const std::string& text, const std::vector<playback::Show>& shows, const std::string& option) {
-  if (text.empty()) return -1;
-  for (std::size_t i = 0; i < shows.size(); ++i)
-    if (shows[i].name == text) return static_cast<int>(i);
-  int number = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
-  if (ec == std::errc() && end == text.data() + text.size() && number >= 1 && number <= static_cast<int>(shows.size()))
-    return number - 1;
-  std::string names;
-  for (const auto& s : shows) names += (names.empty() ? "" : ", ") + s.name;
-  throw option_error(
-      option, "found '" + text + "'; expected a show's name or number (1 to " + std::to_string(shows.size()) + "): " + names);
+  try {
+    return device::exported_show_index(text, shows);
+  } catch (const std::invalid_argument& e) {
+    throw option_error(option, e.what());
+  }
 }
 
 }  // namespace

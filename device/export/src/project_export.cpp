@@ -1,6 +1,7 @@
 #include "avar/device/project_export.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -165,6 +166,12 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
+std::string show_list_names(const std::vector<playback::Show>& shows) {
+  std::string names;
+  for (const playback::Show& s : shows) names += (names.empty() ? "" : ", ") + s.name;
+  return names;
+}
+
 std::string show_names(const Project& p) {
   std::string names;
   for (const ExportedShow& s : p.shows) names += (names.empty() ? "" : ", ") + s.name;
@@ -225,6 +232,18 @@ ExportBudget budget_for(const Project& p) {
 }
 
 }  // namespace
+
+int exported_show_index(const std::string& text, const std::vector<playback::Show>& shows) {
+  if (text.empty()) return -1;
+  for (std::size_t i = 0; i < shows.size(); ++i)
+    if (shows[i].name == text) return static_cast<int>(i);
+  int number = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (ec == std::errc() && end == text.data() + text.size() && number >= 1 && number <= static_cast<int>(shows.size()))
+    return number - 1;
+  throw std::invalid_argument("found '" + text + "'; expected a show's name or number (1 to " + std::to_string(shows.size()) +
+                              "): " + show_list_names(shows));
+}
 
 std::string describe_budget(const ExportBudget& b) {
   const auto line = [](const char* what, std::size_t used, std::size_t size) {

@@ -81,6 +81,11 @@ struct Project {
 Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& shows, const DeviceTarget& target,
                        const ExportOptions& options = {});
 
+/// The 0-based index of the show `text` names among `shows`: by its name, or by its number 1..N;
+/// -1 for an empty text. Throws std::invalid_argument "found 'X'; expected a show's name or number
+/// (1 to N): names".
+int exported_show_index(const std::string& text, const std::vector<playback::Show>& shows);
+
 /// Writes the project's files under `directory` (created; files of the same names are replaced).
 void write_project(const Project& project, const std::filesystem::path& directory);
 
