@@ -114,6 +114,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "      lip-sync tracks from Rhubarb or Papagayo mouth cues through the rig's visemes: table\n"
       "  avar sim maestro   /   avar sim dynamixel --ids 1,2,3   /   avar sim feetech|ssc32|dmx|artnet|sacn\n"
       "      run a simulated device and print where other programs reach it (a serial port, or HOST:PORT)\n"
+      "  avar sim avar-device --channels 8\n"
+      "      a board running avar's streaming player: a rig link avar-device: {} streams curve knots to it\n"
       "  avar sim odrive --ids 1,2,3   /   avar sim can --drive cia402 --ids 5   (can is also slcan)\n"
       "      a simulated SLCAN adapter (CANable-like) with simulated CAN drives behind it\n"
       "Exit codes: 0 done, 2 bad input (nothing moved), 3 fault during the show, 130 interrupted.");

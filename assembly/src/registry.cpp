@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "avar/assembly/avar_device_protocol.hpp"
 #include "avar/assembly/can_protocol.hpp"
 #include "avar/assembly/dmx_protocol.hpp"
 #include "avar/assembly/dynamixel_protocol.hpp"
@@ -15,9 +16,10 @@
 namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
-  static const std::vector<const Protocol*> all{
-      &maestro_protocol(), &dynamixel_protocol(), &feetech_protocol(), &ssc32_protocol(), &dmx_protocol(),
-      &can_protocol(),     &gpio_protocol(),      &artnet_protocol(),  &sacn_protocol(),  &pca9685_protocol()};
+  static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(),  &feetech_protocol(),
+                                                &ssc32_protocol(),   &dmx_protocol(),        &can_protocol(),
+                                                &gpio_protocol(),    &artnet_protocol(),     &sacn_protocol(),
+                                                &pca9685_protocol(), &avar_device_protocol()};
   return all;
 }
 

@@ -77,7 +77,28 @@ Controller::Controller(const rig::Rig& rig, const playback::Show& show, std::vec
       link_telemetry_seen_(rig.channels.size(), 0),
       source_known_(new bool[rig.channels.size()]()) {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) ramp_velocity_[i] = rig.channels[i].ramp_velocity;
+  // Each channel's command delay: the longest of the links driving it, in whole ticks.
+  delay_ticks_.assign(rig.channels.size(), 0);
+  for (const rig::ActuatorSpec& a : rig.actuators) {
+    if (a.link.value >= links_.size() || !links_[a.link.value] || !(options_.tick_period_s > 0)) continue;
+    const double ticks = std::round(links_[a.link.value]->command_delay_s() / options_.tick_period_s);
+    if (ticks > 0 && ticks < 1e6)
+      delay_ticks_[a.channel.value] = std::max(delay_ticks_[a.channel.value], static_cast<std::size_t>(ticks));
+  }
+  for (std::size_t d : delay_ticks_) history_depth_ = std::max(history_depth_, d + 1);
+  history_.assign(history_depth_ * rig.channels.size(), 0.0);
+  reference_.assign(rig.channels.size(), 0.0);
   sample_show(0.0, first_frame_);
+}
+
+void Controller::remember_commands() noexcept {
+  const std::size_t n = commanded_.size();
+  history_head_ = (history_head_ + 1) % history_depth_;
+  std::copy(commanded_.begin(), commanded_.end(), history_.begin() + static_cast<std::ptrdiff_t>(history_head_ * n));
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::size_t frame = (history_head_ + history_depth_ - delay_ticks_[c]) % history_depth_;
+    reference_[c] = history_[frame * n + c];
+  }
 }
 
 std::unique_ptr<ShowBinding> Controller::bind_show(std::shared_ptr<const playback::Show> show) const {
@@ -118,6 +139,8 @@ void Controller::begin(double now_s, std::span<const double> start_pose) noexcep
   }
   const auto from = limiter_.last();
   std::copy(from.begin(), from.end(), commanded_.begin());
+  // Before the first command, every link's device stands where the figure starts.
+  for (std::size_t f = 0; f < history_depth_; ++f) remember_commands();
   // The soft start is the limiter's own glide to the first frame: every channel plans it once
   // and follows it toward the held goal, and the show starts from rest on that frame. The first
   // tick then finds the limiter in cache.
@@ -257,7 +280,7 @@ void Controller::tick(double now_s) noexcept {
     if (!measured_known_[c]) continue;
     measured_known_[c] = 0;
     const double tolerance = rig_.channels[c].tracking_tolerance;
-    const double error = std::abs(commanded_[c] - measured_[c]);
+    const double error = std::abs(reference_[c] - measured_[c]);
     if (tolerance > 0 && error > tolerance) fault(FaultCause::tracking_error, c, error, now_s);
   }
 
@@ -309,6 +332,7 @@ void Controller::tick(double now_s) noexcept {
     while (bad + 1 < target_.size() && std::isfinite(target_[bad])) ++bad;
     fault(FaultCause::non_finite, bad, 0, now_s, Status::not_finite);
   }
+  remember_commands();
   lap(Stage::limit, mark);
 
   for (std::size_t i = 0; i < links_.size(); ++i) {

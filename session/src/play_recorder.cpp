@@ -56,7 +56,7 @@ void PlayRecorder::on_tick(const TickRecord& r) {
     if (options_.keep_samples && !seconds_.empty())
       for (std::size_t c = 0; c < n; ++c) telemetry_rows_[(seconds_.size() - 1) * n + c] = reported(r.channels[c]);
   }
-  for (std::size_t c = 0; c < n; ++c) previous_command_[c] = r.channels[c].command;
+  for (std::size_t c = 0; c < n; ++c) previous_command_[c] = r.channels[c].reference;
   previous_ready_ = true;
   previous_tick_ = r.tick;
 

@@ -243,12 +243,14 @@ void ShowSession::after_tick(std::uint64_t tick, double now_s, double dt_s, doub
     }
     const auto target = controller.target();
     const auto command = controller.commanded();
+    const auto reference = controller.tracking_reference();
     const auto measured = controller.measured();
     const auto telemetry = controller.telemetry();
     for (std::size_t c = 0; c < r->channels.size(); ++c) {
       ChannelRecord& ch = r->channels[c];
       ch.target = target[c];
       ch.command = command[c];
+      ch.reference = reference[c];
       ch.measured = measured[c];
       ch.temperature_c = telemetry[c].temperature_c;
       ch.load = telemetry[c].load;

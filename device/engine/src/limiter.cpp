@@ -14,6 +14,10 @@ int64_t stopping_distance(int64_t speed, int64_t accel) {
 
 void limiter_prepare(ChannelLimits& limits) { limits.reach = stopping_distance(limits.speed, limits.accel); }
 
+bool limits_usable(const ChannelLimits& l) {
+  return l.low <= l.rest && l.rest <= l.high && l.speed > 0 && l.accel > 0 && l.reach == stopping_distance(l.speed, l.accel);
+}
+
 ChannelLimits read_limits(const uint8_t* stored) {
   int64_t fields[6];
   const uint8_t* at = stored;

@@ -4,14 +4,6 @@
 
 namespace avar {
 namespace device {
-namespace {
-
-bool usable(const ChannelLimits& l) {
-  return l.low <= l.rest && l.rest <= l.high && l.speed > 0 && l.accel > 0 && l.reach == stopping_distance(l.speed, l.accel);
-}
-
-}  // namespace
-
 PlayerStatus player_init(Player& p, PlayerChannel* channels, uint8_t channel_count, const PlayerShow* shows, uint8_t show_count,
                          uint32_t rate) {
   p.channels = channels;
@@ -33,7 +25,7 @@ PlayerStatus player_init(Player& p, PlayerChannel* channels, uint8_t channel_cou
   }
   for (uint8_t c = 0; c < channel_count; ++c) {
     const ChannelLimits limits = read_limits(channels[c].limits);
-    if (!usable(limits)) return kPlayerBadLimits;
+    if (!limits_usable(limits)) return kPlayerBadLimits;
     channels[c].state = limiter_at_rest(limits);
     channels[c].output = limiter_output(channels[c].state);
     reset_cache(channels[c].cache);

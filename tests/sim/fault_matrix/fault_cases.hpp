@@ -70,8 +70,8 @@ inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies,
   "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n" \
   "  b: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"
 
-inline const std::array<ProtocolCase, 14>& protocol_cases() {
-  static const std::array<ProtocolCase, 14> cases{{
+inline const std::array<ProtocolCase, 15>& protocol_cases() {
+  static const std::array<ProtocolCase, 15> cases{{
       {"maestro_serial", Carrier::serial,
        "name: fm-maestro\n" AVAR_FM_CHANNELS
        "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, maestro: {model: mini12}}\n"
@@ -168,6 +168,13 @@ inline const std::array<ProtocolCase, 14>& protocol_cases() {
        "  - {channel: a, link: bus, output: 0, calibration: {min_us: 1000, max_us: 2000}}\n"
        "  - {channel: b, link: bus, output: 9, calibration: {min_us: 1100, max_us: 1900}}\n",
        kI2c},
+      {"avar_device", Carrier::serial,
+       "name: fm-avar-device\n" AVAR_FM_CHANNELS
+       "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, avar-device: {knot_ms: 50, lead_ms: 150}}\n"
+       "actuators:\n"
+       "  - {channel: a, link: bus, output: 1, calibration: {min_us: 1000, max_us: 2000}}\n"
+       "  - {channel: b, link: bus, output: 0, calibration: {min_us: 1100, max_us: 1900, reverse: true}}\n",
+       kWriteOnly},
   }};
   return cases;
 }

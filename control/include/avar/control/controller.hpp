@@ -179,6 +179,10 @@ class Controller {
   double show_start_time() const noexcept { return show_start_; }
   /// The frame that the last tick sent (after limits), indexed by channel.
   std::span<const double> commanded() const noexcept { return commanded_; }
+  /// Per channel, the command that the device carries out as of the last tick: the last command,
+  /// or for a channel on a link that plays its commands later (command_delay_s) the command of
+  /// that many ticks before. The tracking check compares the next feedback with it.
+  std::span<const double> tracking_reference() const noexcept { return reference_; }
   /// Each channel's newest device report, as the last tick read it from the links.
   std::span<const firmware_iface::ChannelTelemetry> telemetry() const noexcept { return telemetry_; }
   /// The position feedback the last tick read (ControllerOptions::positions where it knows, a
@@ -207,6 +211,8 @@ class Controller {
   void read_feedback(bool latch) noexcept;
   /// measured() from what read_feedback() found.
   void publish_feedback() noexcept;
+  /// Keeps the tick's commands and sets each channel's tracking reference.
+  void remember_commands() noexcept;
   void take_telemetry(std::span<const firmware_iface::ChannelTelemetry> telemetry, std::vector<std::uint64_t>& seen,
                       bool latch) noexcept;
   /// The show's frame at a show time: tracks, then inverse kinematics for the targets.
@@ -225,6 +231,12 @@ class Controller {
   std::vector<double> first_frame_;
   std::vector<double> target_;
   std::vector<double> commanded_;
+  /// The last commands, for channels whose link plays them later: history_depth_ frames of the
+  /// channels' commands (a ring, newest at history_head_), and each channel's delay in ticks.
+  std::vector<double> history_;
+  std::size_t history_depth_ = 1, history_head_ = 0;
+  std::vector<std::size_t> delay_ticks_;
+  std::vector<double> reference_;
   std::vector<double> heading_;
   std::vector<double> measured_;
   std::vector<char> measured_known_;

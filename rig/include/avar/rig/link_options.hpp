@@ -75,6 +75,18 @@ struct Pca9685Options {
   bool totem_pole = true;         ///< outputs: totem_pole (the boards') or open_drain
 };
 
+/// `avar-device: {knot_ms, lead_ms, device_rate, device_knots, device_watchdog_ms}`: a device
+/// running avar's streaming player on the serial port (docs/protocols/avar-device.md).
+/// The device_* settings describe the device: the simulated one is built with them, a real one
+/// is checked against what it reports (its knot room).
+struct AvarDeviceOptions {
+  int knot_ms = 50;              ///< a knot every this many ms (a whole number of ticks)
+  int lead_ms = 150;             ///< how far ahead of its time a knot is sent
+  int device_rate_hz = 200;      ///< the device's control ticks per second
+  int device_knots = 16;         ///< knot frames the device holds
+  int device_watchdog_ms = 500;  ///< link silence after which the device eases to rest
+};
+
 /// How a CAN link reaches its bus.
 enum class CanInterface {
   by_port,    ///< not written: SLCAN for a device path (/dev/...), SocketCAN otherwise
@@ -127,7 +139,7 @@ struct SacnOptions {
 
 /// One link's settings, by protocol (monostate only in a LinkSpec not read from a file).
 using LinkOptions = std::variant<std::monostate, MaestroOptions, DynamixelOptions, FeetechOptions, Ssc32Options, DmxOptions,
-                                 CanOptions, GpioOptions, ArtnetOptions, SacnOptions, Pca9685Options>;
+                                 CanOptions, GpioOptions, ArtnetOptions, SacnOptions, Pca9685Options, AvarDeviceOptions>;
 
 /// A GPIO output line's own setting.
 struct GpioOutputOptions {

@@ -22,6 +22,7 @@ namespace avar::session {
 struct ChannelRecord {
   double target = 0;         ///< what the show (and the layers over it) asked for, before limits
   double command = 0;        ///< what the tick sent, after limits
+  double reference = 0;      ///< the command the device carries out now (a link's command delay ago)
   double measured = 0;       ///< the feedback the tick read (from the previous exchange); NaN: none
   double temperature_c = 0;  ///< the device's newest report; NaN: none
   double load = 0;           ///< signed fraction of rated torque; NaN: none

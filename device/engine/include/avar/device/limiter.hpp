@@ -38,6 +38,9 @@ void write_limits(const ChannelLimits& limits, uint8_t* out);
 int64_t stopping_distance(int64_t speed, int64_t accel);
 /// Fills limits.reach from its speed and acceleration (player_init does it for every channel).
 void limiter_prepare(ChannelLimits& limits);
+/// Whether the limiter can use `limits`: low <= rest <= high, speed and acceleration above 0,
+/// reach as limiter_prepare sets it (what a player checks of every stored channel).
+bool limits_usable(const ChannelLimits& limits);
 
 struct LimiterState {
   int64_t position;  ///< Q16 output units

@@ -104,6 +104,12 @@ class ActuatorLink {
   /// Wire counters since start(). Real-time safe; any thread (counters are relaxed atomics or
   /// snapshots in implementations).
   virtual LinkCounters counters() const noexcept { return {}; }
+
+  /// How long after send() the device carries a command out, in seconds: 0 for a device that
+  /// acts on a command as it arrives; a link that has its device play commands later (avar-device
+  /// streams knots `lead` ahead) says by how much, and the tracking check compares what the
+  /// device reports with the command of that long ago. Any thread.
+  virtual double command_delay_s() const noexcept { return 0; }
 };
 
 }  // namespace avar::firmware_iface

@@ -1,0 +1,84 @@
+#pragma once
+// The device's side of the avar-device streaming protocol (avar_device_codec.hpp): avar sends
+// knots (a time, and each channel's value and slope) ahead of time and its clock; the device
+// plays, at its own control rate, the cubic between the two knots around its stream time (the
+// Hermite cubic of their values and slopes) through its limiter (limiter.hpp), so a slow link
+// carries a few knots a second and the motion stays smooth. One source for the device and the
+// simulated device (`avar sim avar-device`). Freestanding C++14, caller-owned storage, no heap.
+//
+// Safety, on the device: every output has passed the channel's limiter (range, speed,
+// acceleration); power-up rests every channel; knots that run out hold the last knot's value; a
+// link silent for the watchdog time, or kStop, eases every channel to rest; kRelease turns
+// outputs off (all, or some channels) until the next kHello: a released channel's output does not
+// change and the caller sends it no pulse. Bad frames are dropped whole (the parser's CRC).
+//
+// Time: `now_us` is the device's own microsecond counter (micros(); it may wrap). Stream time is
+// now_us plus an offset that kTime messages set (a step of more than kClockStepUs) or trim (a
+// quarter of the error at a time), so the device's clock follows avar's within the link's jitter.
+
+#include <stdint.h>
+
+#include "avar/device/limiter.hpp"
+#include "avar/firmware_iface/avar_device_codec.hpp"
+
+namespace avar {
+namespace device {
+
+/// An error of avar's clock larger than this steps the device's clock instead of trimming it.
+const uint32_t kClockStepUs = 20000;
+/// Two knots farther apart than this (µs) are not joined: the later one is held from its time.
+const uint32_t kMaxKnotGapUs = 4000000;
+
+/// One channel of the streaming device.
+struct StreamChannel {
+  const uint8_t* limits;  ///< stored limits (kLimitsSize bytes, write_limits), read each tick
+  LimiterState state;
+  uint16_t output;  ///< the last tick's 16-bit command
+  bool released;    ///< its output is off (kRelease) until the next kHello
+};
+
+struct StreamPlayer {
+  StreamChannel* channels;
+  uint8_t channel_count;
+  // The knots ahead: a ring of `capacity` frames, each a time and channel_count knots.
+  uint32_t* times;
+  firmware_iface::avar_device::Knot* knots;
+  uint8_t capacity, head, count;
+  uint16_t rate;         ///< control ticks per second
+  uint32_t watchdog_us;  ///< link silence that eases to rest (0: never)
+  uint8_t state;         ///< avar_device::State
+  bool clock_set;        ///< a kTime has set the offset
+  uint32_t offset;       ///< stream time - now_us (mod 2^32)
+  uint32_t last_heard;   ///< now_us of the last good frame
+  bool heard;            ///< a good frame has arrived since power-up
+  uint32_t underruns;    ///< ticks that found no knot after the stream time
+  firmware_iface::avar_device::Parser parser;
+};
+
+enum StreamStatus : uint8_t { kStreamOk = 0, kStreamBadChannels, kStreamBadLimits, kStreamBadStorage };
+
+/// Sets the player up at rest. `times` holds `capacity` (at least 2) entries, `knots`
+/// capacity * channel_count; every channel's limits must be usable as the player's (player.hpp).
+StreamStatus stream_init(StreamPlayer& player, StreamChannel* channels, uint8_t channel_count, uint32_t* times,
+                         firmware_iface::avar_device::Knot* knots, uint8_t capacity, uint16_t rate, uint32_t watchdog_us);
+
+/// Takes one byte from the link at `now_us`. When it completes a frame that asks for an answer,
+/// writes the answer's frame into `reply` (room for avar_device::kMaxFrame bytes) and returns its
+/// size; otherwise 0.
+uint16_t stream_receive(StreamPlayer& player, uint8_t byte, uint32_t now_us, uint8_t* reply);
+
+/// One control tick at `now_us`: each channel's target (the knots' cubic at stream time, the last
+/// knot held, or rest), through the limiter. Nothing moves while released.
+void stream_tick(StreamPlayer& player, uint32_t now_us);
+
+/// The stream time at `now_us`.
+inline uint32_t stream_time(const StreamPlayer& player, uint32_t now_us) { return now_us + player.offset; }
+
+/// The value (Q8 output units) at `time_us` of the cubic between knots a (at t0) and b (at t1 >
+/// t0): Hermite in value and slope, as a Bezier with its inner points a third of the span along
+/// the slopes, evaluated by de Casteljau in Q16 of the span. Exact at both knots.
+int64_t knot_cubic_q8(uint32_t t0, const firmware_iface::avar_device::Knot& a, uint32_t t1,
+                      const firmware_iface::avar_device::Knot& b, uint32_t time_us);
+
+}  // namespace device
+}  // namespace avar
