@@ -44,7 +44,7 @@ sim::SimAvarDeviceConfig device_config(const rig::Rig& rig, std::size_t link) {
     const rig::ChannelSpec& ch = rig.channel(a->channel);
     sim::SimAvarDeviceChannel c;
     c.limits =
-        device::device_limits({ch.min, ch.max}, ch.rest, ch.max_velocity, ch.max_acceleration, ch.soft_margin, config.rate_hz);
+        device::streaming_limits({ch.min, ch.max}, ch.rest, ch.max_velocity, ch.max_acceleration, ch.soft_margin, config.rate_hz);
     c.pulse_at_low_us = a->calibration.to_device(ch.min);
     c.pulse_at_high_us = a->calibration.to_device(ch.max);
     config.channels.push_back(c);
@@ -79,7 +79,7 @@ ServedDevice standalone_avar_device(const SimValues& values) {
   config.watchdog_ms = static_cast<std::uint32_t>(watchdog);
   for (long long c = 0; c < channels; ++c) {
     sim::SimAvarDeviceChannel ch;
-    ch.limits = device::device_limits({0, 100}, 50, 300, 3000, 0, config.rate_hz);
+    ch.limits = device::streaming_limits({0, 100}, 50, 300, 3000, 0, config.rate_hz);
     config.channels.push_back(ch);
   }
   auto device = std::make_unique<sim::SimAvarDevice>(config);

@@ -296,6 +296,11 @@ ChannelLimits device_limits(OutputRange range, double rest, double max_velocity,
   return l;
 }
 
+ChannelLimits streaming_limits(OutputRange range, double rest, double max_velocity, double max_acceleration, double soft_margin,
+                               std::uint32_t rate) {
+  return device_limits(range, rest, max_velocity, max_acceleration * kStreamAccelHeadroom, soft_margin, rate);
+}
+
 std::vector<std::uint8_t> single_channel_image(const std::vector<std::uint8_t>& record, std::uint32_t ticks_per_second,
                                                std::int32_t duration_ticks) {
   std::vector<std::uint8_t> out = {'a', 'v', 'd', '1', kFormatVersion, 1, 0, snap_ticks(ticks_per_second)};

@@ -47,13 +47,14 @@ void take_knots(StreamPlayer& p, const uint8_t* payload, uint8_t length) {
 void take_time(StreamPlayer& p, const uint8_t* payload, uint8_t length, uint32_t now_us) {
   uint32_t host = 0;
   if (!wire::read_time(payload, length, host)) return;
-  const int32_t error = since(host, now_us + p.offset);
-  const int32_t magnitude = error < 0 ? -error : error;
-  if (!p.clock_set || magnitude > static_cast<int32_t>(kClockStepUs)) {
+  const int32_t error = since(host, now_us + p.offset);  // > 0: the device's clock is behind
+  if (!p.clock_set || error > static_cast<int32_t>(kClockStepUs) || error <= -static_cast<int32_t>(kClockRestartUs)) {
     p.offset += static_cast<uint32_t>(error);
     p.clock_set = true;
+  } else if (error > 0) {
+    p.offset += static_cast<uint32_t>(error / 2);
   } else {
-    p.offset += static_cast<uint32_t>(error / 4);
+    p.offset -= static_cast<uint32_t>(-error / 64);
   }
 }
 

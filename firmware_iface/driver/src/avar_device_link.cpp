@@ -33,10 +33,11 @@ AvarDeviceLink::AvarDeviceLink(ByteTransport& transport, AvarDeviceLinkConfig co
     throw std::invalid_argument("an avar-device link's lead (" + std::to_string(config_.lead.count() / 1000) +
                                 " ms) must cover two knots and a tick (" +
                                 std::to_string((2 * spacing + config_.tick).count() / 1000) + " ms)");
-  before_.assign(n, 0);
-  at_.assign(n, 0);
-  after_.assign(n, 0);
+  ring_frames_ = static_cast<std::size_t>(config_.knot_every) + 3;
+  ring_.assign(ring_frames_ * n, 0);
   knots_.resize(n);
+  knot_values_.assign(n, 0);
+  knot_slopes_.assign(n, 0);
   packet_.resize(3 * wire::kMaxFrame);
   wire::parser_reset(parser_);
   description_ = "avar-device (" + std::to_string(config_.baud) + " baud) on " + transport_.name();
@@ -86,6 +87,11 @@ Status AvarDeviceLink::start() {
   description_ = "avar-device (" + std::to_string(config_.baud) + " baud, device at " + std::to_string(status_.rate_hz) +
                  " Hz) on " + transport_.name();
   ticks_ = 0;
+  knotted_ = false;
+  // Knots no closer than the device's room allows: lead / spacing + 2 knots held at most.
+  const auto lead_ticks = static_cast<std::size_t>(config_.lead / config_.tick);
+  const std::size_t room = status_.knot_capacity > 2 ? status_.knot_capacity - 2u : 1u;
+  min_spacing_ = std::max<std::size_t>(1, (lead_ticks + room - 1) / room);
   return Status::ok;
 }
 
@@ -108,11 +114,55 @@ Status AvarDeviceLink::read_positions(std::span<double> frame, std::span<bool> k
   return Status::ok;
 }
 
+double AvarDeviceLink::value(std::uint64_t tick, std::size_t d) const noexcept {
+  return ring_[static_cast<std::size_t>(tick % ring_frames_) * knots_.size() + d];
+}
+
+double AvarDeviceLink::slope(std::uint64_t tick, std::size_t d) const noexcept {
+  // Central difference; the first tick has none before it.
+  const double h = static_cast<double>(config_.tick.count()) / 1e6;
+  if (tick == 0) return (value(1, d) - value(0, d)) / h;
+  return (value(tick + 1, d) - value(tick - 1, d)) / (2 * h);
+}
+
+bool AvarDeviceLink::fits(std::uint64_t j) const noexcept {
+  // The cubic the device plays between the last knot and a knot at j, against every tick between.
+  const double span = static_cast<double>(j - last_knot_), h = static_cast<double>(config_.tick.count()) / 1e6;
+  const double third = span * h / 3;
+  for (std::size_t d = 0; d < knots_.size(); ++d) {
+    const double p0 = knot_values_[d], p3 = std::clamp(std::round(value(j, d)), 0.0, 65535.0);
+    const double p1 = p0 + knot_slopes_[d] * third;
+    const double p2 = p3 - wire::kSlopeUnit * wire::slope_field(static_cast<std::int32_t>(std::lround(slope(j, d)))) * third;
+    for (std::uint64_t i = last_knot_ + 1; i < j; ++i) {
+      const double u = static_cast<double>(i - last_knot_) / span, v = 1 - u;
+      const double cubic = v * v * v * p0 + 3 * v * v * u * p1 + 3 * v * u * u * p2 + u * u * u * p3;
+      if (std::abs(cubic - value(i, d)) > config_.fit_tolerance) return false;
+    }
+  }
+  return true;
+}
+
+std::size_t AvarDeviceLink::encode_knot(std::uint64_t j, std::uint8_t* out) noexcept {
+  const std::size_t n = knots_.size();
+  for (std::size_t d = 0; d < n; ++d) {
+    knots_[d].value = static_cast<std::uint16_t>(std::clamp(std::lround(value(j, d)), 0L, 65535L));
+    knots_[d].slope = wire::slope_field(static_cast<std::int32_t>(std::lround(slope(j, d))));
+    knot_values_[d] = knots_[d].value;
+    knot_slopes_[d] = static_cast<double>(wire::kSlopeUnit) * knots_[d].slope;
+  }
+  last_knot_ = j;
+  knotted_ = true;
+  const auto tick_us = static_cast<std::uint32_t>(config_.tick.count());
+  const std::uint32_t time = static_cast<std::uint32_t>(j) * tick_us + static_cast<std::uint32_t>(config_.lead.count());
+  return wire::encode_knots(time, knots_.data(), static_cast<std::uint8_t>(n), out);
+}
+
 Status AvarDeviceLink::send(std::span<const double> frame) noexcept {
   const std::size_t n = config_.actuators.size();
   std::size_t size = 0;
   std::array<std::uint8_t, (wire::kMaxChannels + 7) / 8> mask{};
   bool newly_released = false;
+  double* now_values = &ring_[static_cast<std::size_t>(ticks_ % ring_frames_) * n];
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t d = static_cast<std::size_t>(config_.actuators[i].device_channel);
     if (table_.release_pending(i)) {
@@ -120,34 +170,32 @@ Status AvarDeviceLink::send(std::span<const double> frame) noexcept {
       table_.set_release_told(i);
       newly_released = true;
     }
-    after_[d] = table_.released(i) ? at_[d] : table_.to_device(i, frame);
+    // A released channel holds its last value (the device no longer drives it anyway).
+    now_values[d] = table_.released(i) && ticks_ > 0 ? value(ticks_ - 1, d) : table_.to_device(i, frame);
   }
   if (newly_released) size += wire::encode_release_channels(mask.data(), static_cast<std::uint8_t>((n + 7) / 8), packet_.data());
 
-  const auto tick_us = static_cast<std::uint32_t>(config_.tick.count());
-  const auto lead_us = static_cast<std::uint32_t>(config_.lead.count());
-  const std::uint32_t now = static_cast<std::uint32_t>(ticks_) * tick_us;  // the stream clock wraps
-  if (ticks_ == 0) {
-    std::copy(after_.begin(), after_.end(), before_.begin());
-    std::copy(after_.begin(), after_.end(), at_.begin());
-  }
-  // Tick j = ticks_ - 1 is a knot's when j is a multiple of knot_every: its slope is the central
-  // difference of ticks j - 1 and j + 1 (this one), so it leaves now.
-  if (ticks_ >= 1 && (ticks_ - 1) % static_cast<std::uint64_t>(config_.knot_every) == 0) {
-    const double per_second = 1e6 / (2.0 * static_cast<double>(tick_us));
-    for (std::size_t d = 0; d < n; ++d) {
-      knots_[d].value = static_cast<std::uint16_t>(std::clamp(std::lround(at_[d]), 0L, 65535L));
-      knots_[d].slope = wire::slope_field(static_cast<std::int32_t>(std::lround((after_[d] - before_[d]) * per_second)));
+  // Tick j = ticks_ - 1 (its slope needs this tick) may take a knot: the first tick always; then
+  // the tick before j when the device's cubic from the last knot to j would leave the commanded
+  // motion by more than the tolerance (no closer than the device's room allows), and j itself
+  // once knot_every ticks have passed.
+  if (ticks_ >= 1) {
+    const std::uint64_t j = ticks_ - 1;
+    std::size_t knot_size = 0;
+    if (!knotted_ || j - last_knot_ >= static_cast<std::uint64_t>(config_.knot_every)) {
+      knot_size = encode_knot(j, packet_.data() + size);
+    } else if (j - 1 - last_knot_ >= min_spacing_ && !fits(j)) {
+      knot_size = encode_knot(j - 1, packet_.data() + size);
     }
-    const std::uint32_t knot_time = now - tick_us + lead_us;
-    size += wire::encode_knots(knot_time, knots_.data(), static_cast<std::uint8_t>(n), packet_.data() + size);
-    // The clock last: the device takes it when its last byte arrives, the whole write's time on
-    // the wire after now.
-    const double on_wire_s = wire_seconds(size + wire::kOverhead + 4, config_.baud);
-    size += wire::encode_time(now + static_cast<std::uint32_t>(std::lround(on_wire_s * 1e6)), packet_.data() + size);
+    if (knot_size > 0) {
+      size += knot_size;
+      // The clock last: the device takes it when its last byte arrives, the whole write's time
+      // on the wire after this tick's.
+      const double on_wire_s = wire_seconds(size + wire::kOverhead + 4, config_.baud);
+      const std::uint32_t now = static_cast<std::uint32_t>(ticks_) * static_cast<std::uint32_t>(config_.tick.count());
+      size += wire::encode_time(now + static_cast<std::uint32_t>(std::lround(on_wire_s * 1e6)), packet_.data() + size);
+    }
   }
-  before_.swap(at_);
-  at_.swap(after_);
   ++ticks_;
   last_send_size_ = size;
   if (size == 0) {

@@ -67,6 +67,16 @@ ShowImage encode_show_image(const playback::Show& show, const std::vector<ImageC
 ChannelLimits device_limits(OutputRange range, double rest, double max_velocity, double max_acceleration, double soft_margin,
                             std::uint32_t rate);
 
+/// The acceleration headroom of a streaming board's limits (streaming_limits).
+inline constexpr double kStreamAccelHeadroom = 1.25;
+/// A streaming board's limits (avar-device): device_limits with the acceleration kStreamAccelHeadroom
+/// times the rig's. avar's own limiter has shaped the motion at its tick rate; the cubic between
+/// knots, sampled at the board's own rate, asks up to about a fifth more acceleration between
+/// avar's ticks, which the board's limiter must not trim (it would lag the figure behind the
+/// show), while it still catches what a faulty stream asks. Range, rest and speed are the rig's.
+ChannelLimits streaming_limits(OutputRange range, double rest, double max_velocity, double max_acceleration, double soft_margin,
+                               std::uint32_t rate);
+
 /// One curve's channel record (the image's channel layout), for tests and tools.
 std::vector<std::uint8_t> encode_channel_record(const playback::RawCurve& raw, const playback::Curve& curve, OutputRange range,
                                                 std::uint32_t ticks_per_second, ShowImage* counts = nullptr);

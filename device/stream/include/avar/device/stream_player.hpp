@@ -13,8 +13,11 @@
 // change and the caller sends it no pulse. Bad frames are dropped whole (the parser's CRC).
 //
 // Time: `now_us` is the device's own microsecond counter (micros(); it may wrap). Stream time is
-// now_us plus an offset that kTime messages set (a step of more than kClockStepUs) or trim (a
-// quarter of the error at a time), so the device's clock follows avar's within the link's jitter.
+// now_us plus an offset that kTime messages keep: a message can only arrive late (the link's
+// latency), never early, so one that finds the device's clock behind moves it up at once (half the
+// error, or all of it past kClockStepUs), and one that finds it ahead trims it back slowly (a
+// sixty-fourth), unless it is a second or more ahead (avar started over): the clock follows the
+// earliest arrivals, and a late message (a busy PC, a USB adapter's latency timer) barely moves it.
 
 #include <stdint.h>
 
@@ -24,8 +27,10 @@
 namespace avar {
 namespace device {
 
-/// An error of avar's clock larger than this steps the device's clock instead of trimming it.
+/// The device's clock behind avar's by more than this is set, not trimmed.
 const uint32_t kClockStepUs = 20000;
+/// The device's clock ahead of avar's by this much or more is set too: avar's stream started over.
+const uint32_t kClockRestartUs = 1000000;
 /// Two knots farther apart than this (µs) are not joined: the later one is held from its time.
 const uint32_t kMaxKnotGapUs = 4000000;
 
