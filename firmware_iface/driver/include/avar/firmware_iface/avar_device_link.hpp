@@ -36,9 +36,9 @@ struct AvarDeviceActuator {
 };
 
 struct AvarDeviceLinkConfig {
-  int baud = 115200;                       ///< the line's rate: describe(), and the clock's time on the wire
-  std::chrono::microseconds tick{10000};   ///< the loop's tick period
-  int knot_every = 5;                      ///< ticks per knot at the most, >= 1
+  int baud = 115200;                      ///< the line's rate: describe(), and the clock's time on the wire
+  std::chrono::microseconds tick{10000};  ///< the loop's tick period
+  int knot_every = 5;                     ///< ticks per knot at the most, >= 1
   /// A knot comes sooner where the device's cubic would leave the commanded motion by more than
   /// this (output units of 65535), as close as every tick the device's room allows.
   double fit_tolerance = 16;
