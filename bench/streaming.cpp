@@ -217,7 +217,7 @@ Verdict judge(const Run& run, const rig::Rig& rig) {
 
 }  // namespace
 
-int main() {
+int main() try {
   const Latency latencies[] = {{"steady 1 ms", steady_delivery, on_time},
                                {"CDC-ACM jitter", cdc_delivery, cdc_tick},
                                {"FTDI latency timer, busy PC", ftdi_delivery, busy_tick}};
@@ -240,4 +240,7 @@ int main() {
                 v.delay_s * 1000, v.median, v.worst);
   }
   return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "avar-bench-streaming: %s\n", e.what());
+  return 1;
 }

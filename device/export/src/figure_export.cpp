@@ -32,25 +32,53 @@ std::size_t board_for(FigureSpec& figure, const rig::LinkSpec& link) {
   return figure.boards.size() - 1;
 }
 
-}  // namespace
+/// A streaming board's PCA9685 for output n: boards at 0x40, 0x41, ... with 16 outputs each,
+/// hobby-servo pulses at 50 Hz from the internal 25 MHz oscillator.
+std::size_t streaming_board_for(FigureSpec& figure, const rig::LinkSpec& link, int output) {
+  const auto index = static_cast<std::size_t>(output / 16);
+  while (figure.boards.size() <= index) {
+    if (figure.boards.size() == kMaxBoards)
+      throw InputError(link.where, "link '" + link.name + "' has outputs beyond " + std::to_string(16 * kMaxBoards) +
+                                       "; a streaming board drives at most " + std::to_string(kMaxBoards) + " PCA9685 boards");
+    FigureBoardSpec board;
+    board.link = link.name;
+    board.address = 0x40 + static_cast<int>(figure.boards.size());
+    board.prescale = firmware_iface::pca9685::prescale_for(board.clock_hz, static_cast<std::uint32_t>(board.frequency_hz));
+    figure.boards.push_back(board);
+  }
+  return index;
+}
 
-FigureSpec figure_from_rig(const rig::Rig& rig) {
+/// The figure of a standalone board (pca9685 links) or of a streaming one (an avar-device link).
+FigureSpec figure_of(const rig::Rig& rig, bool streaming) {
   FigureSpec figure;
   figure.rig = rig.name;
-  if (!(rig.rate_hz >= 1 && rig.rate_hz <= 1000 && rig.rate_hz == std::floor(rig.rate_hz)))
-    throw InputError(SourceLocation{rig.file, 1, 1},
-                     "rig '" + rig.name + "' ticks at " + format_number(rig.rate_hz) +
-                         " Hz; a device figure needs a whole number of ticks per second, 1 to 1000");
-  figure.rate = static_cast<std::uint32_t>(rig.rate_hz);
+  const char* protocol = streaming ? "avar-device" : "pca9685";
+  if (streaming) {
+    const rig::LinkSpec* link = nullptr;
+    for (const rig::LinkSpec& l : rig.links)
+      if (l.protocol == protocol) link = &l;
+    if (!link)
+      throw InputError(SourceLocation{rig.file, 1, 1},
+                       "rig '" + rig.name + "' has no avar-device link; a streaming board is the device of one");
+    figure.rate = static_cast<std::uint32_t>(link->options_as<rig::AvarDeviceOptions>().device_rate_hz);
+  } else {
+    if (!(rig.rate_hz >= 1 && rig.rate_hz <= 1000 && rig.rate_hz == std::floor(rig.rate_hz)))
+      throw InputError(SourceLocation{rig.file, 1, 1},
+                       "rig '" + rig.name + "' ticks at " + format_number(rig.rate_hz) +
+                           " Hz; a device figure needs a whole number of ticks per second, 1 to 1000");
+    figure.rate = static_cast<std::uint32_t>(rig.rate_hz);
+  }
   std::vector<int> actuator_of(rig.channels.size(), -1);
   for (std::size_t a = 0; a < rig.actuators.size(); ++a) {
     const rig::ActuatorSpec& act = rig.actuators[a];
     const rig::LinkSpec& link = rig.link(act.link);
     const rig::ChannelSpec& ch = rig.channel(act.channel);
-    if (link.protocol != "pca9685")
-      throw InputError(act.where, "channel '" + ch.name + "' is on link '" + link.name + "' (" + link.protocol +
-                                      "); a device figure drives hobby servos on PCA9685 boards: give the channel a "
-                                      "pca9685 link");
+    if (link.protocol != protocol)
+      throw InputError(act.where, "channel '" + ch.name + "' is on link '" + link.name + "' (" + link.protocol + "); " +
+                                      (streaming ? "a streaming board drives the channels of its avar-device link"
+                                                 : "a device figure drives hobby servos on PCA9685 boards: give the "
+                                                   "channel a pca9685 link"));
     if (ch.digital())
       throw InputError(ch.where, "channel '" + ch.name + "' is digital; a device figure drives servo pulses (analog channels)");
     if (actuator_of[act.channel.value] >= 0)
@@ -67,12 +95,14 @@ FigureSpec figure_from_rig(const rig::Rig& rig) {
     spec.range = {ch.min, ch.max};
     spec.rest = ch.rest;
     try {
-      spec.limits = device_limits(spec.range, ch.rest, ch.max_velocity, ch.max_acceleration, ch.soft_margin, figure.rate);
+      spec.limits = (streaming ? streaming_limits : device_limits)(spec.range, ch.rest, ch.max_velocity, ch.max_acceleration,
+                                                                   ch.soft_margin, figure.rate);
     } catch (const std::invalid_argument& e) {
       throw InputError(ch.where, "channel '" + ch.name + "': " + e.what());
     }
-    spec.board = board_for(figure, rig.link(act.link));
-    spec.output = act.device_channel;
+    spec.board =
+        streaming ? streaming_board_for(figure, rig.link(act.link), act.device_channel) : board_for(figure, rig.link(act.link));
+    spec.output = streaming ? act.device_channel % 16 : act.device_channel;
     spec.at_low_ns = pulse_ns(act.calibration.to_device(ch.min));
     spec.at_high_ns = pulse_ns(act.calibration.to_device(ch.max));
     for (const std::int32_t ns : {spec.at_low_ns, spec.at_high_ns})
@@ -90,6 +120,12 @@ FigureSpec figure_from_rig(const rig::Rig& rig) {
                                                          std::to_string(kMaxChannels));
   return figure;
 }
+
+}  // namespace
+
+FigureSpec figure_from_rig(const rig::Rig& rig) { return figure_of(rig, false); }
+
+FigureSpec stream_figure_from_rig(const rig::Rig& rig) { return figure_of(rig, true); }
 
 std::vector<std::uint8_t> encode_figure_record(const FigureSpec& figure) {
   std::vector<std::uint8_t> out = {'a',

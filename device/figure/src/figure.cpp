@@ -15,12 +15,11 @@ bool send(const FigureIo& io, uint8_t address, const pca9685::Write& w) {
   return acknowledged;
 }
 
-// Writes channel c's pulse when it differs from what its board was last told. False when the
-// board did not acknowledge.
-bool update_output(Figure& f, const FigureIo& io, uint8_t c) {
-  FigureOutput& out = f.outputs[c];
-  const FigureBoard& board = f.boards[out.board];
-  const int32_t ns = figure_pulse_ns(out, f.player.channels[c].output);
+}  // namespace
+
+bool figure_output_write(FigureOutput& out, const FigureBoard* boards, const FigureIo& io, uint16_t value) {
+  const FigureBoard& board = boards[out.board];
+  const int32_t ns = figure_pulse_ns(out, value);
   const uint16_t counts = pca9685::counts_for_pulse_ns(static_cast<uint32_t>(ns), board.clock_hz, board.prescale);
   if (counts == out.counts) return true;
   if (!send(io, board.address, pca9685::channel_pulse(out.output, counts))) return false;
@@ -28,7 +27,28 @@ bool update_output(Figure& f, const FigureIo& io, uint8_t c) {
   return true;
 }
 
-}  // namespace
+bool figure_output_off(FigureOutput& out, const FigureBoard* boards, const FigureIo& io) {
+  if (out.counts == kOffCounts) return true;
+  if (!send(io, boards[out.board].address, pca9685::channel_off(out.output))) return false;
+  out.counts = kOffCounts;
+  return true;
+}
+
+bool figure_boards_start(const FigureBoard* boards, uint8_t board_count, const FigureIo& io) {
+  for (uint8_t b = 0; b < board_count; ++b) {
+    pca9685::Write writes[5];
+    const size_t count = pca9685::start_sequence(boards[b].prescale, boards[b].totem_pole, writes);
+    for (size_t i = 0; i < count; ++i)
+      if (!send(io, boards[b].address, writes[i])) return false;
+  }
+  return true;
+}
+
+void figure_boards_off(const FigureBoard* boards, uint8_t board_count, FigureOutput* outputs, uint8_t channel_count,
+                       const FigureIo& io) {
+  for (uint8_t b = 0; b < board_count; ++b) send(io, boards[b].address, pca9685::all_off());
+  for (uint8_t c = 0; c < channel_count; ++c) outputs[c].counts = kNoCounts;
+}
 
 int32_t figure_pulse_ns(const FigureOutput& o, uint16_t value) {
   // The span times the output, rounded half away from zero, over 65535: |span| < 2^23, so the
@@ -38,14 +58,8 @@ int32_t figure_pulse_ns(const FigureOutput& o, uint16_t value) {
   return static_cast<int32_t>(o.at_low_ns + rounded);
 }
 
-FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, PlayerChannel* channels, FigureOutput* outputs,
-                         uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity, const PlayerShow* shows,
-                         uint8_t show_count) {
-  f.outputs = outputs;
-  f.boards = boards;
-  f.board_count = 0;
-  f.rate = 0;
-  f.io_fault = false;
+FigureStatus figure_read_record(const uint8_t* record, uint32_t size, FigureOutput* outputs, uint8_t channel_capacity,
+                                FigureBoard* boards, uint8_t board_capacity, FigureShape& shape) {
   ByteReader r = {record, size, 0, false};
   if (r.u8() != 'a' || r.u8() != 'v' || r.u8() != 'f' || r.u8() != '1' || r.u8() != kFigureVersion) return kFigureBadRecord;
   const uint8_t channel_count = r.u8(), board_count = r.u8();
@@ -67,8 +81,7 @@ FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, Player
     if (board.address > 0x7fu || board.prescale < 3 || board.clock_hz == 0) return kFigureBadRecord;
   }
   for (uint8_t c = 0; c < channel_count; ++c) {
-    channels[c].limits = record + r.at;  // checked by player_init
-    r.at += kLimitsSize;
+    r.at += kLimitsSize;  // read in place by the player (figure_channel_limits)
     FigureOutput& o = outputs[c];
     o.board = r.u8();
     o.output = r.u8();
@@ -81,9 +94,33 @@ FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, Player
     if (o.board >= board_count || o.output > 15 || !pulses_ok) return kFigureBadRecord;
   }
   if (r.overrun) return kFigureBadRecord;
-  f.board_count = board_count;
-  f.rate = rate;
-  switch (player_init(f.player, channels, channel_count, shows, show_count, rate)) {
+  shape.channel_count = channel_count;
+  shape.board_count = board_count;
+  shape.rate = rate;
+  return kFigureOk;
+}
+
+const uint8_t* figure_channel_limits(const uint8_t* record, const FigureShape& shape, uint8_t channel) {
+  const uint32_t offset =
+      kFigureHeaderSize + kFigureBoardSize * shape.board_count + kFigureChannelSize * static_cast<uint32_t>(channel);
+  return record + offset;
+}
+
+FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, PlayerChannel* channels, FigureOutput* outputs,
+                         uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity, const PlayerShow* shows,
+                         uint8_t show_count) {
+  f.outputs = outputs;
+  f.boards = boards;
+  f.board_count = 0;
+  f.rate = 0;
+  f.io_fault = false;
+  FigureShape shape = {0, 0, 0};
+  const FigureStatus read = figure_read_record(record, size, outputs, channel_capacity, boards, board_capacity, shape);
+  if (read != kFigureOk) return read;
+  for (uint8_t c = 0; c < shape.channel_count; ++c) channels[c].limits = figure_channel_limits(record, shape, c);
+  f.board_count = shape.board_count;
+  f.rate = shape.rate;
+  switch (player_init(f.player, channels, shape.channel_count, shows, show_count, shape.rate)) {
     case kPlayerOk: return kFigureOk;
     case kPlayerBadLimits: return kFigureBadLimits;
     default: return kFigureBadShow;
@@ -91,31 +128,21 @@ FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, Player
 }
 
 FigureStatus figure_begin(Figure& f, const FigureIo& io) {
-  for (uint8_t b = 0; b < f.board_count; ++b) {
-    pca9685::Write writes[5];
-    const size_t count = pca9685::start_sequence(f.boards[b].prescale, f.boards[b].totem_pole, writes);
-    for (size_t i = 0; i < count; ++i) {
-      if (!send(io, f.boards[b].address, writes[i])) {
-        figure_release(f, io);
-        return kFigureNoBoard;
-      }
-    }
-  }
-  for (uint8_t c = 0; c < f.player.channel_count; ++c) {
+  bool answered = figure_boards_start(f.boards, f.board_count, io);
+  for (uint8_t c = 0; answered && c < f.player.channel_count; ++c) {
     f.outputs[c].counts = kNoCounts;
-    if (!update_output(f, io, c)) {
-      figure_release(f, io);
-      return kFigureNoBoard;
-    }
+    answered = figure_output_write(f.outputs[c], f.boards, io, f.player.channels[c].output);
   }
-  return kFigureOk;
+  if (answered) return kFigureOk;
+  figure_release(f, io);
+  return kFigureNoBoard;
 }
 
 void figure_tick(Figure& f, const FigureIo& io) {
   if (f.io_fault) return;
   player_tick(f.player);
   for (uint8_t c = 0; c < f.player.channel_count; ++c) {
-    if (!update_output(f, io, c)) {
+    if (!figure_output_write(f.outputs[c], f.boards, io, f.player.channels[c].output)) {
       figure_release(f, io);
       return;
     }
@@ -124,8 +151,7 @@ void figure_tick(Figure& f, const FigureIo& io) {
 
 void figure_release(Figure& f, const FigureIo& io) {
   f.io_fault = true;
-  for (uint8_t b = 0; b < f.board_count; ++b) send(io, f.boards[b].address, pca9685::all_off());
-  for (uint8_t c = 0; c < f.player.channel_count; ++c) f.outputs[c].counts = kNoCounts;
+  figure_boards_off(f.boards, f.board_count, f.outputs, f.player.channel_count, io);
 }
 
 bool figure_command(Figure& f, uint8_t byte) {

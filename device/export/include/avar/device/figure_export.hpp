@@ -47,6 +47,13 @@ struct FigureSpec {
 /// Throws InputError at the link, actuator or channel a device cannot drive.
 FigureSpec figure_from_rig(const rig::Rig& rig);
 
+/// The figure of a board that runs avar's streaming player (avar export --stream): every channel
+/// with an actuator, which must sit on the rig's avar-device link; output n drives output n % 16
+/// of the PCA9685 at 0x40 + n / 16 (50 Hz, the internal 25 MHz oscillator), over the actuator's
+/// pulse range; the limits are streaming_limits at the link's device_rate, which is the record's
+/// rate. Throws InputError where figure_from_rig does, and for a rig without an avar-device link.
+FigureSpec stream_figure_from_rig(const rig::Rig& rig);
+
 /// The figure record (figure.hpp's layout).
 std::vector<std::uint8_t> encode_figure_record(const FigureSpec& figure);
 

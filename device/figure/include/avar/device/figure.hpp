@@ -47,6 +47,7 @@ struct FigureOutput {
   uint16_t counts;                ///< what the board was last told (kNoCounts: nothing yet)
 };
 const uint16_t kNoCounts = 0xffffu;
+const uint16_t kOffCounts = 0xfffeu;  ///< the output was switched fully off
 
 /// How the figure reaches its boards: the caller's functions.
 struct FigureIo {
@@ -103,6 +104,31 @@ struct FigureStorage {
 /// Every output of every board fully off (a servo without pulses goes limp): the fail-safe. The
 /// figure stays released (io_fault) until it is opened and begun again.
 void figure_release(Figure& figure, const FigureIo& io);
+
+// The record and the boards, for any player that drives a figure's outputs (this one's, the
+// streaming player's: stream_figure.hpp).
+
+/// What a figure record holds.
+struct FigureShape {
+  uint8_t channel_count, board_count;
+  uint16_t rate;  ///< control ticks per second
+};
+/// Reads a figure record's boards and outputs into the caller's storage (room for
+/// `channel_capacity` outputs and `board_capacity` boards), checked whole.
+FigureStatus figure_read_record(const uint8_t* record, uint32_t size, FigureOutput* outputs, uint8_t channel_capacity,
+                                FigureBoard* boards, uint8_t board_capacity, FigureShape& shape);
+/// Channel c's stored limits inside the record (read in place, kLimitsSize bytes).
+const uint8_t* figure_channel_limits(const uint8_t* record, const FigureShape& shape, uint8_t channel);
+/// Every board's start-up (figure_begin's first step); false when a board does not acknowledge.
+bool figure_boards_start(const FigureBoard* boards, uint8_t board_count, const FigureIo& io);
+/// An output's pulse for a 16-bit value, written only when its board was told otherwise; false
+/// when the board does not acknowledge.
+bool figure_output_write(FigureOutput& output, const FigureBoard* boards, const FigureIo& io, uint16_t value);
+/// An output fully off (its servo goes limp), written once; false when the board does not acknowledge.
+bool figure_output_off(FigureOutput& output, const FigureBoard* boards, const FigureIo& io);
+/// Every output of every board fully off at once.
+void figure_boards_off(const FigureBoard* boards, uint8_t board_count, FigureOutput* outputs, uint8_t channel_count,
+                       const FigureIo& io);
 
 /// The pulse (ns) of a 16-bit output: at_low + (at_high - at_low) * output / 65535, rounded.
 int32_t figure_pulse_ns(const FigureOutput& output, uint16_t value);
