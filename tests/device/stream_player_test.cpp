@@ -88,7 +88,7 @@ TEST(StreamPlayer, TheKnotsCubicIsExactAtItsKnotsAndStraightOnAStraightLine) {
   const wire::Knot c{1000, 2500}, d{2000, 2500};
   for (std::uint32_t t = 0; t <= 50000; t += 1250) {
     const double line = 1000 + 1000.0 * t / 50000;
-    EXPECT_NEAR(knot_cubic_q8(0, c, 50000, d, t) / 256.0, line, 0.05) << t;  // the Q8 lerps round down
+    EXPECT_NEAR(static_cast<double>(knot_cubic_q8(0, c, 50000, d, t)) / 256.0, line, 0.05) << t;  // the Q8 lerps round down
   }
   EXPECT_EQ(knot_cubic_q8(0xffffff00u, c, 0x0000c250u, d, 0x0000c250u), 2000 * 256) << "across the clock's wrap";
 }
@@ -237,11 +237,11 @@ TEST(StreamPlayer, DamagedFramesAreDroppedWhole) {
 TEST(StreamPlayer, RandomStreamsNeverBreakALimit) {
   const unsigned seed = 33;
   std::mt19937 rng(seed);
-  Device device(3, 250000, rng());
+  Device device(3, 250000, static_cast<std::uint32_t>(rng()));
   std::uniform_int_distribution<int> value(0, 65535), slope(-32768, 32767), what(0, 99), gap(1, 200000);
   std::vector<LimiterState> last;
   for (const StreamChannel& c : device.channels) last.push_back(c.state);
-  std::uint32_t host = rng();
+  std::uint32_t host = static_cast<std::uint32_t>(rng());
   std::uint32_t next_knot = host;
   for (int tick = 0; tick < 200000; ++tick) {
     const int w = what(rng);
