@@ -109,17 +109,10 @@ const uint8_t* figure_channel_limits(const uint8_t* record, const FigureShape& s
 FigureStatus figure_open(Figure& f, const uint8_t* record, uint32_t size, PlayerChannel* channels, FigureOutput* outputs,
                          uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity, const PlayerShow* shows,
                          uint8_t show_count) {
-  f.outputs = outputs;
-  f.boards = boards;
-  f.board_count = 0;
-  f.rate = 0;
-  f.io_fault = false;
-  FigureShape shape = {0, 0, 0};
-  const FigureStatus read = figure_read_record(record, size, outputs, channel_capacity, boards, board_capacity, shape);
-  if (read != kFigureOk) return read;
-  for (uint8_t c = 0; c < shape.channel_count; ++c) channels[c].limits = figure_channel_limits(record, shape, c);
-  f.board_count = shape.board_count;
-  f.rate = shape.rate;
+  FigureShape shape;
+  const FigureStatus attached =
+      figure_attach(f, record, size, channels, outputs, channel_capacity, boards, board_capacity, shape);
+  if (attached != kFigureOk) return attached;
   switch (player_init(f.player, channels, shape.channel_count, shows, show_count, shape.rate)) {
     case kPlayerOk: return kFigureOk;
     case kPlayerBadLimits: return kFigureBadLimits;

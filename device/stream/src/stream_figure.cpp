@@ -7,17 +7,10 @@ FigureStatus stream_figure_open(StreamFigure& f, const uint8_t* record, uint32_t
                                 FigureOutput* outputs, uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity,
                                 uint32_t* times, firmware_iface::avar_device::Knot* knots, uint8_t knot_capacity,
                                 uint32_t watchdog_us) {
-  f.outputs = outputs;
-  f.boards = boards;
-  f.board_count = 0;
-  f.rate = 0;
-  f.io_fault = false;
-  FigureShape shape = {0, 0, 0};
-  const FigureStatus read = figure_read_record(record, size, outputs, channel_capacity, boards, board_capacity, shape);
-  if (read != kFigureOk) return read;
-  for (uint8_t c = 0; c < shape.channel_count; ++c) channels[c].limits = figure_channel_limits(record, shape, c);
-  f.board_count = shape.board_count;
-  f.rate = shape.rate;
+  FigureShape shape;
+  const FigureStatus attached =
+      figure_attach(f, record, size, channels, outputs, channel_capacity, boards, board_capacity, shape);
+  if (attached != kFigureOk) return attached;
   switch (stream_init(f.player, channels, shape.channel_count, times, knots, knot_capacity, shape.rate, watchdog_us)) {
     case kStreamOk: return kFigureOk;
     case kStreamBadLimits: return kFigureBadLimits;

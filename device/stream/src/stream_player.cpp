@@ -24,9 +24,7 @@ void take_knots(StreamPlayer& p, const uint8_t* payload, uint8_t length) {
   if (p.state == wire::kReleased || !p.clock_set) return;
   uint32_t time = 0;
   uint8_t count = 0;
-  wire::Knot incoming[wire::kMaxChannels];
-  const uint8_t room = p.channel_count < wire::kMaxChannels ? p.channel_count : wire::kMaxChannels;
-  if (!wire::read_knots(payload, length, time, incoming, room, count) || count != p.channel_count) return;
+  if (!wire::read_knots_header(payload, length, time, count) || count != p.channel_count) return;
   if (p.state != wire::kStreaming) p.count = 0;  // a new stream: nothing of an old one is played
   if (p.count > 0) {
     const int32_t after = since(time, p.times[ring_index(p, static_cast<uint8_t>(p.count - 1))]);
@@ -37,9 +35,9 @@ void take_knots(StreamPlayer& p, const uint8_t* payload, uint8_t length) {
     }
   }
   if (p.count == p.capacity) return;  // ahead of what the device holds: avar sends too early
+  // Decoded straight into its ring slot (no copy on the stack: a device's RAM is small).
+  if (!wire::read_knots(payload, length, time, frame_knots(p, p.count), count, count)) return;
   p.times[ring_index(p, p.count)] = time;
-  wire::Knot* into = frame_knots(p, p.count);
-  for (uint8_t c = 0; c < count; ++c) into[c] = incoming[c];
   ++p.count;
   p.state = wire::kStreaming;
 }
@@ -105,7 +103,6 @@ StreamStatus stream_init(StreamPlayer& p, StreamChannel* channels, uint8_t chann
   p.clock_set = false;
   p.offset = 0;
   p.last_heard = 0;
-  p.heard = false;
   p.underruns = 0;
   wire::parser_reset(p.parser);
   if (channel_count == 0 || channel_count > wire::kMaxChannels || rate == 0) return kStreamBadChannels;
@@ -123,7 +120,6 @@ StreamStatus stream_init(StreamPlayer& p, StreamChannel* channels, uint8_t chann
 uint16_t stream_receive(StreamPlayer& p, uint8_t byte, uint32_t now_us, uint8_t* reply) {
   if (!wire::parser_push(p.parser, byte)) return 0;
   p.last_heard = now_us;
-  p.heard = true;
   const uint8_t* payload = p.parser.payload;
   const uint8_t length = p.parser.length;
   switch (p.parser.type) {

@@ -177,11 +177,18 @@ bool read_time(const uint8_t* payload, uint8_t length, uint32_t& time_us) {
   return true;
 }
 
-bool read_knots(const uint8_t* payload, uint8_t length, uint32_t& time_us, Knot* knots, uint8_t capacity, uint8_t& count) {
+bool read_knots_header(const uint8_t* payload, uint8_t length, uint32_t& time_us, uint8_t& count) {
   if (length < 5) return false;
   const uint8_t n = payload[4];
-  if (n == 0 || n > capacity || length != 5 + 4 * n) return false;
+  if (n == 0 || length != 5 + kKnotSize * n) return false;
   time_us = get32(payload);
+  count = n;
+  return true;
+}
+
+bool read_knots(const uint8_t* payload, uint8_t length, uint32_t& time_us, Knot* knots, uint8_t capacity, uint8_t& count) {
+  uint8_t n = 0;
+  if (!read_knots_header(payload, length, time_us, n) || n > capacity) return false;
   for (uint8_t c = 0; c < n; ++c) {
     knots[c].value = get16(payload + 5 + kKnotSize * c);
     knots[c].slope = as_signed16(get16(payload + 7 + kKnotSize * c));

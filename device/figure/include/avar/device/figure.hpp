@@ -119,6 +119,27 @@ FigureStatus figure_read_record(const uint8_t* record, uint32_t size, FigureOutp
                                 FigureBoard* boards, uint8_t board_capacity, FigureShape& shape);
 /// Channel c's stored limits inside the record (read in place, kLimitsSize bytes).
 const uint8_t* figure_channel_limits(const uint8_t* record, const FigureShape& shape, uint8_t channel);
+/// The first step of opening either player's figure (`FigureT`: Figure or StreamFigure): the
+/// record's boards and outputs into the caller's storage, each channel's limits pointed into the
+/// record (`ChannelT`: anything with a `limits` pointer), and the figure's own fields.
+template <class FigureT, class ChannelT>
+FigureStatus figure_attach(FigureT& f, const uint8_t* record, uint32_t size, ChannelT* channels, FigureOutput* outputs,
+                           uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity, FigureShape& shape) {
+  f.outputs = outputs;
+  f.boards = boards;
+  f.board_count = 0;
+  f.rate = 0;
+  f.io_fault = false;
+  shape.channel_count = 0;
+  shape.board_count = 0;
+  shape.rate = 0;
+  const FigureStatus read = figure_read_record(record, size, outputs, channel_capacity, boards, board_capacity, shape);
+  if (read != kFigureOk) return read;
+  for (uint8_t c = 0; c < shape.channel_count; ++c) channels[c].limits = figure_channel_limits(record, shape, c);
+  f.board_count = shape.board_count;
+  f.rate = shape.rate;
+  return kFigureOk;
+}
 /// Every board's start-up (figure_begin's first step); false when a board does not acknowledge.
 bool figure_boards_start(const FigureBoard* boards, uint8_t board_count, const FigureIo& io);
 /// An output's pulse for a 16-bit value, written only when its board was told otherwise; false

@@ -55,7 +55,6 @@ struct StreamPlayer {
   bool clock_set;        ///< a kTime has set the offset
   uint32_t offset;       ///< stream time - now_us (mod 2^32)
   uint32_t last_heard;   ///< now_us of the last good frame
-  bool heard;            ///< a good frame has arrived since power-up
   uint32_t underruns;    ///< ticks that found no knot after the stream time
   firmware_iface::avar_device::Parser parser;
 };

@@ -108,6 +108,9 @@ bool parser_push(Parser& parser, uint8_t byte);
 /// Message readers: false when the payload is not that message's.
 bool read_hello(const uint8_t* payload, uint8_t length, uint8_t& version);
 bool read_time(const uint8_t* payload, uint8_t length, uint32_t& time_us);
+/// The time and channel count of a knots payload whose length matches its count (the knots
+/// unread: a device reads them straight into where it keeps them).
+bool read_knots_header(const uint8_t* payload, uint8_t length, uint32_t& time_us, uint8_t& count);
 /// Fills knots[0..count) (room for `capacity`): false for a count above it or a length that
 /// does not match the count.
 bool read_knots(const uint8_t* payload, uint8_t length, uint32_t& time_us, Knot* knots, uint8_t capacity, uint8_t& count);
