@@ -118,6 +118,7 @@ TEST(StreamFigure, ASilentBoardReleasesEveryServo) {
     b.now += 5000;
   }
   EXPECT_TRUE(b.figure.io_fault);
+  EXPECT_EQ(b.figure.player.state, wire::kFault) << "the status avar reads says so";
   bus.answering = true;
   const std::uint16_t frozen = b.storage.channels[0].output;
   stream_figure_tick(b.figure, b.now, io);

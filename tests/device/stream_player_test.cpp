@@ -216,6 +216,49 @@ TEST(StreamPlayer, ReleaseHoldsUntilHelloAndQueriesAnswer) {
   EXPECT_EQ(device.player.state, wire::kResting);
 }
 
+TEST(StreamPlayer, AFaultOfTheDevicesOwnHoldsThroughEveryMessageAndSaysSo) {
+  Device device(2);
+  device.send_time(0);
+  device.send_knots(0, {{60000, 0}, {60000, 0}});
+  device.send_knots(100000, {{60000, 0}, {60000, 0}});
+  for (int t = 0; t < 5; ++t) device.tick();
+  stream_fault(device.player);
+  EXPECT_EQ(device.player.state, wire::kFault);
+  EXPECT_TRUE(device.channels[0].released && device.channels[1].released);
+  const std::uint16_t frozen = device.channels[0].output;
+  device.send(wire::encode_hello);
+  device.send(wire::encode_release);
+  device.send(wire::encode_stop);
+  device.send_knots(200000, {{0, 0}, {0, 0}});
+  for (int t = 0; t < 5; ++t) device.tick();
+  EXPECT_EQ(device.player.state, wire::kFault) << "hello, release, stop and knots leave a fault as it is";
+  EXPECT_TRUE(device.channels[0].released);
+  EXPECT_EQ(device.channels[0].output, frozen);
+  wire::Parser parser;
+  wire::parser_reset(parser);
+  wire::Status status{};
+  for (std::uint8_t b : device.replies)
+    if (wire::parser_push(parser, b) && parser.type == wire::kStatus) {
+      ASSERT_TRUE(wire::read_status(parser.payload, parser.length, status));
+    }
+  EXPECT_EQ(status.state, wire::kFault) << "hello's status tells avar";
+}
+
+TEST(StreamPlayer, AnswersFitTheirRoom) {
+  for (const int n : {1, 3, 8, 11}) {  // rest 10 * c stays in range
+    Device device(n);
+    std::uint8_t out[wire::kMaxFrame];
+    std::vector<std::uint8_t> reply(wire::kMaxFrame, 0xee);
+    for (std::size_t (*encode)(std::uint8_t*) : {wire::encode_hello, wire::encode_query}) {
+      const std::size_t size = encode(out);
+      std::uint16_t answered = 0;
+      for (std::size_t i = 0; i < size; ++i) answered = stream_receive(device.player, out[i], 0, reply.data());
+      EXPECT_GT(answered, 0);
+      EXPECT_LE(answered, stream_reply_room(static_cast<std::uint8_t>(n))) << n << " channels";
+    }
+  }
+}
+
 TEST(StreamPlayer, DamagedFramesAreDroppedWhole) {
   Device device(1);
   device.send_time(0);

@@ -92,6 +92,12 @@ TEST(AvarDeviceLink, RefusesADeviceThatDoesNotMatch) {
   EXPECT_EQ(small.link.start(), Status::bad_data);
   EXPECT_NE(small.link.start_problem().find("holds 4 knots ahead"), std::string::npos) << small.link.start_problem();
 
+  Rig failed(2);
+  failed.device.fail();
+  EXPECT_EQ(failed.link.start(), Status::bad_data);
+  EXPECT_NE(failed.link.start_problem().find("a servo board that does not answer"), std::string::npos)
+      << failed.link.start_problem();
+
   AvarDeviceLinkConfig short_lead = link_config(1);
   short_lead.lead = microseconds(100000);
   EXPECT_THROW(AvarDeviceLink(wire, short_lead), std::invalid_argument) << "less than two knots and a tick";

@@ -32,6 +32,7 @@ bool write_outputs(StreamFigure& f, const FigureIo& io) {
 
 void release(StreamFigure& f, const FigureIo& io) {
   f.io_fault = true;
+  stream_fault(f.player);
   figure_boards_off(f.boards, f.board_count, f.outputs, f.player.channel_count, io);
 }
 

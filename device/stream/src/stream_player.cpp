@@ -15,13 +15,16 @@ int32_t since(uint32_t a, uint32_t b) {
   return d < 0x80000000u ? static_cast<int32_t>(d) : -static_cast<int32_t>(0xffffffffu - d) - 1;
 }
 
+/// Outputs off: released by avar (until a hello), or failed (until a reset).
+bool off(const StreamPlayer& p) { return p.state == wire::kReleased || p.state == wire::kFault; }
+
 uint8_t ring_index(const StreamPlayer& p, uint8_t i) { return static_cast<uint8_t>((p.head + i) % p.capacity); }
 wire::Knot* frame_knots(StreamPlayer& p, uint8_t i) { return p.knots + static_cast<size_t>(ring_index(p, i)) * p.channel_count; }
 
 int64_t lerp_q16(int64_t a, int64_t b, int64_t s) { return a + shift_floor((b - a) * s, 16); }
 
 void take_knots(StreamPlayer& p, const uint8_t* payload, uint8_t length) {
-  if (p.state == wire::kReleased || !p.clock_set) return;
+  if (off(p) || !p.clock_set) return;
   uint32_t time = 0;
   uint8_t count = 0;
   if (!wire::read_knots_header(payload, length, time, count) || count != p.channel_count) return;
@@ -126,19 +129,22 @@ uint16_t stream_receive(StreamPlayer& p, uint8_t byte, uint32_t now_us, uint8_t*
     case wire::kHello: {
       uint8_t version = 0;
       if (!wire::read_hello(payload, length, version)) return 0;
-      if (p.state == wire::kReleased) p.state = wire::kResting;
-      for (uint8_t c = 0; c < p.channel_count; ++c) p.channels[c].released = false;
+      if (p.state != wire::kFault) {
+        if (p.state == wire::kReleased) p.state = wire::kResting;
+        for (uint8_t c = 0; c < p.channel_count; ++c) p.channels[c].released = false;
+      }
       return status_reply(p, now_us, reply);
     }
     case wire::kTime: take_time(p, payload, length, now_us); return 0;
     case wire::kKnots: take_knots(p, payload, length); return 0;
     case wire::kStop:
-      if (length == 0 && p.state != wire::kReleased) {
+      if (length == 0 && !off(p)) {
         p.count = 0;
         if (p.state == wire::kStreaming) p.state = wire::kStopping;
       }
       return 0;
     case wire::kRelease:
+      if (p.state == wire::kFault) return 0;
       if (length == 0) {
         p.count = 0;
         p.state = wire::kReleased;
@@ -153,8 +159,14 @@ uint16_t stream_receive(StreamPlayer& p, uint8_t byte, uint32_t now_us, uint8_t*
   }
 }
 
+void stream_fault(StreamPlayer& p) {
+  p.state = wire::kFault;
+  p.count = 0;
+  for (uint8_t c = 0; c < p.channel_count; ++c) p.channels[c].released = true;
+}
+
 void stream_tick(StreamPlayer& p, uint32_t now_us) {
-  if (p.state == wire::kReleased) return;
+  if (off(p)) return;
   if (p.state == wire::kStreaming && p.watchdog_us != 0 && static_cast<uint32_t>(now_us - p.last_heard) > p.watchdog_us) {
     p.state = wire::kStopping;  // avar went silent: to rest
     p.count = 0;

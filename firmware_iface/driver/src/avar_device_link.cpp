@@ -79,6 +79,10 @@ Status AvarDeviceLink::start() {
   else if (status_.channel_count != n)
     problem_ =
         "the device drives " + std::to_string(status_.channel_count) + " channels, the rig gives this link " + std::to_string(n);
+  else if (status_.state == wire::kFault)
+    problem_ =
+        "the device switched its outputs off for a fault of its own (a servo board that does not answer on I2C: "
+        "check its wiring and power), and stays so until it is reset";
   else if (status_.knot_capacity < needed)
     problem_ = "the device holds " + std::to_string(status_.knot_capacity) + " knots ahead; a lead of " +
                std::to_string(config_.lead.count() / 1000) + " ms with a knot every " + std::to_string(spacing.count() / 1000) +

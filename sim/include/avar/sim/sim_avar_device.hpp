@@ -56,6 +56,9 @@ class SimAvarDevice final : public ByteDevice {
   /// Where channel c's servo horn is, µs of pulse.
   double servo_position_us(std::size_t c) const { return servos_[c].position_us(); }
   const device::StreamPlayer& player() const { return player_; }
+  /// The board's own fault (its servo board stopped answering): every output off, state kFault,
+  /// until the device is made again.
+  void fail() { device::stream_fault(player_); }
   /// Control ticks run since power-up.
   std::uint64_t ticks() const { return ticks_; }
 

@@ -7,7 +7,8 @@
 //
 // Safety: the player's (limits, rest at power-up, ease to rest on silence or stop); a channel
 // released by avar has its output switched fully off; a board that does not acknowledge releases
-// every output (io_fault) and the figure stays still until it is opened and begun again.
+// every output (io_fault; the player's state kFault, which avar reads in the status) and the figure
+// stays still until it is opened and begun again.
 
 #include <stdint.h>
 

@@ -10,7 +10,9 @@
 // acceleration); power-up rests every channel; knots that run out hold the last knot's value; a
 // link silent for the watchdog time, or kStop, eases every channel to rest; kRelease turns
 // outputs off (all, or some channels) until the next kHello: a released channel's output does not
-// change and the caller sends it no pulse. Bad frames are dropped whole (the parser's CRC).
+// change and the caller sends it no pulse. A fault of the device's own (stream_fault: a servo board
+// that does not answer) turns every output off until the device is reset, and its status says so. Bad frames are dropped whole
+// (the parser's CRC).
 //
 // Time: `now_us` is the device's own microsecond counter (micros(); it may wrap). Stream time is
 // now_us plus an offset that kTime messages keep: a message can only arrive late (the link's
@@ -66,10 +68,23 @@ enum StreamStatus : uint8_t { kStreamOk = 0, kStreamBadChannels, kStreamBadLimit
 StreamStatus stream_init(StreamPlayer& player, StreamChannel* channels, uint8_t channel_count, uint32_t* times,
                          firmware_iface::avar_device::Knot* knots, uint8_t capacity, uint16_t rate, uint32_t watchdog_us);
 
+/// The room an answer of a device of `channel_count` channels takes: its status or its positions.
+inline uint16_t stream_reply_room(uint8_t channel_count) {
+  const uint16_t positions = static_cast<uint16_t>(firmware_iface::avar_device::kOverhead + 1u + 2u * channel_count);
+  const uint16_t status =
+      static_cast<uint16_t>(firmware_iface::avar_device::kOverhead + firmware_iface::avar_device::kStatusSize);
+  return positions > status ? positions : status;
+}
+
 /// Takes one byte from the link at `now_us`. When it completes a frame that asks for an answer,
-/// writes the answer's frame into `reply` (room for avar_device::kMaxFrame bytes) and returns its
-/// size; otherwise 0.
+/// writes the answer's frame into `reply` (room for stream_reply_room(channel_count) bytes) and
+/// returns its size; otherwise 0.
 uint16_t stream_receive(StreamPlayer& player, uint8_t byte, uint32_t now_us, uint8_t* reply);
+
+/// A fault of the device's own: every channel released (the caller switches its outputs off) and
+/// the state kFault, which no message leaves (the device answers hello and query, and takes no
+/// knots) until stream_init runs again.
+void stream_fault(StreamPlayer& player);
 
 /// One control tick at `now_us`: each channel's target (the knots' cubic at stream time, the last
 /// knot held, or rest), through the limiter. Nothing moves while released.

@@ -46,6 +46,7 @@ enum State : uint8_t {
   kStreaming = 1,  ///< playing knots
   kStopping = 2,   ///< easing to rest (kStop, the watchdog, or the knots ran out)
   kReleased = 3,   ///< outputs off
+  kFault = 4,      ///< outputs off for a fault of the device's own (a servo board that does not answer), until it is reset
 };
 
 /// One channel's knot: where it is at the knot's time, and how fast it moves there.
