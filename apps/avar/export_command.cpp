@@ -28,12 +28,44 @@ int show_index(const std::string& text, const std::vector<playback::Show>& shows
   }
 }
 
+/// The budget and the sketch's path, then the verification when asked.
+int finish(const device::Project& project, const ExportOptions& o, std::ostream& out) {
+  const device::DeviceTarget& target = *project.target;
+  out << device::describe_budget(project.budget);
+  out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
+  if (!o.verify) return kExitOk;
+  const device::ExportVerification v = device::verify_export(project, o.out_dir, out);
+  out << target.name << ": " << v.samples << " samples, " << v.mismatches << " mismatches (" << v.ticks
+      << (project.stream ? " control ticks of a scripted stream, " : " control ticks of every show, ")
+      << format_number(std::round(v.emulator_seconds * 10) / 10) << " s under " << v.emulator << "); the build: " << v.flash_bytes
+      << " bytes of flash, " << v.ram_bytes << " of RAM without the Arduino core\n";
+  for (const std::string& d : v.differing) out << "  host | " << target.name << ": " << d << "\n";
+  return v.mismatches == 0 && v.differing.empty() ? kExitOk : kExitFault;
+}
+
+int run_stream_export(const ExportOptions& o, const device::DeviceTarget& target, std::ostream& out) {
+  const rig::Rig rig = config::load_rig_file(o.rig_path);
+  device::ExportOptions options;
+  options.library_name = o.name;
+  options.url = "file://" + std::filesystem::absolute(o.out_dir).lexically_normal().string();
+  const device::Project project = device::export_stream_project(rig, target, options);
+  device::write_project(project, o.out_dir);
+  const device::StreamSettings& s = project.stream_settings;
+  out << "wrote " << o.out_dir << ": library " << project.library_name << " for " << target.name << " (" << target.boards << "), "
+      << project.files.size() << " files\n";
+  out << "streaming board of link '" << s.link << "': " << project.figure.channels.size() << " channels at "
+      << project.figure.rate << " Hz on " << project.figure.boards.size() << " PCA9685 board(s); I2C on " << target.i2c_pins
+      << "; serial at " << s.baud << " baud; " << s.knots << " knot frames; to rest after " << s.watchdog_us / 1000
+      << " ms of silence\n";
+  return finish(project, o, out);
+}
+
 }  // namespace
 
 CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
   CLI::App* cmd =
       app.add_subcommand("export", "Write a microcontroller project (Arduino / PlatformIO library) that plays shows standalone");
-  cmd->add_option("shows", o.show_paths, "Show files (YAML), at most 9: played by serial commands 1..9")->required();
+  cmd->add_option("shows", o.show_paths, "Show files (YAML), at most 9: played by serial commands 1..9 (none with --stream)");
   cmd->add_option("--rig", o.rig_path, "Rig file: its channels on PCA9685 links are the device's figure")->required();
   cmd->add_option("--target", o.target, "Microcontroller: " + device::device_target_names())->required();
   cmd->add_option("--out", o.out_dir, "Directory to write the library into (an Arduino libraries/ folder's entry)")->required();
@@ -42,6 +74,9 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
   cmd->add_option("--idle", o.idle, "Show to play whenever nothing else plays");
   cmd->add_option("--button", o.button, "PIN[:SHOW]: a button from PIN to ground plays SHOW (default the first)");
   cmd->add_option("--baud", o.baud, "Serial commands' baud rate (default 115200)")->check(CLI::Range(300L, 2000000L));
+  cmd->add_flag("--stream", o.stream,
+                "Instead of shows: the board of the rig's avar-device link, which plays the curve knots avar streams "
+                "to it over serial");
   cmd->add_flag("--verify", o.verify,
                 "Then build the project for the host and the target, run it under the target's emulator (simavr, "
                 "QEMU) and compare every tick");
@@ -66,7 +101,12 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
               "      a Pico that loops intro and plays scare when the button on GP15 is pressed\n"
               "  avar export SHOW --rig RIG --target atmega328p --out DIR --verify\n"
               "      and prove it: the project built for the host and for the Uno, run under simavr, every\n"
-              "      control tick's I2C bytes and outputs compared: 'atmega328p: N samples, 0 mismatches'");
+              "      control tick's I2C bytes and outputs compared: 'atmega328p: N samples, 0 mismatches'\n"
+              "  avar export --stream --rig examples/rigs/streaming-head.yaml --target atmega328p \\\n"
+              "      --out ~/Arduino/libraries/avar_streaming_head_stream --verify\n"
+              "      a board that avar streams to (the rig's avar-device link): upload it, give its port\n"
+              "      in the link, and every show plays through it; --verify drives both builds with one\n"
+              "      scripted stream (damage, silence, stops, releases) and compares every tick");
   return cmd;
 }
 
@@ -75,6 +115,16 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
     const device::DeviceTarget* target = device::find_device_target(o.target);
     if (target == nullptr)
       throw option_error("--target", "found '" + o.target + "'; expected one of " + device::device_target_names());
+    if (o.stream) {
+      if (!o.show_paths.empty())
+        throw option_error("--stream", "found show " + o.show_paths.front() +
+                                           "; a streaming board plays what avar streams to it: export it without shows");
+      for (const auto& [given, name] :
+           {std::pair{!o.boot.empty(), "--boot"}, std::pair{!o.idle.empty(), "--idle"}, std::pair{!o.button.empty(), "--button"}})
+        if (given) throw option_error(name, "a streaming board has no shows of its own to trigger; leave it out with --stream");
+      return run_stream_export(o, *target, out);
+    }
+    if (o.show_paths.empty()) throw option_error("shows", "expected at least one show file (or --stream)");
     const rig::Rig rig = config::load_rig_file(o.rig_path);
     std::vector<playback::Show> shows;
     for (const std::string& path : o.show_paths) shows.push_back(config::load_show_file(path));
@@ -107,16 +157,7 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
           << format_number(static_cast<double>(image.key_bytes) / static_cast<double>(std::max<std::size_t>(1, image.keys)))
           << " bytes per key)\n";
     }
-    out << device::describe_budget(project.budget);
-    out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
-    if (!o.verify) return kExitOk;
-    const device::ExportVerification v = device::verify_export(project, o.out_dir, out);
-    out << target->name << ": " << v.samples << " samples, " << v.mismatches << " mismatches (" << v.ticks
-        << " control ticks of every show, " << format_number(std::round(v.emulator_seconds * 10) / 10) << " s under "
-        << v.emulator << "); the build: " << v.flash_bytes << " bytes of flash, " << v.ram_bytes
-        << " of RAM without the Arduino core\n";
-    for (const std::string& d : v.differing) out << "  host | " << target->name << ": " << d << "\n";
-    return v.mismatches == 0 && v.differing.empty() ? kExitOk : kExitFault;
+    return finish(project, o, out);
   } catch (const InputError& e) {
     err << "error: " << e.what() << '\n';
     return kExitBadInput;

@@ -1,6 +1,8 @@
 #pragma once
 // `avar export SHOW... --rig RIG --target TARGET --out DIR`: the shows and the rig's figure as an
-// Arduino / PlatformIO library that plays them on a microcontroller (avar/device/project_export.hpp).
+// Arduino / PlatformIO library that plays them on a microcontroller (avar/device/project_export.hpp);
+// `avar export --stream --rig RIG ...`: the board of the rig's avar-device link, which plays what
+// avar streams to it.
 
 #include <iosfwd>
 #include <string>
@@ -23,6 +25,7 @@ struct ExportOptions {
   std::string button;  ///< PIN or PIN:SHOW
   long baud = 115200;
   bool verify = false;  ///< build for the host and the target, run under its emulator, compare
+  bool stream = false;  ///< a streaming board (no shows)
 };
 
 CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& options);

@@ -64,6 +64,52 @@ TEST(ExportCommand, VerifyProvesTheExportUnderTheEmulators) {
   }
 }
 
+const std::string kStreamRig = AVAR_SOURCE_DIR "/examples/rigs/streaming-head.yaml";
+
+// A streaming board, proved as a show-playing one is: one scripted stream of avar-device frames
+// (damage, silence past the watchdog, stops, releases, avar's clock starting over) through the
+// host build and the emulated one, every tick's I2C bytes, outputs and answers compared.
+TEST(ExportCommand, VerifyProvesAStreamingBoardUnderTheEmulators) {
+  for (const std::string target : {"atmega328p", "cortex-m3"}) {
+    const bool avr = target == "atmega328p";
+    if (!installed(avr ? "avr-g++" : "arm-none-eabi-g++") || !installed(avr ? "simavr" : "qemu-system-arm"))
+      GTEST_SKIP() << "the " << target << "'s compiler or emulator is not installed (scripts/install-deps.sh installs them)";
+    const std::string dir = testing::temp_path("avar_stream_verify_" + target);
+    std::filesystem::remove_all(dir);
+    const auto r = run_avar({"export", "--stream", "--rig", kStreamRig, "--target", target, "--out", dir, "--verify"});
+    EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
+    EXPECT_NE(r.out.find("streaming board of link 'head': 8 channels at 200 Hz"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(target + ": 41600 samples, 0 mismatches (5200 control ticks of a scripted stream"), std::string::npos)
+        << r.out << r.err;
+    if (avr) {
+      const std::string compile = "avr-g++ -mmcu=atmega328p -std=gnu++11 -fsyntax-only -Wall -Wextra -Werror -I" +
+                                  std::string(AVAR_TEST_DATA_DIR) + "/arduino_api -I" + dir + "/src ";
+      EXPECT_EQ(std::system((compile + dir + "/src/avar_stream_figure.cpp").c_str()), 0);
+      const std::string sketch = dir + "/examples/avar_streaming_head_stream/avar_streaming_head_stream.ino";
+      EXPECT_EQ(std::system((compile + "-x c++ " + sketch).c_str()), 0);
+    }
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(ExportCommand, AStreamingBoardTakesNoShowsOrTriggers) {
+  const std::string dir = testing::temp_path("avar_stream_refused");
+  std::filesystem::remove_all(dir);
+  auto r = run_avar({"export", kExportHeadShow, "--stream", "--rig", kStreamRig, "--target", "atmega328p", "--out", dir});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("export it without shows"), std::string::npos) << r.err;
+  r = run_avar({"export", "--stream", "--rig", kStreamRig, "--target", "atmega328p", "--out", dir, "--boot", "1"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--boot: a streaming board has no shows"), std::string::npos) << r.err;
+  r = run_avar({"export", "--stream", "--rig", kExportHeadRig, "--target", "atmega328p", "--out", dir});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("has no avar-device link"), std::string::npos) << r.err;
+  r = run_avar({"export", "--rig", kExportHeadRig, "--target", "atmega328p", "--out", dir});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("expected at least one show file (or --stream)"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
 TEST(ExportCommand, RefusesWhatItCannotExportAndWritesNothing) {
   const std::string dir = testing::temp_path("avar_export_refused");
   std::filesystem::remove_all(dir);

@@ -126,6 +126,62 @@ TEST(ProjectExport, TriggersNameExportedShows) {
   EXPECT_NE(find_file(p, "library.properties")->text.find("architectures=rp2040\n"), std::string::npos);
 }
 
+const std::string kStreamRig = std::string(AVAR_SOURCE_DIR) + "/examples/rigs/streaming-head.yaml";
+
+TEST(ProjectExport, AStreamingBoardCarriesThePlayerTheProtocolAndTheLinksSettings) {
+  const rig::Rig rig = config::load_rig_file(kStreamRig);
+  const Project p = export_stream_project(rig, *find_device_target("atmega328p"));
+  EXPECT_TRUE(p.stream);
+  EXPECT_TRUE(p.shows.empty());
+  EXPECT_EQ(p.library_name, "avar_streaming_head_stream");
+  for (const char* path :
+       {"src/avar_stream_figure.h", "src/avar_stream_figure.cpp", "src/avar_stream.h", "src/avar_stream.cpp",
+        "src/avar/device/stream_player.cpp", "src/avar/device/stream_figure.cpp", "src/avar/firmware_iface/avar_device_codec.cpp",
+        "src/avar/device/limiter.cpp", "examples/avar_streaming_head_stream/avar_streaming_head_stream.ino"})
+    EXPECT_NE(find_file(p, path), nullptr) << path;
+  EXPECT_EQ(find_file(p, "src/avar_figure.cpp"), nullptr) << "the show player's glue would not compile without shows";
+  EXPECT_NE(find_file(p, "library.properties")->text.find("includes=avar_stream_figure.h\n"), std::string::npos);
+  const std::string header = find_file(p, "src/avar_stream.h")->text;
+  for (const char* line : {"#define AVAR_CHANNEL_COUNT 8\n", "#define AVAR_RATE_HZ 200\n", "#define AVAR_KNOTS 16\n",
+                           "#define AVAR_WATCHDOG_US 500000UL\n", "#define AVAR_KNOT_US 50000UL\n",
+                           "#define AVAR_LEAD_US 150000UL\n", "#define AVAR_SERIAL_BAUD 115200\n"})
+    EXPECT_NE(header.find(line), std::string::npos) << line;
+  const std::string sketch = find_file(p, "examples/avar_streaming_head_stream/avar_streaming_head_stream.ino")->text;
+  EXPECT_NE(sketch.find("link 'head'"), std::string::npos) << sketch;
+  EXPECT_NE(sketch.find("0  jaw: PCA9685 0x40 output 0"), std::string::npos) << sketch;
+  EXPECT_NE(sketch.find("avar_stream_figure::run()"), std::string::npos);
+  EXPECT_TRUE(p.budget.fits()) << describe_budget(p.budget);
+  EXPECT_NE(describe_budget(p.budget).find("576  16 knot frames"), std::string::npos) << describe_budget(p.budget);
+
+  // A show export carries none of the streaming board's files.
+  const Project shows =
+      export_project(config::load_rig_file(kExportRig), {config::load_show_file(kExportShow)}, *find_device_target("atmega328p"));
+  EXPECT_EQ(find_file(shows, "src/avar/device/stream_player.cpp"), nullptr);
+  EXPECT_EQ(find_file(shows, "src/avar_stream_figure.cpp"), nullptr);
+}
+
+TEST(ProjectExport, AStreamingBoardThatDoesNotFitIsRefusedWithItsKnots) {
+  std::ifstream in(kStreamRig);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string setting = "device_rate: 200,";
+  yaml.replace(yaml.find(setting), setting.size(), setting + " device_knots: 40,");
+  const rig::Rig big = config::load_rig_text(yaml, "big-knots.yaml");
+  try {
+    export_stream_project(big, *find_device_target("atmega328p"));
+    FAIL() << "40 knot frames of 8 channels on an Uno";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("big-knots.yaml:"), std::string::npos) << message;
+    EXPECT_NE(message.find("does not fit the atmega328p"), std::string::npos) << message;
+    EXPECT_NE(message.find("40 knot frames"), std::string::npos) << message;
+  }
+  EXPECT_TRUE(export_stream_project(big, *find_device_target("atmega2560")).budget.fits());
+  EXPECT_THROW(export_stream_project(config::load_rig_file(kExportRig), *find_device_target("atmega2560")), InputError)
+      << "a rig without an avar-device link";
+}
+
 TEST(ProjectExport, WritesItsFilesUnderTheDirectory) {
   const rig::Rig rig = config::load_rig_file(kExportRig);
   const Project p = export_project(rig, {config::load_show_file(kExportShow)}, *find_device_target("atmega2560"));

@@ -4,6 +4,8 @@
 
 #include <Wire.h>
 
+#include "avar_wire_io.h"
+
 #include "avar/device/figure.hpp"
 #include "avar_shows.h"
 
@@ -22,15 +24,7 @@ const uint32_t kDebounceMs = 20;
 bool button_down = false;
 uint32_t button_since_ms = 0;
 
-bool i2c_write(void*, uint8_t address, const uint8_t* bytes, uint8_t length) {
-  Wire.beginTransmission(address);
-  Wire.write(bytes, length);
-  return Wire.endTransmission() == 0;
-}
-
-void wait_us(void*, uint16_t us) { delayMicroseconds(us); }
-
-const FigureIo io = {i2c_write, wait_us, nullptr};
+const FigureIo& io = avar_wire_io::io;
 
 void say(const __FlashStringHelper* text) {
   Serial.print(F("avar: "));

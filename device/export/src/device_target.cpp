@@ -10,6 +10,9 @@ constexpr std::size_t kKiB = 1024;
 
 // Measured 2026-12-07 (see the header): engine figures are the linked size of the engine, figure
 // and codec rounded up; channel RAM is sizeof(PlayerChannel) + sizeof(FigureOutput) on the target.
+// A streaming board's: the linked size of the streaming player, the avar-device codec, the limiter
+// and the figure's outputs, rounded up; sizeof(StreamPlayer) and StreamFigure's own fields;
+// sizeof(StreamChannel) + sizeof(FigureOutput).
 constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::string_view i2c_pins, std::size_t flash,
                            std::size_t ram, std::size_t engine) {
   DeviceTarget t;
@@ -35,6 +38,9 @@ constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::
   t.figure_ram = 33;
   t.board_ram = 7;
   t.show_ram = 6;
+  t.stream_flash = 15104;
+  t.stream_ram = 306;
+  t.stream_channel_ram = 42;
   return t;
 }
 
@@ -64,6 +70,9 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
   t.figure_ram = 56;
   t.board_ram = 8;
   t.show_ram = 8;
+  t.stream_flash = m0 ? 7680 : 6400;
+  t.stream_ram = 332;
+  t.stream_channel_ram = 64;
   return t;
 }
 
@@ -86,6 +95,7 @@ const std::array<DeviceTarget, 6> kTargets = {
       t.cycles_flash *= 2;
       t.extrapolation_flash *= 2;
       t.fast_flash *= 2;
+      t.stream_flash *= 2;
       return t;
     }(),
 };

@@ -43,8 +43,8 @@ std::string plain(const std::string& line) {
   return first == std::string::npos ? std::string() : out.substr(first, last - first + 1);
 }
 
-/// Whether `line` is one the verification run prints: "show S SECOND HASH SAMPLES", "end S HASH
-/// SAMPLES", "samples N ticks T", or a refusal.
+/// Whether `line` is one the verification run prints: "show S SECOND HASH SAMPLES", "stream SECOND
+/// HASH SAMPLES", "end S HASH SAMPLES", "samples N ticks T", or a refusal.
 bool run_line(const std::string& line) {
   if (line == "figure refused" || line == "show refused") return true;
   std::stringstream in(line);
@@ -55,7 +55,8 @@ bool run_line(const std::string& line) {
     return w.size() == 8 && w.find_first_not_of("0123456789abcdef") == std::string::npos;
   };
   if (words.size() == 5 && words[0] == "show") return number(words[1]) && number(words[2]) && hash(words[3]) && number(words[4]);
-  if (words.size() == 4 && words[0] == "end") return number(words[1]) && hash(words[2]) && number(words[3]);
+  if (words.size() == 4 && (words[0] == "end" || words[0] == "stream"))
+    return number(words[1]) && hash(words[2]) && number(words[3]);
   if (words.size() == 4 && words[0] == "samples") return number(words[1]) && words[2] == "ticks" && number(words[3]);
   return false;
 }
@@ -80,7 +81,7 @@ std::vector<std::string> sources_of(const std::filesystem::path& project_dir) {
   std::vector<std::string> sources;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(project_dir / "src")) {
     const auto& path = entry.path();
-    if (path.extension() == ".cpp" && path.filename() != "avar_figure.cpp")
+    if (path.extension() == ".cpp" && path.filename() != "avar_figure.cpp" && path.filename() != "avar_stream_figure.cpp")
       sources.push_back(path.string());  // not the Arduino glue
   }
   return sources;
@@ -138,6 +139,7 @@ ExportVerification verify_export(const Project& project, const std::filesystem::
     std::ofstream(work / path.substr(7), std::ios::binary) << e.text;
   }
   const std::vector<std::string> sources = sources_of(project_dir);
+  const char* main = project.stream ? "export_stream_verify_main.cpp" : "export_verify_main.cpp";
   const std::vector<std::string> common = {
       "-std=c++14",        "-ffreestanding", "-fno-exceptions", "-fno-rtti", "-I" + (project_dir / "src").string(),
       "-I" + work.string()};
@@ -146,7 +148,7 @@ ExportVerification verify_export(const Project& project, const std::filesystem::
   std::vector<std::string> host = {host_cxx, "-O1", "-o", (work / "host").string()};
   host.insert(host.end(), common.begin(), common.end());
   host.insert(host.end(), sources.begin(), sources.end());
-  host.push_back((work / "export_verify_main.cpp").string());
+  host.push_back((work / main).string());
   host.push_back((work / "platform_host.cpp").string());
   build(host, "host build");
 
@@ -157,7 +159,7 @@ ExportVerification verify_export(const Project& project, const std::filesystem::
   cross.insert(cross.end(), common.begin(), common.end());
   if (!emulated->avr) cross.insert(cross.end(), {"-nostdlib", "-nostartfiles", "-T", (work / "cortex_m.ld").string()});
   cross.insert(cross.end(), sources.begin(), sources.end());
-  cross.push_back((work / "export_verify_main.cpp").string());
+  cross.push_back((work / main).string());
   cross.push_back((work / (emulated->avr ? "platform_avr.cpp" : "platform_arm.cpp")).string());
   if (!emulated->avr) cross.push_back("-lgcc");
   cross.insert(cross.end(), {"-o", elf});

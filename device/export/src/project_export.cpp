@@ -9,7 +9,7 @@
 #include "avar/core/format.hpp"
 #include "avar/core/input_error.hpp"
 #include "avar/device/show_image.hpp"
-#include "embedded_sources.hpp"
+#include "project_text.hpp"
 
 namespace avar::device {
 namespace {
@@ -39,48 +39,12 @@ playback::Show for_figure(const playback::Show& show, const FigureSpec& figure) 
   return out;
 }
 
-std::string identifier(const std::string& name) {
-  std::string id;
-  for (const char ch : name) id += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  if (id.empty() || std::isdigit(static_cast<unsigned char>(id.front()))) id.insert(0, "_");
-  return id;
-}
-
-std::string with_commas(std::size_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i != 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
-std::string byte_array(const std::vector<std::uint8_t>& bytes) {
-  std::string text;
-  char hex[8];
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    text += i % 16 == 0 ? "\n    " : " ";
-    std::snprintf(hex, sizeof hex, "0x%02x,", bytes[i]);
-    text += hex;
-  }
-  return text + "\n";
-}
-
 std::string show_list(const Project& p) {
   std::string text;
   for (std::size_t s = 0; s < p.shows.size(); ++s)
     text += "//   " + std::to_string(s + 1) + "  " + p.shows[s].name + " (" +
             format_number(static_cast<double>(p.shows[s].image.keys)) + " keys, " + with_commas(p.shows[s].image.bytes.size()) +
             " bytes)\n";
-  return text;
-}
-
-std::string config_header(std::uint8_t features, bool fast) {
-  std::string text = "// Written by avar export: this project's shows use only what is switched on here.\n";
-  text += std::string("#define AVAR_DEVICE_EASINGS ") + (features & kFeatureEasings ? "1" : "0") + "\n";
-  text += std::string("#define AVAR_DEVICE_CYCLES ") + (features & kFeatureCycles ? "1" : "0") + "\n";
-  text += std::string("#define AVAR_DEVICE_EXTRAPOLATION ") + (features & kFeatureExtrapolation ? "1" : "0") + "\n";
-  text += std::string("#define AVAR_DEVICE_FAST ") + (fast ? "1" : "0") + "\n";
   return text;
 }
 
@@ -108,14 +72,8 @@ std::string shows_source(const Project& p) {
   s += "#include \"avar_shows.h\"\n\nnamespace avar_shows {\n\n";
   s += "// The figure: " + std::to_string(p.figure.channels.size()) + " channels at " + std::to_string(p.figure.rate) + " Hz\n";
   for (const FigureChannelSpec& c : p.figure.channels)
-    s += "//   " + c.name + ": board 0x" +
-         [&] {
-           char hex[4];
-           std::snprintf(hex, sizeof hex, "%02x", p.figure.boards[c.board].address);
-           return std::string(hex);
-         }() +
-         " output " + std::to_string(c.output) + ", " + format_number(c.at_low_ns / 1000.0) + " to " +
-         format_number(c.at_high_ns / 1000.0) + " us\n";
+    s += "//   " + c.name + ": board " + hex_byte(p.figure.boards[c.board].address) + " output " + std::to_string(c.output) +
+         ", " + format_number(c.at_low_ns / 1000.0) + " to " + format_number(c.at_high_ns / 1000.0) + " us\n";
   s += "extern const uint8_t kFigure[" + std::to_string(p.figure_record.size()) + "] AVAR_DEVICE_FLASH = {" +
        byte_array(p.figure_record) + "};\n\n";
   s += "// The shows:\n" + show_list(p);
@@ -132,9 +90,7 @@ std::string shows_source(const Project& p) {
 std::string boards_text(const Project& p) {
   std::string text;
   for (const FigureBoardSpec& b : p.figure.boards) {
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "0x%02x", b.address);
-    text += (text.empty() ? "" : ", ") + std::string("a PCA9685 at ") + hex + " (link " + b.link + ", " +
+    text += (text.empty() ? "" : ", ") + std::string("a PCA9685 at ") + hex_byte(b.address) + " (link " + b.link + ", " +
             std::to_string(b.frequency_hz) + " Hz)";
   }
   return text;
@@ -157,15 +113,6 @@ std::string sketch(const Project& p, const ExportTriggers& t) {
   return s;
 }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string show_list_names(const std::vector<playback::Show>& shows) {
   std::string names;
   for (const playback::Show& s : shows) names += (names.empty() ? "" : ", ") + s.name;
@@ -179,24 +126,10 @@ std::string show_names(const Project& p) {
 }
 
 void add_files(Project& p, const ExportOptions& o) {
-  const std::string sentence = "The figure " + p.figure.rig + " and its shows, played by avar's device engine.";
-  const std::string paragraph = "Exported by avar export for " + std::string(p.target->name) + " (" +
-                                std::string(p.target->boards) + "). Shows: " + show_names(p) + ".";
-  p.files.push_back({"library.properties",
-                     "name=" + p.library_name + "\nversion=" + o.version +
-                         "\nauthor=avar export\nmaintainer=avar export\nsentence=" + sentence + "\nparagraph=" + paragraph +
-                         "\ncategory=Device Control\nurl=" + (o.url.empty() ? "file:///" + p.library_name : o.url) +
-                         "\narchitectures=" + std::string(p.target->architecture) + "\nincludes=avar_figure.h\n"});
-  p.files.push_back({"library.json", "{\n  \"name\": " + json_string(p.library_name) + ",\n  \"version\": " +
-                                         json_string(o.version) + ",\n  \"description\": " + json_string(sentence) +
-                                         ",\n  \"keywords\": [\"avar\", \"animatronics\", \"servo\", \"pca9685\"],\n"
-                                         "  \"frameworks\": \"arduino\",\n  \"platforms\": " +
-                                         json_string(std::string(p.target->platformio)) + "\n}\n"});
-  for (const EmbeddedSource& e : embedded_sources()) {
-    const std::string path = e.path;
-    if (path.rfind("src/", 0) != 0) continue;  // avar export --verify's own run
-    p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features, p.fast) + e.text : e.text});
-  }
+  add_library_files(p, o, "avar_figure.h", "The figure " + p.figure.rig + " and its shows, played by avar's device engine.",
+                    "Exported by avar export for " + std::string(p.target->name) + " (" + std::string(p.target->boards) +
+                        "). Shows: " + show_names(p) + ".");
+  add_source_files(p);
   p.files.push_back({"src/avar_shows.h", shows_header(p, o.triggers)});
   p.files.push_back({"src/avar_shows.cpp", shows_source(p)});
   p.files.push_back({"examples/" + p.library_name + "/" + p.library_name + ".ino", sketch(p, o.triggers)});

@@ -7,7 +7,7 @@
 #include "avar/device/figure.hpp"
 #include "avar_shows.h"
 #include "platform.hpp"
-#include "verify_lines.hpp"
+#include "verify_io.hpp"
 
 namespace {
 
@@ -17,15 +17,7 @@ FigureStorage<AVAR_CHANNEL_COUNT, AVAR_BOARD_COUNT> storage;
 Figure& figure = storage.figure;
 Hash bus = {2166136261u};
 
-bool i2c_write(void*, uint8_t address, const uint8_t* bytes, uint8_t length) {
-  bus.add(address, 1);
-  for (uint8_t i = 0; i < length; ++i) bus.add(bytes[i], 1);
-  return true;
-}
-
-void wait_us(void*, uint16_t us) { bus.add(us, 2); }
-
-const FigureIo io = {i2c_write, wait_us, 0};
+constexpr FigureIo io = hashing_io(bus);
 
 int run() {
   if (storage.open(avar_shows::kFigure, sizeof avar_shows::kFigure, avar_shows::kShows, AVAR_SHOW_COUNT) != kFigureOk ||
@@ -62,13 +54,7 @@ int run() {
     line(platform_line, "end ", s, h.value, in_second * AVAR_CHANNEL_COUNT);
     bus = h;
   }
-  char text[48];
-  char* at = put_text(text, "samples ");
-  at = put_decimal(at, samples);
-  at = put_text(at, " ticks ");
-  at = put_decimal(at, ticks);
-  *at = 0;
-  platform_line(text);
+  samples_line(platform_line, samples, ticks);
   return figure.io_fault ? 1 : 0;
 }
 

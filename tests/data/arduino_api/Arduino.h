@@ -15,6 +15,7 @@ class HardwareSerial {
   void begin(unsigned long baud);
   int available();
   int read();
+  size_t write(const uint8_t* bytes, size_t length);
   size_t print(const __FlashStringHelper* text);
   size_t println(const __FlashStringHelper* text);
 };

@@ -5,6 +5,7 @@
 class TwoWire {
  public:
   void begin();
+  void setClock(uint32_t frequency);
   void beginTransmission(uint8_t address);
   size_t write(const uint8_t* data, size_t length);
   uint8_t endTransmission();

@@ -34,6 +34,10 @@ struct DeviceTarget {
   std::size_t figure_ram = 0;  ///< the Figure and player themselves
   std::size_t board_ram = 0;   ///< per PCA9685 board
   std::size_t show_ram = 0;    ///< per show (its PlayerShow entry)
+  /// A streaming board: the streaming player, the avar-device codec, the limiter and the figure's
+  /// outputs; the player with its frame parser and an answer's room; RAM per channel
+  /// (StreamChannel and FigureOutput). Knot frames take 4 + 4 bytes per channel each.
+  std::size_t stream_flash = 0, stream_ram = 0, stream_channel_ram = 0;
 
   std::size_t engine_flash_for(std::uint8_t features, bool fast) const noexcept;
   std::size_t channel_ram_for(std::uint8_t features) const noexcept;

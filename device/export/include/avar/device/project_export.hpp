@@ -60,6 +60,16 @@ struct ProjectFile {
   std::string text;
 };
 
+/// A streaming board's settings, from the rig's avar-device link (avar export --stream).
+struct StreamSettings {
+  std::string link;                ///< the link's name
+  long baud = 115200;              ///< the serial port's
+  std::uint32_t knots = 16;        ///< knot frames the board holds
+  std::uint32_t watchdog_us = 0;   ///< link silence that eases it to rest
+  std::uint32_t knot_us = 50000;   ///< avar's knot spacing (the verification's stream)
+  std::uint32_t lead_us = 150000;  ///< how far ahead avar sends a knot
+};
+
 struct Project {
   std::string library_name;
   const DeviceTarget* target = nullptr;
@@ -71,6 +81,9 @@ struct Project {
   bool fast = true;
   ExportBudget budget;
   std::vector<ProjectFile> files;
+  /// A streaming board (no shows: it plays what avar streams to it), with its settings.
+  bool stream = false;
+  StreamSettings stream_settings;
 };
 
 /// The project for `shows` on `rig`'s figure for `target`. Every show is encoded for the figure's
@@ -80,6 +93,14 @@ struct Project {
 /// left out, and the budget says so, when that makes the project fit.
 Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& shows, const DeviceTarget& target,
                        const ExportOptions& options = {});
+
+/// The project of a streaming board for `rig`'s avar-device link on `target` (avar export
+/// --stream): the streaming player, the avar-device protocol and the figure record (the link's
+/// outputs on PCA9685 boards, stream_figure_from_rig), the board holding the link's device_knots
+/// knot frames and easing to rest after its device_watchdog_ms, its serial port at the link's baud.
+/// Throws InputError for a rig without such a link and for a project that does not fit (the
+/// message gives the budget).
+Project export_stream_project(const rig::Rig& rig, const DeviceTarget& target, const ExportOptions& options = {});
 
 /// The 0-based index of the show `text` names among `shows`: by its name, or by its number 1..N;
 /// -1 for an empty text. Throws std::invalid_argument "found 'X'; expected a show's name or number

@@ -68,12 +68,13 @@ enum StreamStatus : uint8_t { kStreamOk = 0, kStreamBadChannels, kStreamBadLimit
 StreamStatus stream_init(StreamPlayer& player, StreamChannel* channels, uint8_t channel_count, uint32_t* times,
                          firmware_iface::avar_device::Knot* knots, uint8_t capacity, uint16_t rate, uint32_t watchdog_us);
 
-/// The room an answer of a device of `channel_count` channels takes: its status or its positions.
-inline uint16_t stream_reply_room(uint8_t channel_count) {
-  const uint16_t positions = static_cast<uint16_t>(firmware_iface::avar_device::kOverhead + 1u + 2u * channel_count);
-  const uint16_t status =
-      static_cast<uint16_t>(firmware_iface::avar_device::kOverhead + firmware_iface::avar_device::kStatusSize);
-  return positions > status ? positions : status;
+/// The room an answer of a device of `channel_count` channels takes: its status or its positions
+/// (one expression, for the C++11 that Arduino cores compile sketches with).
+constexpr uint16_t stream_reply_room(uint8_t channel_count) {
+  return static_cast<uint16_t>(firmware_iface::avar_device::kOverhead +
+                               (1u + 2u * channel_count > firmware_iface::avar_device::kStatusSize
+                                    ? 1u + 2u * channel_count
+                                    : firmware_iface::avar_device::kStatusSize));
 }
 
 /// Takes one byte from the link at `now_us`. When it completes a frame that asks for an answer,
