@@ -92,6 +92,8 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
               "adds up flash and RAM for the target first and refuses, with the figures, what does not fit.\n"
               "On the board: the channels' limits apply, servos glide from rest at power-up and ease to rest on\n"
               "stop; serial commands '1'..'9' play a show, 's' stops.\n"
+              "With --stream: no shows; the board of the rig's avar-device link, which plays the knots avar streams\n"
+              "(its serial port at the link's baud, the link's device_knots and device_watchdog_ms).\n"
               "Examples:\n"
               "  avar export examples/shows/hello-head.yaml --rig examples/rigs/pca9685-head.yaml \\\n"
               "      --target atmega328p --out ~/Arduino/libraries/avar_pca9685_head\n"
