@@ -32,7 +32,10 @@ int show_index(const std::string& text, const std::vector<playback::Show>& shows
 int finish(const device::Project& project, const ExportOptions& o, std::ostream& out) {
   const device::DeviceTarget& target = *project.target;
   out << device::describe_budget(project.budget);
-  out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
+  if (target.host())
+    out << "program: cmake -S " << o.out_dir << " -B " << o.out_dir << "/build && cmake --build " << o.out_dir << "/build, then "
+        << o.out_dir << "/build/" << project.library_name << " --help\n";
+  else out << "sketch: examples/" << project.library_name << "/" << project.library_name << ".ino\n";
   if (!o.verify) return kExitOk;
   const device::ExportVerification v = device::verify_export(project, o.out_dir, out);
   out << target.name << ": " << v.samples << " samples, " << v.mismatches << " mismatches (" << v.ticks
@@ -148,8 +151,8 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
     }
     const device::Project project = device::export_project(rig, shows, *target, options);
     device::write_project(project, o.out_dir);
-    out << "wrote " << o.out_dir << ": library " << project.library_name << " for " << target->name << " (" << target->boards
-        << "), " << project.files.size() << " files\n";
+    out << "wrote " << o.out_dir << (target->host() ? ": program " : ": library ") << project.library_name << " for "
+        << target->name << " (" << target->boards << "), " << project.files.size() << " files\n";
     out << "figure: " << project.figure.channels.size() << " channels at " << project.figure.rate << " Hz on "
         << project.figure.boards.size() << " PCA9685 board(s); I2C on " << target->i2c_pins << "\n";
     for (std::size_t s = 0; s < project.shows.size(); ++s) {

@@ -5,7 +5,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "../support/cli_run.hpp"
 #include "../support/temp_file.hpp"
@@ -108,6 +110,44 @@ TEST(ExportCommand, AStreamingBoardTakesNoShowsOrTriggers) {
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("expected at least one show file (or --stream)"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// The host target: the same figure and shows as a Linux program (a Raspberry Pi with PCA9685
+// boards on /dev/i2c-N), built by the project's own CMakeLists.txt; its --trace shows the boards'
+// start-up and the show's writes on simulated time, and it ends at rest.
+TEST(ExportCommand, ExportsAProgramForALinuxHost) {
+  const std::string dir = testing::temp_path("avar_export_host");
+  std::filesystem::remove_all(dir);
+  const auto r = run_avar({"export", kExportHeadShow, "--rig", kExportHeadRig, "--target", "host", "--out", dir});
+  ASSERT_EQ(r.code, kExitOk) << r.out << r.err;
+  EXPECT_NE(r.out.find("program avar_pca9685_head for host"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("program: cmake -S " + dir), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/src/avar_figure.cpp")) << "no Arduino glue";
+  const std::string build = dir + "/build";
+  ASSERT_EQ(std::system(("cmake -S " + dir + " -B " + build + " > /dev/null && cmake --build " + build + " > /dev/null").c_str()),
+            0);
+  const std::string trace = dir + "/trace.txt";
+  ASSERT_EQ(std::system((build + "/avar_pca9685_head --trace --play 1 < /dev/null > " + trace).c_str()), 0);
+  std::ifstream in(trace);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_GT(lines.size(), 100u);
+  // The PCA9685 start-up: asleep with auto-increment, the prescale for 50 Hz, totem-pole outputs,
+  // awake, the oscillator's 500 us, restart.
+  const std::vector<std::string> start = {"i2c 0x40: 00 31", "i2c 0x40: fe 79", "i2c 0x40: 01 04",
+                                          "i2c 0x40: 00 21", "wait 500 us",     "i2c 0x40: 00 a1"};
+  EXPECT_EQ(std::vector<std::string>(lines.begin(), lines.begin() + 6), start);
+  EXPECT_NE(std::system((build + "/avar_pca9685_head --bus " + dir + "/no-such-bus < /dev/null 2> /dev/null").c_str()), 0);
+  std::filesystem::remove_all(dir);
+
+  auto refused =
+      run_avar({"export", kExportHeadShow, "--rig", kExportHeadRig, "--target", "host", "--out", dir, "--button", "2"});
+  EXPECT_EQ(refused.code, kExitBadInput);
+  EXPECT_NE(refused.err.find("--button: a Linux host has no button pin"), std::string::npos) << refused.err;
+  refused = run_avar({"export", "--stream", "--rig", kStreamRig, "--target", "host", "--out", dir});
+  EXPECT_EQ(refused.code, kExitBadInput);
+  EXPECT_NE(refused.err.find("a Linux host needs no streaming board"), std::string::npos) << refused.err;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ExportCommand, RefusesWhatItCannotExportAndWritesNothing) {

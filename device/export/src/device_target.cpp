@@ -76,7 +76,16 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
   return t;
 }
 
-const std::array<DeviceTarget, 6> kTargets = {
+/// A Linux machine (a Raspberry Pi): the exported program, built by the project's CMakeLists.txt.
+DeviceTarget linux_host() {
+  DeviceTarget t = arm("host", "Linux (a Raspberry Pi or any PC with PCA9685 boards on /dev/i2c-N)", "*", "native",
+                       "the bus's SDA and SCL (a Raspberry Pi: GPIO 2 and 3, /dev/i2c-1)", std::size_t{1} << 30,
+                       std::size_t{1} << 30, 0, 0, false);
+  t.data_limit = t.flash;
+  return t;
+}
+
+const std::array<DeviceTarget, 7> kTargets = {
     avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 20480),
     avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 20608),
     arm("cortex-m0plus", "Raspberry Pi Pico (RP2040; the arduino-pico core)", "rp2040", "raspberrypi", "SDA GP4, SCL GP5",
@@ -98,6 +107,7 @@ const std::array<DeviceTarget, 6> kTargets = {
       t.stream_flash *= 2;
       return t;
     }(),
+    linux_host(),
 };
 
 }  // namespace

@@ -115,6 +115,10 @@ const EmulatedTarget* emulation_of(const DeviceTarget& target) {
 ExportVerification verify_export(const Project& project, const std::filesystem::path& project_dir, std::ostream& progress) {
   const DeviceTarget& target = *project.target;
   const EmulatedTarget* emulated = emulation_of(target);
+  if (target.host())
+    throw std::runtime_error(
+        "--verify compares a target's build with the host's; the host target is the host build: "
+        "build it with its CMakeLists.txt and try it with --trace");
   if (emulated == nullptr)
     throw std::runtime_error("no emulator here runs the " + std::string(target.name) +
                              "; --verify runs atmega328p, atmega2560, cortex-m0plus, cortex-m3 and cortex-m4");

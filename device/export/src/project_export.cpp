@@ -125,7 +125,30 @@ std::string show_names(const Project& p) {
   return names;
 }
 
+/// A Linux program's build: every source of the project and the host's main, C++14.
+std::string host_cmake(const Project& p) {
+  return "# Written by avar export for a Linux host: the figure " + p.figure.rig +
+         " and its shows as a program.\n"
+         "#   cmake -S . -B build && cmake --build build && build/" +
+         p.library_name +
+         " --help\n"
+         "cmake_minimum_required(VERSION 3.13)\nproject(" +
+         p.library_name + " CXX)\nfile(GLOB_RECURSE sources CONFIGURE_DEPENDS src/*.cpp)\nadd_executable(" + p.library_name +
+         " ${sources} host/avar_figure_host.cpp)\ntarget_include_directories(" + p.library_name +
+         " PRIVATE src)\nset_target_properties(" + p.library_name +
+         " PROPERTIES CXX_STANDARD 14 CXX_STANDARD_REQUIRED ON)\n"
+         "if(NOT CMAKE_BUILD_TYPE)\n  set(CMAKE_BUILD_TYPE Release)\nendif()\n";
+}
+
 void add_files(Project& p, const ExportOptions& o) {
+  if (p.target->host()) {
+    add_source_files(p);
+    p.files.push_back({"src/avar_shows.h", shows_header(p, o.triggers)});
+    p.files.push_back({"src/avar_shows.cpp", shows_source(p)});
+    p.files.push_back({"host/avar_figure_host.cpp", embedded_text("host/avar_figure_host.cpp")});
+    p.files.push_back({"CMakeLists.txt", host_cmake(p)});
+    return;
+  }
   add_library_files(p, o, "avar_figure.h", "The figure " + p.figure.rig + " and its shows, played by avar's device engine.",
                     "Exported by avar export for " + std::string(p.target->name) + " (" + std::string(p.target->boards) +
                         "). Shows: " + show_names(p) + ".");
@@ -184,9 +207,11 @@ std::string describe_budget(const ExportBudget& b) {
            std::to_string(size == 0 ? 0 : (used * 100 + size - 1) / size) + " %)" + (used > size ? ": does not fit" : "") + "\n";
   };
   std::string text = line("flash ", b.flash_used, b.flash_size);
-  for (const BudgetItem& i : b.flash) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
+  for (const BudgetItem& i : b.flash)
+    if (i.bytes > 0) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
   text += line("RAM   ", b.ram_used, b.ram_size);
-  for (const BudgetItem& i : b.ram) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
+  for (const BudgetItem& i : b.ram)
+    if (i.bytes > 0) text += "  " + with_commas(i.bytes) + "  " + i.what + "\n";
   if (b.data_used > b.data_limit) text += line("data read in place ", b.data_used, b.data_limit);
   return text;
 }
@@ -199,6 +224,8 @@ Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& s
   check_trigger(options.triggers.boot_show, shows.size(), "--boot");
   check_trigger(options.triggers.idle_show, shows.size(), "--idle");
   if (options.triggers.button_pin >= 0) check_trigger(options.triggers.button_show, shows.size(), "--button");
+  if (options.triggers.button_pin >= 0 && target.host())
+    throw std::invalid_argument("--button: a Linux host has no button pin here; start shows from standard input or with --play");
   Project p;
   p.target = &target;
   p.figure = figure_from_rig(rig);

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <stdexcept>
 
 #include "avar/device/show_image.hpp"
 #include "embedded_sources.hpp"
@@ -28,8 +29,10 @@ std::string config_header(std::uint8_t features, bool fast) {
 }
 
 /// Whether the embedded source at `path` belongs in a project of this kind: the streaming
-/// player, its protocol and its glue in a streaming board's; the show player's glue in a figure's.
-bool of_kind(const std::string& path, bool stream) {
+/// player, its protocol and its glue in a streaming board's; the show player's glue in a figure's;
+/// no Arduino glue (src/avar_*) in a Linux program's.
+bool of_kind(const std::string& path, bool stream, bool host) {
+  if (host && path.rfind("src/avar_", 0) == 0) return false;  // the Arduino glue: not in a Linux program
   const bool streaming_only = path.find("/stream_") != std::string::npos || path.find("avar_device_codec") != std::string::npos ||
                               path.rfind("src/avar_stream_figure.", 0) == 0;
   const bool shows_only = path.rfind("src/avar_figure.", 0) == 0;
@@ -85,10 +88,16 @@ void add_library_files(Project& p, const ExportOptions& o, const std::string& in
                                          json_string(std::string(p.target->platformio)) + "\n}\n"});
 }
 
+std::string embedded_text(const std::string& path) {
+  for (const EmbeddedSource& e : embedded_sources())
+    if (path == e.path) return e.text;
+  throw std::logic_error("no embedded source " + path);
+}
+
 void add_source_files(Project& p) {
   for (const EmbeddedSource& e : embedded_sources()) {
     const std::string path = e.path;
-    if (path.rfind("src/", 0) != 0 || !of_kind(path, p.stream)) continue;  // not verify/: --verify's own run
+    if (path.rfind("src/", 0) != 0 || !of_kind(path, p.stream, p.target->host())) continue;  // not verify/ or host/
     p.files.push_back({path, path == "src/avar/device/config.hpp" ? config_header(p.features, p.fast) + e.text : e.text});
   }
 }

@@ -27,5 +27,7 @@ void add_library_files(Project& project, const ExportOptions& options, const std
 /// project's features), those of the project's kind only (a streaming board's player and
 /// protocol, or a show player's Arduino glue).
 void add_source_files(Project& project);
+/// The embedded source at `path` ("host/avar_figure_host.cpp").
+std::string embedded_text(const std::string& path);
 
 }  // namespace avar::device

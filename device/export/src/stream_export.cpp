@@ -1,5 +1,6 @@
 // avar export --stream: a streaming board's project (project_export.hpp).
 #include <algorithm>
+#include <stdexcept>
 
 #include "avar/core/input_error.hpp"
 #include "avar/device/project_export.hpp"
@@ -103,6 +104,10 @@ std::string stream_sketch(const Project& p) {
 }  // namespace
 
 Project export_stream_project(const rig::Rig& rig, const DeviceTarget& target, const ExportOptions& options) {
+  if (target.host())
+    throw std::invalid_argument(
+        "--stream: a Linux host needs no streaming board; avar itself drives PCA9685 boards on "
+        "/dev/i2c-N (a link of protocol pca9685)");
   const rig::LinkSpec& link = stream_link(rig);
   const auto& o = link.options_as<rig::AvarDeviceOptions>();
   Project p;

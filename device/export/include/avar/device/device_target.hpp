@@ -39,6 +39,9 @@ struct DeviceTarget {
   /// (StreamChannel and FigureOutput). Knot frames take 4 + 4 bytes per channel each.
   std::size_t stream_flash = 0, stream_ram = 0, stream_channel_ram = 0;
 
+  /// The Linux host: a program built with CMake, not an Arduino library.
+  bool host() const noexcept { return name == "host"; }
+
   std::size_t engine_flash_for(std::uint8_t features, bool fast) const noexcept;
   std::size_t channel_ram_for(std::uint8_t features) const noexcept;
 };
