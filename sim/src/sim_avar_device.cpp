@@ -18,13 +18,14 @@ SimAvarDevice::SimAvarDevice(SimAvarDeviceConfig config) : config_(std::move(con
   channels_.resize(n);
   times_.resize(config_.knot_capacity);
   knots_.resize(static_cast<std::size_t>(config_.knot_capacity) * n);
+  frame_.resize(device::stream_frame_room(static_cast<std::uint8_t>(n)));
   for (std::size_t c = 0; c < n; ++c) {
     device::write_limits(config_.channels[c].limits, stored_[c].data());
     channels_[c].limits = stored_[c].data();
   }
   const device::StreamStatus status =
       device::stream_init(player_, channels_.data(), static_cast<std::uint8_t>(n), times_.data(), knots_.data(),
-                          config_.knot_capacity, config_.rate_hz, config_.watchdog_ms * 1000u);
+                          config_.knot_capacity, frame_.data(), config_.rate_hz, config_.watchdog_ms * 1000u);
   if (status == device::kStreamBadLimits) throw std::invalid_argument("a simulated avar-device's channel limits are not usable");
   if (status != device::kStreamOk)
     throw std::invalid_argument("a simulated avar-device needs a control rate above 0 and room for at least 2 knots");

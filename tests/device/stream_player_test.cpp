@@ -31,6 +31,7 @@ struct Device {
   std::vector<StreamChannel> channels;
   std::vector<std::uint32_t> times = std::vector<std::uint32_t>(kCapacity);
   std::vector<wire::Knot> knots;
+  std::vector<std::uint8_t> frame;
   StreamPlayer player{};
   std::uint32_t now = 0;  // the device's microsecond counter
   std::vector<std::uint8_t> replies;
@@ -39,14 +40,15 @@ struct Device {
     stored.resize(static_cast<std::size_t>(n));
     channels.resize(static_cast<std::size_t>(n));
     knots.resize(static_cast<std::size_t>(n) * kCapacity);
+    frame.resize(stream_frame_room(static_cast<std::uint8_t>(n)));
     for (int c = 0; c < n; ++c) {
       // -100..100 units, rest 10 * c, 400 units/s, 8000 units/s^2.
       limits.push_back(device_limits({-100, 100}, 10.0 * c, 400, 8000, 0, kRate));
       write_limits(limits.back(), stored[static_cast<std::size_t>(c)].data());
       channels[static_cast<std::size_t>(c)].limits = stored[static_cast<std::size_t>(c)].data();
     }
-    EXPECT_EQ(stream_init(player, channels.data(), static_cast<std::uint8_t>(n), times.data(), knots.data(), kCapacity, kRate,
-                          watchdog_us),
+    EXPECT_EQ(stream_init(player, channels.data(), static_cast<std::uint8_t>(n), times.data(), knots.data(), kCapacity,
+                          frame.data(), kRate, watchdog_us),
               kStreamOk);
   }
 
@@ -183,7 +185,8 @@ TEST(StreamPlayer, ReleaseHoldsUntilHelloAndQueriesAnswer) {
   Device device(3);
   device.send(wire::encode_hello);
   wire::Parser parser;
-  wire::parser_reset(parser);
+  std::uint8_t parser_buffer[wire::kMaxFrame];
+  wire::parser_reset(parser, parser_buffer, wire::kMaxFrame);
   std::vector<std::uint8_t> types;
   auto drain = [&] {
     for (std::uint8_t b : device.replies)
@@ -235,7 +238,8 @@ TEST(StreamPlayer, AFaultOfTheDevicesOwnHoldsThroughEveryMessageAndSaysSo) {
   EXPECT_TRUE(device.channels[0].released);
   EXPECT_EQ(device.channels[0].output, frozen);
   wire::Parser parser;
-  wire::parser_reset(parser);
+  std::uint8_t parser_buffer[wire::kMaxFrame];
+  wire::parser_reset(parser, parser_buffer, wire::kMaxFrame);
   wire::Status status{};
   for (std::uint8_t b : device.replies)
     if (wire::parser_push(parser, b) && parser.type == wire::kStatus) {

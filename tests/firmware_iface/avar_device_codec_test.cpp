@@ -71,10 +71,35 @@ std::vector<Frame> parse_all(Parser& parser, const Bytes& bytes) {
   return frames;
 }
 
+// A device keeps a parser only as long as its longest message: a longer frame (another device's
+// knots) counts as bad and is skipped whole, and the frames around it are found.
+TEST(AvarDeviceCodec, AParserWithLittleRoomSkipsLongerFramesWhole) {
+  std::uint8_t out[kMaxFrame];
+  Bytes stream;
+  auto add = [&](std::size_t n) { stream.insert(stream.end(), out, out + n); };
+  const Knot two[] = {{100, 1}, {200, -2}};
+  Knot many[20] = {};
+  many[0].value = 0xa5a5;  // start bytes inside the long frame
+  add(encode_knots(5000, two, 2, out));
+  add(encode_knots(6000, many, 20, out));
+  add(encode_time(7000, out));
+  add(encode_knots(8000, two, 2, out));
+  Parser parser;
+  std::uint8_t buffer[kOverhead + 5 + 4 * 2];
+  parser_reset(parser, buffer, sizeof buffer);
+  const std::vector<Frame> frames = parse_all(parser, stream);
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(frames[0].type, kKnots);
+  EXPECT_EQ(frames[1].type, kTime);
+  EXPECT_EQ(frames[2].type, kKnots);
+  EXPECT_GE(parser.bad_frames, 1u);
+}
+
 TEST(AvarDeviceCodec, EveryMessageRoundTrips) {
   std::uint8_t out[kMaxFrame];
   Parser parser;
-  parser_reset(parser);
+  std::uint8_t buffer[kMaxFrame];
+  parser_reset(parser, buffer, kMaxFrame);
   Bytes stream;
   auto add = [&](std::size_t n) { stream.insert(stream.end(), out, out + n); };
   add(encode_hello(out));
@@ -127,7 +152,8 @@ TEST(AvarDeviceCodec, FindsTheGoodFramesAmongNoiseAndDamage) {
   std::uniform_int_distribution<int> byte(0, 255), kind(0, 3), channels(1, kMaxChannels);
   std::uint8_t out[kMaxFrame];
   Parser parser;
-  parser_reset(parser);
+  std::uint8_t buffer[kMaxFrame];
+  parser_reset(parser, buffer, kMaxFrame);
   std::size_t sent_whole = 0, found = 0;
   for (int round = 0; round < 2000; ++round) {
     Knot knots[kMaxChannels];

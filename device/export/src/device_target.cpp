@@ -11,7 +11,8 @@ constexpr std::size_t kKiB = 1024;
 // Measured 2026-12-07 (see the header): engine figures are the linked size of the engine, figure
 // and codec rounded up; channel RAM is sizeof(PlayerChannel) + sizeof(FigureOutput) on the target.
 // A streaming board's: the linked size of the streaming player, the avar-device codec, the limiter
-// and the figure's outputs, rounded up; sizeof(StreamPlayer) and StreamFigure's own fields;
+// and the figure's outputs, rounded up; sizeof(StreamPlayer) and StreamFigure's own fields (the
+// parser's buffer and an answer's room depend on the channels: stream_export.cpp adds them);
 // sizeof(StreamChannel) + sizeof(FigureOutput).
 constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::string_view i2c_pins, std::size_t flash,
                            std::size_t ram, std::size_t engine) {
@@ -39,7 +40,7 @@ constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::
   t.board_ram = 7;
   t.show_ram = 6;
   t.stream_flash = 15104;
-  t.stream_ram = 306;
+  t.stream_ram = 54;
   t.stream_channel_ram = 42;
   return t;
 }
@@ -71,7 +72,7 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
   t.board_ram = 8;
   t.show_ram = 8;
   t.stream_flash = m0 ? 7680 : 6400;
-  t.stream_ram = 332;
+  t.stream_ram = 84;
   t.stream_channel_ram = 64;
   return t;
 }

@@ -24,14 +24,14 @@ std::size_t knot_frame_bytes(std::size_t channels) { return 4 + 4 * channels; }
 ExportBudget stream_budget(const Project& p) {
   const DeviceTarget& t = *p.target;
   const std::size_t channels = p.figure.channels.size();
+  const auto n = static_cast<std::uint8_t>(channels);  // at most kMaxChannels (figure_from_rig)
   ExportBudget b;
   b.flash = {{"the Arduino core, Serial, Wire and the sketch (estimate)", t.core_flash},
              {"the streaming player, the avar-device protocol and the figure", t.stream_flash},
              {"the figure record", p.figure_record.size()}};
   b.ram = {{"the Arduino core's buffers and the stack (estimate)", t.core_ram},
            {"the player, its frame buffer and an answer",
-            t.stream_ram + t.board_ram * p.figure.boards.size() +
-                stream_reply_room(static_cast<std::uint8_t>(std::min<std::size_t>(channels, 255)))},
+            t.stream_ram + t.board_ram * p.figure.boards.size() + stream_frame_room(n) + stream_reply_room(n)},
            {std::to_string(channels) + " channels", channels * t.stream_channel_ram},
            {std::to_string(p.stream_settings.knots) + " knot frames (the link's device_knots)",
             p.stream_settings.knots * knot_frame_bytes(channels)}};

@@ -5,13 +5,13 @@ namespace device {
 
 FigureStatus stream_figure_open(StreamFigure& f, const uint8_t* record, uint32_t size, StreamChannel* channels,
                                 FigureOutput* outputs, uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity,
-                                uint32_t* times, firmware_iface::avar_device::Knot* knots, uint8_t knot_capacity,
+                                uint32_t* times, firmware_iface::avar_device::Knot* knots, uint8_t knot_capacity, uint8_t* frame,
                                 uint32_t watchdog_us) {
   FigureShape shape;
   const FigureStatus attached =
       figure_attach(f, record, size, channels, outputs, channel_capacity, boards, board_capacity, shape);
   if (attached != kFigureOk) return attached;
-  switch (stream_init(f.player, channels, shape.channel_count, times, knots, knot_capacity, shape.rate, watchdog_us)) {
+  switch (stream_init(f.player, channels, shape.channel_count, times, knots, knot_capacity, frame, shape.rate, watchdog_us)) {
     case kStreamOk: return kFigureOk;
     case kStreamBadLimits: return kFigureBadLimits;
     default: return kFigureBadRecord;

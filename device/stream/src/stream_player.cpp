@@ -92,7 +92,7 @@ int64_t knot_target(StreamPlayer& p, uint8_t c, uint32_t t) {
 }  // namespace
 
 StreamStatus stream_init(StreamPlayer& p, StreamChannel* channels, uint8_t channel_count, uint32_t* times, wire::Knot* knots,
-                         uint8_t capacity, uint16_t rate, uint32_t watchdog_us) {
+                         uint8_t capacity, uint8_t* frame, uint16_t rate, uint32_t watchdog_us) {
   p.channels = channels;
   p.channel_count = channel_count;
   p.times = times;
@@ -107,9 +107,9 @@ StreamStatus stream_init(StreamPlayer& p, StreamChannel* channels, uint8_t chann
   p.offset = 0;
   p.last_heard = 0;
   p.underruns = 0;
-  wire::parser_reset(p.parser);
   if (channel_count == 0 || channel_count > wire::kMaxChannels || rate == 0) return kStreamBadChannels;
-  if (capacity < 2 || times == nullptr || knots == nullptr) return kStreamBadStorage;
+  if (capacity < 2 || times == nullptr || knots == nullptr || frame == nullptr) return kStreamBadStorage;
+  wire::parser_reset(p.parser, frame, static_cast<uint8_t>(stream_frame_room(channel_count)));
   for (uint8_t c = 0; c < channel_count; ++c) {
     const ChannelLimits limits = read_limits(channels[c].limits);
     if (!limits_usable(limits)) return kStreamBadLimits;

@@ -107,7 +107,9 @@ int16_t slope_field(int32_t units_per_second) {
   return static_cast<int16_t>(steps);
 }
 
-void parser_reset(Parser& p) {
+void parser_reset(Parser& p, uint8_t* buffer, uint8_t room) {
+  p.buffer = buffer;
+  p.room = room < kOverhead ? static_cast<uint8_t>(kOverhead) : room;
   p.held = 0;
   p.bad_frames = 0;
   p.skipped = 0;
@@ -128,9 +130,10 @@ void resync(Parser& p) {
   p.held = keep;
 }
 
-/// Whether the bytes held start a frame that may still be good: false for a bad length; a
+/// Whether the bytes held start a frame that may still be good: false for a bad length (or one
+/// longer than the buffer's room); a
 /// complete frame's CRC is checked by the caller.
-bool plausible(const Parser& p) { return p.held < 3 || p.buffer[2] <= kMaxPayload; }
+bool plausible(const Parser& p) { return p.held < 3 || (p.buffer[2] <= kMaxPayload && kOverhead + p.buffer[2] <= p.room); }
 
 }  // namespace
 

@@ -39,7 +39,7 @@ AvarDeviceLink::AvarDeviceLink(ByteTransport& transport, AvarDeviceLinkConfig co
   knot_values_.assign(n, 0);
   knot_slopes_.assign(n, 0);
   packet_.resize(3 * wire::kMaxFrame);
-  wire::parser_reset(parser_);
+  wire::parser_reset(parser_, parser_buffer_.data(), static_cast<std::uint8_t>(parser_buffer_.size()));
   description_ = "avar-device (" + std::to_string(config_.baud) + " baud) on " + transport_.name();
 }
 
@@ -59,7 +59,7 @@ Status AvarDeviceLink::await(std::uint8_t type) {
 Status AvarDeviceLink::start() {
   problem_.clear();
   transport_.discard_input();
-  wire::parser_reset(parser_);
+  wire::parser_reset(parser_, parser_buffer_.data(), static_cast<std::uint8_t>(parser_buffer_.size()));
   std::array<std::uint8_t, wire::kMaxFrame> out{};
   if (const Status s = transport_.write(std::span(out.data(), wire::encode_hello(out.data()))); s != Status::ok) return s;
   if (const Status s = await(wire::kStatus); s != Status::ok) {
@@ -102,7 +102,7 @@ Status AvarDeviceLink::start() {
 Status AvarDeviceLink::read_positions(std::span<double> frame, std::span<bool> known) {
   std::array<std::uint8_t, wire::kMaxFrame> out{};
   transport_.discard_input();
-  wire::parser_reset(parser_);
+  wire::parser_reset(parser_, parser_buffer_.data(), static_cast<std::uint8_t>(parser_buffer_.size()));
   if (const Status s = transport_.write(std::span(out.data(), wire::encode_query(out.data()))); s != Status::ok) return s;
   if (const Status s = await(wire::kPositions); s != Status::ok) return s;
   std::array<std::uint16_t, wire::kMaxChannels> outputs{};

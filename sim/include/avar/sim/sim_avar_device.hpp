@@ -70,6 +70,7 @@ class SimAvarDevice final : public ByteDevice {
   std::vector<device::StreamChannel> channels_;
   std::vector<std::uint32_t> times_;
   std::vector<firmware_iface::avar_device::Knot> knots_;
+  std::vector<std::uint8_t> frame_;  ///< the player's parser's
   device::StreamPlayer player_{};
   std::vector<ServoModel> servos_;
   std::deque<std::uint8_t> replies_;

@@ -28,11 +28,12 @@ struct StreamFigure {
 };
 
 /// Reads `record` into the caller's storage and sets the streaming player up at rest, holding
-/// `knot_capacity` knot frames (`times`: knot_capacity entries, `knots`: knot_capacity * channels)
-/// and easing to rest after `watchdog_us` of link silence. Keep the record in place.
+/// `knot_capacity` knot frames (`times`: knot_capacity entries, `knots`: knot_capacity * channels),
+/// its parser in `frame` (stream_frame_room(channel_capacity) bytes), and easing to rest after
+/// `watchdog_us` of link silence. Keep the record in place.
 FigureStatus stream_figure_open(StreamFigure& figure, const uint8_t* record, uint32_t size, StreamChannel* channels,
                                 FigureOutput* outputs, uint8_t channel_capacity, FigureBoard* boards, uint8_t board_capacity,
-                                uint32_t* times, firmware_iface::avar_device::Knot* knots, uint8_t knot_capacity,
+                                uint32_t* times, firmware_iface::avar_device::Knot* knots, uint8_t knot_capacity, uint8_t* frame,
                                 uint32_t watchdog_us);
 /// Starts every board and sends every channel its rest pulse; kFigureNoBoard (every output
 /// released) when a board is silent.
@@ -50,10 +51,11 @@ struct StreamFigureStorage {
   FigureBoard boards[Boards];
   uint32_t times[Knots];
   firmware_iface::avar_device::Knot knots[Knots * Channels];
+  uint8_t frame[stream_frame_room(Channels)];
   StreamFigure figure;
 
   FigureStatus open(const uint8_t* record, uint32_t size, uint32_t watchdog_us) {
-    return stream_figure_open(figure, record, size, channels, outputs, Channels, boards, Boards, times, knots, Knots,
+    return stream_figure_open(figure, record, size, channels, outputs, Channels, boards, Boards, times, knots, Knots, frame,
                               watchdog_us);
   }
 };

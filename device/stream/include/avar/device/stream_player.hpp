@@ -64,9 +64,17 @@ struct StreamPlayer {
 enum StreamStatus : uint8_t { kStreamOk = 0, kStreamBadChannels, kStreamBadLimits, kStreamBadStorage };
 
 /// Sets the player up at rest. `times` holds `capacity` (at least 2) entries, `knots`
-/// capacity * channel_count; every channel's limits must be usable as the player's (player.hpp).
+/// capacity * channel_count, `frame` stream_frame_room(channel_count) bytes (the parser's);
+/// every channel's limits must be usable as the player's (player.hpp).
 StreamStatus stream_init(StreamPlayer& player, StreamChannel* channels, uint8_t channel_count, uint32_t* times,
-                         firmware_iface::avar_device::Knot* knots, uint8_t capacity, uint16_t rate, uint32_t watchdog_us);
+                         firmware_iface::avar_device::Knot* knots, uint8_t capacity, uint8_t* frame, uint16_t rate,
+                         uint32_t watchdog_us);
+
+/// The room the longest message a device of `channel_count` channels takes needs: a knots frame
+/// (its parser's buffer; one expression, for C++11).
+constexpr uint16_t stream_frame_room(uint8_t channel_count) {
+  return static_cast<uint16_t>(firmware_iface::avar_device::kOverhead + 5u + 4u * channel_count);
+}
 
 /// The room an answer of a device of `channel_count` channels takes: its status or its positions
 /// (one expression, for the C++11 that Arduino cores compile sketches with).

@@ -92,9 +92,10 @@ int16_t slope_field(int32_t units_per_second);
 
 /// Finds frames in a byte stream one byte at a time: skips bytes until a start byte, checks the
 /// length and the CRC, and on a bad frame looks for the next start byte after the one it tried.
-/// Its buffer holds one frame; nothing allocated.
+/// Its buffer (the caller's) holds one frame; nothing allocated.
 struct Parser {
-  uint8_t buffer[kMaxFrame];
+  uint8_t* buffer;         ///< room for `room` bytes
+  uint8_t room;            ///< the longest frame taken: a longer one counts as bad
   uint8_t held;            ///< bytes of the frame being read
   uint32_t bad_frames;     ///< CRC or length failures
   uint32_t skipped;        ///< bytes that started no frame
@@ -102,7 +103,10 @@ struct Parser {
   uint8_t length;          ///< its payload's length
   const uint8_t* payload;  ///< into buffer: valid until the next push
 };
-void parser_reset(Parser& parser);
+/// Starts `parser` afresh on the caller's `buffer` of `room` bytes, kOverhead to kMaxFrame: the
+/// longest frame it takes (a device that knows its longest message keeps a smaller buffer; a
+/// longer frame is counted bad and skipped).
+void parser_reset(Parser& parser, uint8_t* buffer, uint8_t room);
 /// Takes one byte; true when it completes a good frame (type, length, payload set).
 bool parser_push(Parser& parser, uint8_t byte);
 

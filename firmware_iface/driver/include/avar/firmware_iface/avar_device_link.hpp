@@ -15,6 +15,7 @@
 // it, so the device plays tick k's motion `lead` after tick k was sent, as steady as the loop's
 // ticks and independent of the transport's own clock.
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -53,6 +54,8 @@ class AvarDeviceLink final : public ActuatorLink {
   /// channels that are not 0..n-1 each once, a tick or knot spacing below 1, or a lead shorter
   /// than two knots (a knot must reach the device before its time comes).
   AvarDeviceLink(ByteTransport& transport, AvarDeviceLinkConfig config);
+  AvarDeviceLink(const AvarDeviceLink&) = delete;  // its parser points into its own buffer
+  AvarDeviceLink& operator=(const AvarDeviceLink&) = delete;
 
   /// Hello: the device must answer with its status, speak this protocol's version, drive as many
   /// channels as the link and hold the knots the lead needs (start_problem() says which failed).
@@ -95,6 +98,7 @@ class AvarDeviceLink final : public ActuatorLink {
   ActuatorTable table_;
   avar_device::Status status_{};
   avar_device::Parser parser_{};
+  std::array<std::uint8_t, avar_device::kMaxFrame> parser_buffer_{};
   std::uint64_t ticks_ = 0;  ///< sends since start()
   /// The commanded values of the last ticks (output units, device order): ring_frames_ frames,
   /// tick k at k % ring_frames_.
