@@ -127,6 +127,10 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
       for (const auto& [given, name] :
            {std::pair{!o.boot.empty(), "--boot"}, std::pair{!o.idle.empty(), "--idle"}, std::pair{!o.button.empty(), "--button"}})
         if (given) throw option_error(name, "a streaming board has no shows of its own to trigger; leave it out with --stream");
+      if (o.baud != 0)
+        throw option_error("--baud",
+                           "a streaming board's serial port runs at its avar-device link's baud in the rig; "
+                           "set it there, not with --stream");
       return run_stream_export(o, *target, out);
     }
     if (o.show_paths.empty()) throw option_error("shows", "expected at least one show file (or --stream)");
@@ -138,7 +142,7 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
     options.url = "file://" + std::filesystem::absolute(o.out_dir).lexically_normal().string();
     options.triggers.boot_show = show_index(o.boot, shows, "--boot");
     options.triggers.idle_show = show_index(o.idle, shows, "--idle");
-    options.triggers.serial_baud = o.baud;
+    options.triggers.serial_baud = o.baud == 0 ? 115200 : o.baud;
     if (!o.button.empty()) {
       const std::size_t colon = o.button.find(':');
       const std::string pin = o.button.substr(0, colon);

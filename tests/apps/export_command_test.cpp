@@ -108,6 +108,10 @@ TEST(ExportCommand, AStreamingBoardTakesNoShowsOrTriggers) {
   r = run_avar({"export", "--stream", "--rig", kStreamRig, "--target", "atmega328p", "--out", dir, "--boot", "1"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("--boot: a streaming board has no shows"), std::string::npos) << r.err;
+  r = run_avar({"export", "--stream", "--rig", kStreamRig, "--target", "atmega328p", "--out", dir, "--baud", "9600"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--baud: a streaming board's serial port runs at its avar-device link's baud"), std::string::npos)
+      << r.err;
   r = run_avar({"export", "--stream", "--rig", kExportHeadRig, "--target", "atmega328p", "--out", dir});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("has no avar-device link"), std::string::npos) << r.err;
