@@ -19,11 +19,11 @@ struct ExportOptions {
   std::string rig_path;
   std::string target;
   std::string out_dir;
-  std::string name;    ///< the library's name; "" for avar_<rig>
-  std::string boot;    ///< a show's name or number (1-based) played at power-up
-  std::string idle;    ///< a show played whenever nothing else plays
-  std::string button;  ///< PIN or PIN:SHOW
-  long baud = 0;       ///< the serial commands'; 0: not given (115200)
+  std::string name;     ///< the library's name; "" for avar_<rig>
+  std::string boot;     ///< a show's name or number (1-based) played at power-up
+  std::string idle;     ///< a show played whenever nothing else plays
+  std::string button;   ///< PIN or PIN:SHOW
+  long baud = 0;        ///< the serial commands'; 0: not given (115200)
   bool verify = false;  ///< build for the host and the target, run under its emulator, compare
   bool stream = false;  ///< a streaming board (no shows)
 };
