@@ -8,7 +8,9 @@
 #include "avar/control/threaded_link.hpp"
 #include "avar/firmware_iface/linux_i2c_bus.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
+#include "avar/firmware_iface/sysfs_pwm_chip.hpp"
 #include "avar/sim/sim_i2c_bus.hpp"
+#include "avar/sim/sim_pwm_chip.hpp"
 #include "avar/sim/pty_device_host.hpp"
 #include "avar/sim/usb_device_host.hpp"
 
@@ -24,6 +26,8 @@ struct FigureLinks::Entry {
   std::shared_ptr<firmware_iface::GpioChip> chip;              ///< a gpio link's chip
   std::shared_ptr<firmware_iface::I2cBus> i2c;                 ///< an I2C link's bus
   std::shared_ptr<sim::SimI2cBus> sim_i2c;                     ///< the same, when simulated
+  std::shared_ptr<firmware_iface::PwmChip> pwm;                ///< a pwm link's chip
+  std::shared_ptr<sim::SimPwmChip> sim_pwm;                    ///< the same, when simulated
   std::unique_ptr<firmware_iface::ActuatorLink> link;
   std::unique_ptr<control::ThreadedLink> threaded;  ///< serves `link` from its own thread, when asked
   firmware_iface::ActuatorLink* outer() const {
@@ -81,6 +85,19 @@ FigureLinks::FigureLinks(const rig::Rig& rig, const LinkSelection& selection)
         }
       }
       at.i2c = entry->i2c;
+    } else if (protocol.on_pwm_chip) {
+      if (entry->simulated) {
+        entry->sim_pwm = std::make_shared<sim::SimPwmChip>();
+        entry->pwm = entry->sim_pwm;
+      } else {
+        try {
+          entry->pwm = firmware_iface::open_pwm_chip(port);
+        } catch (const std::runtime_error& e) {
+          const rig::LinkSpec& spec = rig.links[i];
+          throw InputError({rig.file, spec.where.line, spec.where.column}, "link '" + spec.name + "': " + e.what());
+        }
+      }
+      at.pwm = entry->pwm;
     } else if (entry->simulated) {
       entry->device = protocol.make_simulated(rig, i);
       if (entry->device.network_node) {
@@ -124,6 +141,7 @@ FigureLinks::~FigureLinks() {
     e->usb_host.reset();
     e->chip.reset();
     e->i2c.reset();
+    e->pwm.reset();
   }
 }
 
@@ -144,7 +162,7 @@ bool FigureLinks::all_simulated() const {
 std::string FigureLinks::describe(std::size_t link) const {
   const Entry& e = *entries_[link];
   // (A simulated chip or I2C bus says so itself.)
-  return (e.simulated && !e.chip && !e.i2c ? "simulated " : "") + e.link->describe();
+  return (e.simulated && !e.chip && !e.i2c && !e.pwm ? "simulated " : "") + e.link->describe();
 }
 
 sim::SimDmxNode* FigureLinks::simulated_node(std::size_t link) const { return entries_.at(link)->device.network_node.get(); }
@@ -184,6 +202,16 @@ void FigureLinks::advance(double dt_s) {
         const double pulse =
             e->sim_i2c->pulse_us(static_cast<std::uint8_t>(o.address), static_cast<std::uint8_t>(a.device_channel),
                                  static_cast<std::uint32_t>(o.clock_hz));
+        if (pulse <= 0) continue;  // no pulse: a limp servo stays where it is
+        truth_[a.channel.value] = a.calibration.to_channel(pulse);
+        truth_known_[a.channel.value] = 1;
+      }
+      continue;
+    }
+    if (e->sim_pwm) {
+      // A simulated PWM chip's outputs change as they are set: read each one's pulse.
+      for (const rig::ActuatorSpec& a : rig_.actuators_on(rig::LinkIndex{e->link_index})) {
+        const double pulse = e->sim_pwm->pulse_us(static_cast<unsigned>(a.device_channel));
         if (pulse <= 0) continue;  // no pulse: a limp servo stays where it is
         truth_[a.channel.value] = a.calibration.to_channel(pulse);
         truth_known_[a.channel.value] = 1;

@@ -11,15 +11,16 @@
 #include "avar/assembly/maestro_protocol.hpp"
 #include "avar/assembly/network_dmx_protocol.hpp"
 #include "avar/assembly/pca9685_protocol.hpp"
+#include "avar/assembly/pwm_protocol.hpp"
 #include "avar/assembly/ssc32_protocol.hpp"
 
 namespace avar::assembly {
 
 const std::vector<const Protocol*>& protocols() {
-  static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(),  &feetech_protocol(),
-                                                &ssc32_protocol(),   &dmx_protocol(),        &can_protocol(),
-                                                &gpio_protocol(),    &artnet_protocol(),     &sacn_protocol(),
-                                                &pca9685_protocol(), &avar_device_protocol()};
+  static const std::vector<const Protocol*> all{&maestro_protocol(), &dynamixel_protocol(),   &feetech_protocol(),
+                                                &ssc32_protocol(),   &dmx_protocol(),         &can_protocol(),
+                                                &gpio_protocol(),    &artnet_protocol(),      &sacn_protocol(),
+                                                &pca9685_protocol(), &avar_device_protocol(), &pwm_protocol()};
   return all;
 }
 

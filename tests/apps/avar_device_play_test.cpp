@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../support/cli_run.hpp"
+#include "../support/play_summary.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/exit_codes.hpp"
 
@@ -19,19 +20,6 @@ namespace {
 const std::string kHelloShow = AVAR_SOURCE_DIR "/examples/shows/hello-head.yaml";
 const std::string kStreamingRig = AVAR_SOURCE_DIR "/examples/rigs/streaming-head.yaml";
 
-/// The play summary's max err per channel.
-std::map<std::string, double> max_errors(const std::string& out) {
-  std::map<std::string, double> errors;
-  std::istringstream lines(out);
-  for (std::string line; std::getline(lines, line);) {
-    std::istringstream row(line);
-    std::string name, unit;
-    double max_err = 0;
-    if (row >> name >> unit >> max_err && (unit == "deg" || unit == "%")) errors[name] = max_err;
-  }
-  return errors;
-}
-
 TEST(AvarDevicePlay, HelloHeadStreamsAsCloseAsAMaestroFedEveryTick) {
   const testing::CliResult streamed = testing::run_avar({"play", kHelloShow, "--rig", kStreamingRig, "--sim", "--fast"});
   ASSERT_EQ(streamed.code, kExitOk) << streamed.err << streamed.out;
@@ -39,7 +27,7 @@ TEST(AvarDevicePlay, HelloHeadStreamsAsCloseAsAMaestroFedEveryTick) {
   const testing::CliResult direct =
       testing::run_avar({"play", kHelloShow, "--rig", AVAR_SOURCE_DIR "/examples/rigs/hello-head.yaml", "--sim", "--fast"});
   ASSERT_EQ(direct.code, kExitOk) << direct.err;
-  const auto s = max_errors(streamed.out), d = max_errors(direct.out);
+  const auto s = testing::max_errors(streamed.out), d = testing::max_errors(direct.out);
   ASSERT_EQ(s.size(), 8u) << streamed.out;
   ASSERT_EQ(d.size(), 8u) << direct.out;
   // The same servo model behind both: the knots' cubic and the board's own ticks add nothing

@@ -4,11 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "../support/cli_run.hpp"
+#include "../support/play_summary.hpp"
 #include "../support/temp_file.hpp"
 #include "avar/exit_codes.hpp"
 
@@ -24,17 +24,9 @@ TEST(Pca9685Play, HelloHeadPlaysOnASimulatedBoardWithinACountOfEachPulse) {
   EXPECT_NE(r.out.find("PCA9685 link 'head' at 0x40 on simulated I2C bus"), std::string::npos) << r.out;
   // The summary's max err per channel: the commanded pulse rounded to the board's 4.88 us counts
   // (neck_pan: 0.12 deg per us, so at most 0.3 deg).
-  std::istringstream lines(r.out);
-  int channels = 0;
-  for (std::string line; std::getline(lines, line);) {
-    std::istringstream row(line);
-    std::string name, unit;
-    double max_err = 0;
-    if (!(row >> name >> unit >> max_err) || (unit != "deg" && unit != "%")) continue;
-    EXPECT_LE(max_err, 0.5) << line;
-    ++channels;
-  }
-  EXPECT_EQ(channels, 8) << r.out;
+  const auto errors = testing::max_errors(r.out);
+  EXPECT_EQ(errors.size(), 8u) << r.out;
+  for (const auto& [channel, error] : errors) EXPECT_LE(error, 0.5) << channel << "\n" << r.out;
   EXPECT_EQ(r.out.find("bytes sent 0"), std::string::npos) << r.out;
 }
 

@@ -76,7 +76,7 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
             ":8:15: unknown channel 'chin'; expected one of the rig's channels: jaw, pan");
   EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixl")),
             ":8:30: unknown protocol 'dynamixl'; expected one of: maestro, dynamixel, feetech, ssc32, dmx, can, gpio, artnet, "
-            "sacn, pca9685, avar-device");
+            "sacn, pca9685, avar-device, pwm");
   EXPECT_EQ(rig_error(replace(kGoodRig, "{channel: jaw, protocol: maestro", "{channel: jaw, protocol: dynamixel")),
             ":8:30: link 'head' speaks maestro, not dynamixel; expected protocol: maestro");
   EXPECT_EQ(rig_error(replace(kGoodRig, "device_channel: 3", "device_channel: 12")),
@@ -85,10 +85,10 @@ TEST(RigFile, RejectsEachBadEntryWithWhereAndWhat) {
             ":9:67: device_channel 0 of maestro link 'head' is used by two actuators");
   EXPECT_EQ(rig_error(replace(kGoodRig, ", maestro: {model: mini12}", "")),
             ":3:9: expected link 'head' to name its protocol with a settings block, one of: maestro, dynamixel, feetech, "
-            "ssc32, dmx, can, gpio, artnet, sacn, pca9685, avar-device (for example `dynamixel: {}`)");
+            "ssc32, dmx, can, gpio, artnet, sacn, pca9685, avar-device, pwm (for example `dynamixel: {}`)");
   EXPECT_EQ(rig_error(replace(kGoodRig, "maestro: {model: mini12}", "maestro: {model: mini12}, dmx: {}")),
             ":3:66: link 'head' names two protocols; expected exactly one of: maestro, dynamixel, feetech, ssc32, dmx, can, "
-            "gpio, artnet, sacn, pca9685, avar-device");
+            "gpio, artnet, sacn, pca9685, avar-device, pwm");
   EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: -3, rest: 0")),
             ":5:33: expected max of channel 'jaw' to be greater than its min 0, found -3");
   EXPECT_EQ(rig_error(replace(kGoodRig, "max: 30, rest: 0", "max: 30, rest: 40")),

@@ -16,6 +16,7 @@ const ProtocolSchema& gpio_schema();
 const ProtocolSchema& artnet_schema();
 const ProtocolSchema& sacn_schema();
 const ProtocolSchema& pca9685_schema();
+const ProtocolSchema& pwm_schema();
 const ProtocolSchema& avar_device_schema();
 
 /// The address rule every DMX carrier shares (a widget, Art-Net, sACN).

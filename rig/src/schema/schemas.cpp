@@ -8,9 +8,9 @@
 namespace avar::rig {
 
 std::span<const ProtocolSchema* const> schemas() {
-  static const std::array<const ProtocolSchema*, 11> all{
-      &maestro_schema(), &dynamixel_schema(), &feetech_schema(), &ssc32_schema(),   &dmx_schema(),        &can_schema(),
-      &gpio_schema(),    &artnet_schema(),    &sacn_schema(),    &pca9685_schema(), &avar_device_schema()};
+  static const std::array<const ProtocolSchema*, 12> all{
+      &maestro_schema(), &dynamixel_schema(), &feetech_schema(), &ssc32_schema(),   &dmx_schema(),         &can_schema(),
+      &gpio_schema(),    &artnet_schema(),    &sacn_schema(),    &pca9685_schema(), &avar_device_schema(), &pwm_schema()};
   return all;
 }
 

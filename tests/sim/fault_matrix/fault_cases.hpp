@@ -32,7 +32,7 @@ enum class Carrier {
 
 /// Why a cell does not apply (an index into kNotApplicableReasons), or kApplies.
 inline constexpr int kApplies = -1;
-inline constexpr std::array<const char*, 8> kNotApplicableReasons{
+inline constexpr std::array<const char*, 9> kNotApplicableReasons{
     "the driver reads nothing while the show plays (write only): a reply fault cannot reach it",
     "USB control transfers are CRC-checked, retried and delivered whole by the host controller",
     "one-way UDP: the link reads nothing back",
@@ -42,6 +42,8 @@ inline constexpr std::array<const char*, 8> kNotApplicableReasons{
     "a GPIO line is set by a call into this machine's kernel: no wire, no replies",
     "an I2C write is one transaction through the kernel, acknowledged or not: no replies; a board that "
     "stops acknowledging is counted and retried (tests/firmware_iface/pca9685_link_test.cpp)",
+    "a PWM output is set by a write to this machine's kernel: no wire, no replies; a chip that refuses is "
+    "counted and retried (tests/firmware_iface/pwm_link_test.cpp)",
 };
 
 struct ProtocolCase {
@@ -62,6 +64,7 @@ inline constexpr std::array<int, kFaultCount> kPty{kApplies, kApplies, kApplies,
 inline constexpr std::array<int, kFaultCount> kUsb{kApplies, 1, kApplies, kApplies, 1, 1, kApplies, kApplies, kApplies};
 inline constexpr std::array<int, kFaultCount> kNoWire{6, 6, 6, 6, 6, 6, 6, 6, 6};
 inline constexpr std::array<int, kFaultCount> kI2c{7, 7, 7, 7, 7, 7, 7, 7, 7};
+inline constexpr std::array<int, kFaultCount> kPwmChip{8, 8, 8, 8, 8, 8, 8, 8, 8};
 inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies, kApplies, kApplies, kApplies, 2, 2};
 
 #define AVAR_FM_CHANNELS                                                                      \
@@ -70,8 +73,8 @@ inline constexpr std::array<int, kFaultCount> kNetwork{kApplies, 3, 4, kApplies,
   "  a: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n" \
   "  b: {unit: deg, min: -45, max: 45, rest: 0, max_velocity: 200, max_acceleration: 2000}\n"
 
-inline const std::array<ProtocolCase, 15>& protocol_cases() {
-  static const std::array<ProtocolCase, 15> cases{{
+inline const std::array<ProtocolCase, 16>& protocol_cases() {
+  static const std::array<ProtocolCase, 16> cases{{
       {"maestro_serial", Carrier::serial,
        "name: fm-maestro\n" AVAR_FM_CHANNELS
        "links:\n  bus: {port: sim, baud: 115200, watchdog_ms: 200, maestro: {model: mini12}}\n"
@@ -175,6 +178,12 @@ inline const std::array<ProtocolCase, 15>& protocol_cases() {
        "  - {channel: a, link: bus, output: 1, calibration: {min_us: 1000, max_us: 2000}}\n"
        "  - {channel: b, link: bus, output: 0, calibration: {min_us: 1100, max_us: 1900, reverse: true}}\n",
        kWriteOnly},
+      {"pwm", Carrier::none,
+       "name: fm-pwm\n" AVAR_FM_CHANNELS "links:\n  bus: {port: sim, watchdog_ms: 200, pwm: {frequency: 50}}\n"
+       "actuators:\n"
+       "  - {channel: a, link: bus, pin: 9, calibration: {min_us: 1000, max_us: 2000}}\n"
+       "  - {channel: b, link: bus, pin: 10, calibration: {min_us: 1100, max_us: 1900}}\n",
+       kPwmChip},
   }};
   return cases;
 }

@@ -17,6 +17,7 @@
 #include "avar/firmware_iface/byte_transport.hpp"
 #include "avar/firmware_iface/gpio_chip.hpp"
 #include "avar/firmware_iface/i2c_bus.hpp"
+#include "avar/firmware_iface/pwm_chip.hpp"
 #include "avar/firmware_iface/serial_transport.hpp"
 #include "avar/firmware_iface/usb_control_transport.hpp"
 #include "avar/assembly/sim_offer.hpp"
@@ -55,8 +56,8 @@ struct DriverTuning {
   }
 };
 
-/// Where a link's driver talks: one of a port, a byte transport, a USB device, a GPIO chip or an
-/// I2C bus.
+/// Where a link's driver talks: one of a port, a byte transport, a USB device, a GPIO chip, an
+/// I2C bus or a PWM chip.
 struct LinkEndpoint {
   /// A serial device (/dev/ttyACM0, or a simulated device's pseudo-terminal), a SocketCAN
   /// interface (can0), a network destination (HOST[:PORT]), or "" for a device the rig finds
@@ -72,6 +73,8 @@ struct LinkEndpoint {
   std::shared_ptr<firmware_iface::GpioChip> chip = nullptr;
   /// Instead of a port: the I2C bus of a link on a bus (real, or simulated with its board).
   std::shared_ptr<firmware_iface::I2cBus> i2c = nullptr;
+  /// Instead of a port: the PWM chip of a link on a chip's outputs (real, or simulated).
+  std::shared_ptr<firmware_iface::PwmChip> pwm = nullptr;
   DriverTuning tuning = {};
 };
 
@@ -88,13 +91,15 @@ struct Protocol {
   /// settings for a device that cannot be reached as the rig says.
   OpenedLink (*open)(const rig::Rig& rig, std::size_t link, LinkEndpoint at);
   /// A simulated device set up as its owner would have set up the real one, parked at rest.
-  /// nullptr for links on a GPIO chip or an I2C bus, which FigureLinks simulates itself.
+  /// nullptr for links on a GPIO chip, an I2C bus or a PWM chip, which FigureLinks simulates itself.
   SimulatedDevice (*make_simulated)(const rig::Rig& rig, std::size_t link);
   /// The link's port names a GPIO chip: FigureLinks opens it (real or simulated) for `open`.
   bool on_gpio_chip = false;
   /// The link's port names an I2C bus: FigureLinks opens it (real, or simulated with the
   /// link's board on it) for `open`.
   bool on_i2c_bus = false;
+  /// The link's port names a PWM chip: FigureLinks opens it (real, or simulated) for `open`.
+  bool on_pwm_chip = false;
   /// The simulated devices need their own time to come up (a drive's cyclic heartbeat): their
   /// simulator runs on the wall clock until the first tick instead of waiting for the loop.
   bool simulation_runs_during_start = false;

@@ -75,6 +75,12 @@ struct Pca9685Options {
   bool totem_pole = true;         ///< outputs: totem_pole (the boards') or open_drain
 };
 
+/// `pwm: {frequency}`: hobby servos on the outputs of the PWM chip the port names (pwmchip0), or
+/// on a microcontroller's own pins when exported.
+struct PwmOptions {
+  int frequency_hz = 50;  ///< pulses per second: 50 for hobby servos
+};
+
 /// `avar-device: {knot_ms, lead_ms, device_rate, device_knots, device_watchdog_ms}`: a device
 /// running avar's streaming player on the serial port (docs/protocols/avar-device.md).
 /// The device_* settings describe the device: the simulated one is built with them, a real one
@@ -138,8 +144,9 @@ struct SacnOptions {
 };
 
 /// One link's settings, by protocol (monostate only in a LinkSpec not read from a file).
-using LinkOptions = std::variant<std::monostate, MaestroOptions, DynamixelOptions, FeetechOptions, Ssc32Options, DmxOptions,
-                                 CanOptions, GpioOptions, ArtnetOptions, SacnOptions, Pca9685Options, AvarDeviceOptions>;
+using LinkOptions =
+    std::variant<std::monostate, MaestroOptions, DynamixelOptions, FeetechOptions, Ssc32Options, DmxOptions, CanOptions,
+                 GpioOptions, ArtnetOptions, SacnOptions, Pca9685Options, AvarDeviceOptions, PwmOptions>;
 
 /// A GPIO output line's own setting.
 struct GpioOutputOptions {
