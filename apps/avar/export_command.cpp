@@ -158,7 +158,7 @@ int run_export(const ExportOptions& o, std::ostream& out, std::ostream& err) {
     out << "wrote " << o.out_dir << (target->host() ? ": program " : ": library ") << project.library_name << " for "
         << target->name << " (" << target->boards << "), " << project.files.size() << " files\n";
     out << "figure: " << project.figure.channels.size() << " channels at " << project.figure.rate << " Hz on "
-        << project.figure.boards.size() << " PCA9685 board(s); I2C on " << target->i2c_pins << "\n";
+        << device::describe_outputs(project) << "\n";
     for (std::size_t s = 0; s < project.shows.size(); ++s) {
       const device::ShowImage& image = project.shows[s].image;
       out << "show " << s + 1 << ": " << project.shows[s].name << ", " << image.keys << " keys in " << image.bytes.size()

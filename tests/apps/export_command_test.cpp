@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,7 @@ TEST(ExportCommand, ExportsTheBundledHeadForAnUno) {
       {"export", kExportHeadShow, "--rig", kExportHeadRig, "--target", "atmega328p", "--out", dir, "--boot", "hello-head"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("library avar_pca9685_head for atmega328p"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("8 channels at 50 Hz on 1 PCA9685 board(s); I2C on SDA A4, SCL A5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("8 channels at 50 Hz on 1 PCA9685 board(s), I2C on SDA A4, SCL A5"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("flash "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("RAM "), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir + "/library.properties"));
@@ -73,6 +74,58 @@ TEST(ExportCommand, VerifyProvesTheExportUnderTheEmulators) {
     }
     std::filesystem::remove_all(dir);
   }
+}
+
+const std::string kPinRig = AVAR_SOURCE_DIR "/examples/rigs/pin-servo-head.yaml";
+
+// Hobby servos on the board's own pins: every control tick's pulse (the microseconds handed to the
+// Servo library, which it turns into its timer's compare value) equals the host build's under
+// simavr and QEMU, and the library compiles for an Uno with the Servo API.
+TEST(ExportCommand, VerifyProvesServosOnPinsUnderTheEmulators) {
+  for (const std::string target : {"atmega328p", "cortex-m3"}) {
+    const bool avr = target == "atmega328p";
+    if (!installed(avr ? "avr-g++" : "arm-none-eabi-g++") || !installed(avr ? "simavr" : "qemu-system-arm"))
+      GTEST_SKIP() << "the " << target << "'s compiler or emulator is not installed (scripts/install-deps.sh installs them)";
+    const std::string dir = testing::temp_path("avar_pins_" + target);
+    std::filesystem::remove_all(dir);
+    const auto r = run_avar({"export", kExportHeadShow, "--rig", kPinRig, "--target", target, "--out", dir, "--verify"});
+    EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
+    EXPECT_NE(r.out.find("8 channels at 50 Hz on 8 servos on pins 2, 3, 4, 5, 6, 7, 8, 9"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(target + ": 4824 samples, 0 mismatches"), std::string::npos) << r.out << r.err;
+    if (avr) {
+      EXPECT_EQ(not_compiling_for_an_uno(dir, "avar_pin_servo_head"), std::vector<std::string>{});
+      std::ifstream sketch(dir + "/examples/avar_pin_servo_head/avar_pin_servo_head.ino");
+      const std::string text{std::istreambuf_iterator<char>(sketch), std::istreambuf_iterator<char>()};
+      EXPECT_NE(text.find("signal wire on its pin (2, 3, 4, 5, 6, 7, 8, 9)"), std::string::npos) << text;
+    }
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(ExportCommand, PinsATargetCannotDriveAreRefusedWithTheReason) {
+  std::ifstream file(kPinRig);
+  const std::string rig{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  const auto refused = [&](const std::string& from, const std::string& to, const std::string& target) {
+    std::string text = rig;
+    text.replace(text.find(from), from.size(), to);
+    const std::string path = testing::write_temp_file("pins.yaml", text);
+    const std::string dir = testing::temp_path("out");
+    return run_avar({"export", kExportHeadShow, "--rig", path, "--target", target, "--out", dir});
+  };
+  const auto serial = refused("pin: 2,", "pin: 1,", "atmega328p");
+  EXPECT_EQ(serial.code, kExitBadInput);
+  EXPECT_NE(serial.err.find("pin 1 carries Serial (the commands) on the atmega328p"), std::string::npos) << serial.err;
+  const auto absent = refused("pin: 2,", "pin: 20,", "atmega328p");
+  EXPECT_NE(absent.err.find("pin 20 is not a pin of the atmega328p (pins 0 to 19)"), std::string::npos) << absent.err;
+  EXPECT_EQ(refused("pin: 2,", "pin: 20,", "atmega2560").code, kExitOk) << "a Mega has pin 20";
+  const auto many = refused("pin: 2,", "pin: 2,", "esp32c3");
+  EXPECT_NE(many.err.find("8 servos on pins; the esp32c3's Servo library drives at most 6"), std::string::npos) << many.err;
+  const auto host = refused("pin: 2,", "pin: 2,", "host");
+  EXPECT_NE(host.err.find("a Linux machine drives pin servos with avar play and its pwm link"), std::string::npos) << host.err;
+  const auto rate = refused("pwm: {frequency: 50}", "pwm: {frequency: 100}", "atmega328p");
+  EXPECT_NE(rate.err.find("the boards' Servo libraries send 50"), std::string::npos) << rate.err;
+  const auto wide = refused("min_us: 1200, max_us: 1650", "min_us: 500, max_us: 1650", "atmega328p");
+  EXPECT_NE(wide.err.find("a pin servo's pulses lie within 544 to 2400 us"), std::string::npos) << wide.err;
 }
 
 const std::string kStreamRig = AVAR_SOURCE_DIR "/examples/rigs/streaming-head.yaml";

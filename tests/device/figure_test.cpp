@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <map>
 #include <vector>
 
 #include "avar/config/rig_file.hpp"
@@ -27,6 +28,8 @@ struct Bus {
   bool answering = true;
   int writes = 0;
   int waited_us = 0;
+  std::map<int, int> pin_us;  ///< each pin's present pulse (0: none)
+  int pin_writes = 0;
   Bus() { pca9685::power_on(board); }
 };
 
@@ -37,7 +40,13 @@ FigureIo io_for(Bus& bus) {
             ++b.writes;
             return pca9685::apply(b.board, bytes, length);
           },
-          [](void* context, std::uint16_t us) { static_cast<Bus*>(context)->waited_us += us; }, &bus};
+          [](void* context, std::uint16_t us) { static_cast<Bus*>(context)->waited_us += us; },
+          [](void* context, std::uint8_t pin, std::uint16_t us) {
+            auto& b = *static_cast<Bus*>(context);
+            b.pin_us[pin] = us;
+            ++b.pin_writes;
+          },
+          &bus};
 }
 
 struct LoadedFigure {
@@ -61,9 +70,9 @@ struct LoadedFigure {
   }
 };
 
-LoadedFigure load() {
+LoadedFigure load(const std::string& rig_file = kFigureRig) {
   LoadedFigure f;
-  const rig::Rig rig = config::load_rig_file(kFigureRig);
+  const rig::Rig rig = config::load_rig_file(rig_file);
   f.spec = figure_from_rig(rig);
   f.record = encode_figure_record(f.spec);
   const playback::Show show = config::load_show_file(kFigureShow);
@@ -178,6 +187,54 @@ TEST(DeviceFigure, RefusesDamagedRecordsWhole) {
   f.record = good;
   f.image[0] = 'x';
   EXPECT_EQ(f.open(), kFigureBadShow);
+}
+
+const std::string kPinRig = std::string(AVAR_SOURCE_DIR) + "/examples/rigs/pin-servo-head.yaml";
+
+TEST(DeviceFigure, ServosOnPinsGetTheirPulseInMicrosecondsWhenItChanges) {
+  LoadedFigure f = load(kPinRig);
+  ASSERT_EQ(f.spec.boards.size(), 0u);
+  EXPECT_EQ(f.spec.pin_rate, 50u);
+  EXPECT_TRUE(f.spec.channels[0].on_pin);
+  EXPECT_EQ(f.spec.channels[0].output, 2);
+  EXPECT_EQ(f.record.size(), kFigureHeaderSize + 8 * kFigureChannelSize);
+  EXPECT_EQ(f.record[kFigureHeaderSize + kLimitsSize], kPinOutput);
+  ASSERT_EQ(f.open(), kFigureOk);
+  Bus bus;
+  const FigureIo io = io_for(bus);
+  ASSERT_EQ(figure_begin(f.figure, io), kFigureOk);
+  EXPECT_EQ(bus.writes, 0) << "no I2C without boards";
+  EXPECT_EQ(bus.pin_us.at(2), 1200) << "jaw at rest: 1200 us";
+  EXPECT_EQ(bus.pin_us.at(9), 1815 - 160) << "lid_right at 20 %: reversed, trimmed";
+  ASSERT_TRUE(figure_command(f.figure, '1'));
+  int changes = 0;
+  for (int tick = 0; tick < 13 * 50; ++tick) {
+    const int before = bus.pin_writes;
+    figure_tick(f.figure, io);
+    changes += bus.pin_writes - before;
+    for (std::size_t c = 0; c < 8; ++c) {
+      const std::int32_t ns = figure_pulse_ns(f.outputs[c], f.channels[c].output);
+      ASSERT_EQ(bus.pin_us.at(f.outputs[c].output), (ns + 500) / 1000) << "channel " << c << " tick " << tick;
+    }
+  }
+  EXPECT_GT(changes, 0);
+  EXPECT_LT(changes, 13 * 50 * 8) << "only changed pulses are handed on";
+  figure_release(f.figure, io);
+  for (const auto& [pin, us] : bus.pin_us) EXPECT_EQ(us, 0) << "pin " << pin << " released";
+}
+
+TEST(DeviceFigure, RefusesPinRecordsOutsideTheServoLibrariesRange) {
+  LoadedFigure f = load(kPinRig);
+  const std::vector<std::uint8_t> good = f.record;
+  const std::size_t low = kFigureHeaderSize + kLimitsSize + 4;  // channel 0's pulse at output 0 (ns)
+  const std::uint32_t too_short = 543000;
+  for (int i = 0; i < 4; ++i) f.record[low + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(too_short >> (8 * i));
+  EXPECT_EQ(f.open(), kFigureBadRecord) << "543 us on a pin";
+  f.record = good;
+  f.record[10] = 0;  // no pin rate
+  EXPECT_EQ(f.open(), kFigureBadRecord);
+  f.record = good;
+  EXPECT_EQ(f.open(), kFigureOk);
 }
 
 TEST(DeviceFigure, PulsesFollowTheCalibrationLine) {

@@ -32,7 +32,7 @@ FigureIo io_for(Bus& bus) {
             auto& b = *static_cast<Bus*>(context);
             return b.answering && address == 0x40 && pca9685::apply(b.board, bytes, length);
           },
-          [](void*, std::uint16_t) {}, &bus};
+          [](void*, std::uint16_t) {}, nullptr, &bus};
 }
 
 struct Board {

@@ -1,13 +1,16 @@
-// The Arduino side of an exported figure: Wire for the boards, micros() for the control ticks,
-// Serial and a pin for the triggers. Everything else is the device engine's (src/avar/...).
+// The Arduino side of an exported figure: Wire for the boards, Servo for servos on pins, micros()
+// for the control ticks, Serial and a pin for the triggers. Everything else is the device engine's
+// (src/avar/...).
 #include "avar_figure.h"
 
 #include <Wire.h>
 
-#include "avar_wire_io.h"
-
 #include "avar/device/figure.hpp"
 #include "avar_shows.h"
+#include "avar_wire_io.h"
+#if AVAR_PIN_COUNT > 0
+#include "avar_pin_io.h"
+#endif
 
 namespace avar_figure {
 namespace {
@@ -24,7 +27,11 @@ const uint32_t kDebounceMs = 20;
 bool button_down = false;
 uint32_t button_since_ms = 0;
 
+#if AVAR_PIN_COUNT > 0
+const FigureIo io = {avar_wire_io::i2c_write, avar_wire_io::wait_us, avar_pin_io::pulse, nullptr};
+#else
 const FigureIo& io = avar_wire_io::io;
+#endif
 
 void say(const __FlashStringHelper* text) {
   Serial.print(F("avar: "));
@@ -51,7 +58,9 @@ void poll_button() {
 
 bool begin() {
   Serial.begin(AVAR_SERIAL_BAUD);
+#if AVAR_BOARD_COUNT > 0
   Wire.begin();
+#endif
 #if AVAR_BUTTON_PIN >= 0
   pinMode(AVAR_BUTTON_PIN, INPUT_PULLUP);
 #endif

@@ -1,8 +1,9 @@
 #pragma once
 // avar_figure: the figure and shows exported by `avar export`, played on this board by avar's
 // device engine (the same integer source the host tests bit for bit under emulators). The
-// servos sit on PCA9685 boards on I2C; the shows, the channels' limits and the pulses are data in
-// flash (avar_shows.h, avar_shows.cpp: generated, do not edit).
+// servos sit on PCA9685 boards on I2C or on the board's own pins (the Servo library); the shows,
+// the channels' limits and the pulses are data in flash (avar_shows.h, avar_shows.cpp: generated,
+// do not edit).
 //
 // Safety, as on the host: every output passes the channel's range, speed and acceleration limits
 // on the board; at power-up every servo glides from rest; stop (and a show's end) eases to rest;

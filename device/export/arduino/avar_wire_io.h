@@ -17,6 +17,6 @@ inline bool i2c_write(void*, uint8_t address, const uint8_t* bytes, uint8_t leng
 
 inline void wait_us(void*, uint16_t us) { delayMicroseconds(us); }
 
-const avar::device::FigureIo io = {i2c_write, wait_us, nullptr};
+const avar::device::FigureIo io = {i2c_write, wait_us, nullptr, nullptr};
 
 }  // namespace avar_wire_io

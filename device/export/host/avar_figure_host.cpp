@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const FigureIo io = trace ? FigureIo{trace_write, trace_wait, nullptr} : FigureIo{bus_write, sleep_us, &fd};
+  const FigureIo io = trace ? FigureIo{trace_write, trace_wait, nullptr, nullptr} : FigureIo{bus_write, sleep_us, nullptr, &fd};
   if (storage.open(avar_shows::kFigure, sizeof avar_shows::kFigure, avar_shows::kShows, AVAR_SHOW_COUNT) != kFigureOk) {
     std::fprintf(stderr, "the exported figure or a show does not check: export again with this avar\n");
     return 2;

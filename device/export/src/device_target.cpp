@@ -15,7 +15,7 @@ constexpr std::size_t kKiB = 1024;
 // parser's buffer and an answer's room depend on the channels: stream_export.cpp adds them);
 // sizeof(StreamChannel) + sizeof(FigureOutput).
 constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::string_view i2c_pins, std::size_t flash,
-                           std::size_t ram, std::size_t engine) {
+                           std::size_t ram, std::size_t engine, int pin_high, std::size_t pin_servos, int sda, int scl) {
   DeviceTarget t;
   t.name = name;
   t.boards = boards;
@@ -42,6 +42,14 @@ constexpr DeviceTarget avr(std::string_view name, std::string_view boards, std::
   t.stream_flash = 15104;
   t.stream_ram = 54;
   t.stream_channel_ram = 42;
+  // The AVR core's Servo library: Timer1 (and 3, 4, 5 on a Mega), 12 servos a timer, 3 bytes each.
+  t.pin_high = pin_high;
+  t.pin_servos = pin_servos;
+  t.serial_pins = {0, 1};
+  t.i2c_pin_numbers = {sda, scl};
+  t.servo_flash = 1792;  // and the figure's pin outputs (AVAR_DEVICE_PINS): 390 bytes measured
+  t.servo_ram = 3 * pin_servos + 8;
+  t.servo_each_ram = 4;
   return t;
 }
 
@@ -74,6 +82,9 @@ constexpr DeviceTarget arm(std::string_view name, std::string_view boards, std::
   t.stream_flash = m0 ? 7680 : 6400;
   t.stream_ram = 84;
   t.stream_channel_ram = 64;
+  t.servo_flash = 2560;
+  t.servo_ram = 128;
+  t.servo_each_ram = 16;
   return t;
 }
 
@@ -87,14 +98,32 @@ DeviceTarget linux_host() {
 }
 
 const std::array<DeviceTarget, 7> kTargets = {
-    avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 20480),
-    avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 20608),
-    arm("cortex-m0plus", "Raspberry Pi Pico (RP2040; the arduino-pico core)", "rp2040", "raspberrypi", "SDA GP4, SCL GP5",
-        2048 * kKiB - 64 * kKiB, 264 * kKiB, 96 * kKiB, 16 * kKiB, true),
-    arm("cortex-m3", "STM32F103C8 (Blue Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6", 64 * kKiB, 20 * kKiB,
-        24 * kKiB, 3 * kKiB, false),
-    arm("cortex-m4", "STM32F411CE (Black Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6", 512 * kKiB,
-        128 * kKiB, 32 * kKiB, 4 * kKiB, false),
+    avr("atmega328p", "Arduino Uno, Nano, Pro Mini (16 MHz)", "SDA A4, SCL A5", 32 * kKiB - 512, 2048, 20480, 19, 12, 18, 19),
+    avr("atmega2560", "Arduino Mega 2560", "SDA 20, SCL 21", 256 * kKiB - 8 * kKiB, 8192, 20608, 69, 48, 20, 21),
+    [] {
+      // arduino-pico's Servo runs each servo on a PIO state machine: 8 of them; Serial is USB.
+      DeviceTarget t = arm("cortex-m0plus", "Raspberry Pi Pico (RP2040; the arduino-pico core)", "rp2040", "raspberrypi",
+                           "SDA GP4, SCL GP5", 2048 * kKiB - 64 * kKiB, 264 * kKiB, 96 * kKiB, 16 * kKiB, true);
+      t.pin_high = 28;
+      t.pin_servos = 8;
+      t.i2c_pin_numbers = {4, 5};
+      return t;
+    }(),
+    [] {
+      // STM32duino's Servo: one timer, 12 servos; pins by the core's numbers (the variant's PA0...).
+      DeviceTarget t = arm("cortex-m3", "STM32F103C8 (Blue Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6",
+                           64 * kKiB, 20 * kKiB, 24 * kKiB, 3 * kKiB, false);
+      t.pin_high = 47;
+      t.pin_servos = 12;
+      return t;
+    }(),
+    [] {
+      DeviceTarget t = arm("cortex-m4", "STM32F411CE (Black Pill; the STM32duino core)", "stm32", "ststm32", "SDA PB7, SCL PB6",
+                           512 * kKiB, 128 * kKiB, 32 * kKiB, 4 * kKiB, false);
+      t.pin_high = 47;
+      t.pin_servos = 12;
+      return t;
+    }(),
     [] {
       // RISC-V: no compiler here to measure with; the ARM figures doubled, and the ESP32 core's
       // own size (its Wi-Fi libraries are not linked by this sketch).
@@ -106,6 +135,12 @@ const std::array<DeviceTarget, 7> kTargets = {
       t.extrapolation_flash *= 2;
       t.fast_flash *= 2;
       t.stream_flash *= 2;
+      // ESP32Servo on the C3's 6 LEDC channels; UART0 on 20 and 21.
+      t.servo_flash *= 2;
+      t.pin_high = 21;
+      t.pin_servos = 6;
+      t.serial_pins = {20, 21};
+      t.i2c_pin_numbers = {8, 9};
       return t;
     }(),
     linux_host(),

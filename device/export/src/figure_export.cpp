@@ -54,6 +54,7 @@ FigureSpec figure_of(const rig::Rig& rig, bool streaming) {
   FigureSpec figure;
   figure.rig = rig.name;
   const char* protocol = streaming ? "avar-device" : "pca9685";
+  const rig::LinkSpec* pin_link = nullptr;  // the pwm link: the device's own pins
   if (streaming) {
     const rig::LinkSpec* link = nullptr;
     for (const rig::LinkSpec& l : rig.links)
@@ -74,11 +75,17 @@ FigureSpec figure_of(const rig::Rig& rig, bool streaming) {
     const rig::ActuatorSpec& act = rig.actuators[a];
     const rig::LinkSpec& link = rig.link(act.link);
     const rig::ChannelSpec& ch = rig.channel(act.channel);
-    if (link.protocol != protocol)
+    const bool on_pin = !streaming && link.protocol == "pwm";
+    if (link.protocol != protocol && !on_pin)
       throw InputError(act.where, "channel '" + ch.name + "' is on link '" + link.name + "' (" + link.protocol + "); " +
                                       (streaming ? "a streaming board drives the channels of its avar-device link"
-                                                 : "a device figure drives hobby servos on PCA9685 boards: give the "
-                                                   "channel a pca9685 link"));
+                                                 : "a device figure drives hobby servos on PCA9685 boards or on its own "
+                                                   "pins: give the channel a pca9685 or a pwm link"));
+    if (on_pin && pin_link && pin_link != &link)
+      throw InputError(act.where, "channel '" + ch.name + "' is on pwm link '" + link.name + "', but link '" + pin_link->name +
+                                      "' has the device's pins already; a device has one set of pins: put every pin servo "
+                                      "on one pwm link");
+    if (on_pin) pin_link = &link;
     if (ch.digital())
       throw InputError(ch.where, "channel '" + ch.name + "' is digital; a device figure drives servo pulses (analog channels)");
     if (actuator_of[act.channel.value] >= 0)
@@ -100,15 +107,23 @@ FigureSpec figure_of(const rig::Rig& rig, bool streaming) {
     } catch (const std::invalid_argument& e) {
       throw InputError(ch.where, "channel '" + ch.name + "': " + e.what());
     }
-    spec.board =
-        streaming ? streaming_board_for(figure, rig.link(act.link), act.device_channel) : board_for(figure, rig.link(act.link));
+    const rig::LinkSpec& link = rig.link(act.link);
+    spec.on_pin = &link == pin_link;
+    if (spec.on_pin) {
+      figure.pin_rate = static_cast<std::uint32_t>(link.options_as<rig::PwmOptions>().frequency_hz);
+    } else {
+      spec.board = streaming ? streaming_board_for(figure, link, act.device_channel) : board_for(figure, link);
+    }
     spec.output = streaming ? act.device_channel % 16 : act.device_channel;
     spec.at_low_ns = pulse_ns(act.calibration.to_device(ch.min));
     spec.at_high_ns = pulse_ns(act.calibration.to_device(ch.max));
+    const std::int32_t lowest = spec.on_pin ? kMinPinPulseNs : kMinPulseNs, highest = spec.on_pin ? kMaxPinPulseNs : kMaxPulseNs;
     for (const std::int32_t ns : {spec.at_low_ns, spec.at_high_ns})
-      if (ns < kMinPulseNs || ns > kMaxPulseNs)
-        throw InputError(act.where, "channel '" + ch.name + "' asks a pulse of " + format_number(ns / 1000.0) +
-                                        " us; a device figure's pulses lie within 100 to 5000 us");
+      if (ns < lowest || ns > highest)
+        throw InputError(act.where, "channel '" + ch.name + "' asks a pulse of " + format_number(ns / 1000.0) + " us; " +
+                                        (spec.on_pin ? "a pin servo's pulses lie within 544 to 2400 us (what the boards' "
+                                                       "Servo libraries put out)"
+                                                     : "a device figure's pulses lie within 100 to 5000 us"));
     figure.channels.push_back(spec);
   }
   if (figure.channels.empty())
@@ -137,7 +152,7 @@ std::vector<std::uint8_t> encode_figure_record(const FigureSpec& figure) {
                                    static_cast<std::uint8_t>(figure.boards.size()),
                                    0};
   put_fixed(out, figure.rate, 2);
-  put_fixed(out, 0, 2);
+  put_fixed(out, figure.pin_rate, 2);
   for (const FigureBoardSpec& b : figure.boards) {
     out.push_back(static_cast<std::uint8_t>(b.address));
     out.push_back(b.prescale);
@@ -149,7 +164,7 @@ std::vector<std::uint8_t> encode_figure_record(const FigureSpec& figure) {
     std::uint8_t limits[kLimitsSize];
     write_limits(c.limits, limits);
     out.insert(out.end(), limits, limits + kLimitsSize);
-    out.push_back(static_cast<std::uint8_t>(c.board));
+    out.push_back(c.on_pin ? kPinOutput : static_cast<std::uint8_t>(c.board));
     out.push_back(static_cast<std::uint8_t>(c.output));
     put_fixed(out, 0, 2);
     put_fixed(out, static_cast<std::uint32_t>(c.at_low_ns), 4);

@@ -39,6 +39,20 @@ playback::Show for_figure(const playback::Show& show, const FigureSpec& figure) 
   return out;
 }
 
+std::vector<int> pins_of(const FigureSpec& figure) {
+  std::vector<int> pins;
+  for (const FigureChannelSpec& c : figure.channels)
+    if (c.on_pin) pins.push_back(c.output);
+  return pins;
+}
+
+/// "2, 3, 4": the pins in channel order (AVAR_PINS; "0" when there are none, for a valid array).
+std::string pin_list(const FigureSpec& figure) {
+  std::string text;
+  for (const int pin : pins_of(figure)) text += (text.empty() ? "" : ", ") + std::to_string(pin);
+  return text.empty() ? "0" : text;
+}
+
 std::string show_list(const Project& p) {
   std::string text;
   for (std::size_t s = 0; s < p.shows.size(); ++s)
@@ -54,6 +68,9 @@ std::string shows_header(const Project& p, const ExportTriggers& t) {
   h += "#include <stdint.h>\n\n#include \"avar/device/player.hpp\"\n\n";
   h += "#define AVAR_CHANNEL_COUNT " + std::to_string(p.figure.channels.size()) + "\n";
   h += "#define AVAR_BOARD_COUNT " + std::to_string(p.figure.boards.size()) + "\n";
+  h += "#define AVAR_PIN_COUNT " + std::to_string(pins_of(p.figure).size()) + "\n";
+  h += "#define AVAR_PINS " + pin_list(p.figure) + "\n";
+
   h += "#define AVAR_SHOW_COUNT " + std::to_string(p.shows.size()) + "\n";
   h += "#define AVAR_RATE_HZ " + std::to_string(p.figure.rate) + "\n";
   h += "#define AVAR_BOOT_SHOW " + std::to_string(t.boot_show) + "\n";
@@ -72,7 +89,9 @@ std::string shows_source(const Project& p) {
   s += "#include \"avar_shows.h\"\n\nnamespace avar_shows {\n\n";
   s += "// The figure: " + std::to_string(p.figure.channels.size()) + " channels at " + std::to_string(p.figure.rate) + " Hz\n";
   for (const FigureChannelSpec& c : p.figure.channels)
-    s += "//   " + c.name + ": board " + hex_byte(p.figure.boards[c.board].address) + " output " + std::to_string(c.output) +
+    s += "//   " + c.name + ": " +
+         (c.on_pin ? "pin " + std::to_string(c.output)
+                   : "board " + hex_byte(p.figure.boards[c.board].address) + " output " + std::to_string(c.output)) +
          ", " + format_number(c.at_low_ns / 1000.0) + " to " + format_number(c.at_high_ns / 1000.0) + " us\n";
   s += "extern const uint8_t kFigure[" + std::to_string(p.figure_record.size()) + "] AVAR_DEVICE_FLASH = {" +
        byte_array(p.figure_record) + "};\n\n";
@@ -98,10 +117,15 @@ std::string boards_text(const Project& p) {
 
 std::string sketch(const Project& p, const ExportTriggers& t) {
   std::string s = "// " + p.figure.rig + " on " + std::string(p.target->boards) + ", exported by avar export.\n";
-  s += "// Wiring: " + boards_text(p) + " on I2C (" + std::string(p.target->i2c_pins) +
-       "); the servos' own 5-6 V supply on the board's\n// power terminal, grounds joined.\n";
+  if (!p.figure.boards.empty())
+    s += "// Wiring: " + boards_text(p) + " on I2C (" + std::string(p.target->i2c_pins) +
+         "); the servos' own 5-6 V supply on the board's\n// power terminal, grounds joined.\n";
+  if (p.figure.pin_rate != 0)
+    s += "// Wiring: each pin servo's signal wire on its pin (" + pin_list(p.figure) +
+         "); the servos' own 5-6 V supply,\n// its ground joined to the board's.\n";
   s += "// Outputs:\n";
-  for (const FigureChannelSpec& c : p.figure.channels) s += "//   " + std::to_string(c.output) + "  " + c.name + "\n";
+  for (const FigureChannelSpec& c : p.figure.channels)
+    s += "//   " + std::string(c.on_pin ? "pin " : "") + std::to_string(c.output) + "  " + c.name + "\n";
   s += "// Shows:\n" + show_list(p);
   s += "// Serial monitor at " + std::to_string(t.serial_baud) + " baud: send 1..9 to play a show, s to stop.\n";
   if (t.boot_show >= 0) s += "// At power-up it plays " + p.shows[static_cast<std::size_t>(t.boot_show)].name + ".\n";
@@ -158,6 +182,37 @@ void add_files(Project& p, const ExportOptions& o) {
   p.files.push_back({"examples/" + p.library_name + "/" + p.library_name + ".ino", sketch(p, o.triggers)});
 }
 
+/// Every pin servo's pin, refused with the reason where the target cannot drive it.
+void check_pins(const Project& p, const ExportTriggers& triggers, const rig::Rig& rig) {
+  const DeviceTarget& t = *p.target;
+  const std::vector<int> pins = pins_of(p.figure);
+  if (pins.empty()) return;
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(SourceLocation{rig.file, 1, 1}, "rig '" + rig.name + "': " + why);
+  };
+  if (t.pin_high < 0)
+    refuse("the " + std::string(t.name) +
+           " target drives PCA9685 boards, not servos on pins; a Linux machine drives pin servos with avar play and its pwm "
+           "link");
+  if (p.figure.pin_rate != 50)
+    refuse("its pwm link sends " + std::to_string(p.figure.pin_rate) +
+           " pulses a second; the boards' Servo libraries send 50: give the link frequency: 50");
+  if (pins.size() > t.pin_servos)
+    refuse(std::to_string(pins.size()) + " servos on pins; the " + std::string(t.name) + "'s Servo library drives at most " +
+           std::to_string(t.pin_servos) + " (put the rest on a PCA9685 board)");
+  for (const int pin : pins) {
+    const std::string which = "pin " + std::to_string(pin);
+    if (pin > t.pin_high)
+      refuse(which + " is not a pin of the " + std::string(t.name) + " (pins 0 to " + std::to_string(t.pin_high) + ")");
+    if (pin == t.serial_pins[0] || pin == t.serial_pins[1])
+      refuse(which + " carries Serial (the commands) on the " + std::string(t.name) + "; choose another pin");
+    if (!p.figure.boards.empty() && (pin == t.i2c_pin_numbers[0] || pin == t.i2c_pin_numbers[1]))
+      refuse(which + " carries I2C to the PCA9685 boards on the " + std::string(t.name) + " (" + std::string(t.i2c_pins) +
+             "); choose another pin");
+    if (pin == triggers.button_pin) refuse(which + " is the --button pin too; choose another");
+  }
+}
+
 void check_trigger(int show, std::size_t count, const char* what) {
   if (show < -1 || show >= static_cast<int>(count))
     throw std::invalid_argument(std::string(what) + " names show " + std::to_string(show + 1) + "; the export has " +
@@ -178,6 +233,12 @@ ExportBudget budget_for(const Project& p) {
   b.ram = {{"the Arduino core's buffers and the stack (estimate)", t.core_ram},
            {"the player", t.figure_ram + t.board_ram * p.figure.boards.size() + t.show_ram * p.shows.size()},
            {std::to_string(channels) + " channels", channels * t.channel_ram_for(p.features)}};
+  const std::size_t pins = pins_of(p.figure).size();
+  if (pins > 0) {
+    b.flash.push_back({"the Servo library and the figure's pin outputs (estimate)", t.servo_flash});
+    b.ram.push_back(
+        {"the Servo library and " + std::to_string(pins) + " servos (estimate)", t.servo_ram + pins * t.servo_each_ram});
+  }
   for (const BudgetItem& i : b.flash) b.flash_used += i.bytes;
   for (const BudgetItem& i : b.ram) b.ram_used += i.bytes;
   b.flash_size = t.flash;
@@ -216,6 +277,15 @@ std::string describe_budget(const ExportBudget& b) {
   return text;
 }
 
+std::string describe_outputs(const Project& p) {
+  std::string text;
+  if (!p.figure.boards.empty())
+    text = std::to_string(p.figure.boards.size()) + " PCA9685 board(s), I2C on " + std::string(p.target->i2c_pins);
+  if (p.figure.pin_rate != 0)
+    text += (text.empty() ? "" : "; ") + std::to_string(pins_of(p.figure).size()) + " servos on pins " + pin_list(p.figure);
+  return text;
+}
+
 Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& shows, const DeviceTarget& target,
                        const ExportOptions& options) {
   if (shows.empty()) throw std::invalid_argument("no show to export; give at least one");
@@ -231,6 +301,7 @@ Project export_project(const rig::Rig& rig, const std::vector<playback::Show>& s
   p.figure = figure_from_rig(rig);
   p.library_name = options.library_name.empty() ? "avar_" + identifier(rig.name) : options.library_name;
   p.figure_record = encode_figure_record(p.figure);
+  check_pins(p, options.triggers, rig);
   const std::vector<ImageChannel> channels = image_channels(p.figure);
   for (const playback::Show& show : shows) {
     ExportedShow exported{show.name, encode_show_image(for_figure(show, p.figure), channels)};

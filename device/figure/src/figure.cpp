@@ -18,8 +18,16 @@ bool send(const FigureIo& io, uint8_t address, const pca9685::Write& w) {
 }  // namespace
 
 bool figure_output_write(FigureOutput& out, const FigureBoard* boards, const FigureIo& io, uint16_t value) {
-  const FigureBoard& board = boards[out.board];
   const int32_t ns = figure_pulse_ns(out, value);
+#if AVAR_DEVICE_PINS
+  if (out.board == kPinOutput) {
+    const uint16_t us = static_cast<uint16_t>((ns + 500) / 1000);
+    if (us != out.counts) io.pin_pulse(io.context, out.output, us);
+    out.counts = us;
+    return true;
+  }
+#endif
+  const FigureBoard& board = boards[out.board];
   const uint16_t counts = pca9685::counts_for_pulse_ns(static_cast<uint32_t>(ns), board.clock_hz, board.prescale);
   if (counts == out.counts) return true;
   if (!send(io, board.address, pca9685::channel_pulse(out.output, counts))) return false;
@@ -29,6 +37,13 @@ bool figure_output_write(FigureOutput& out, const FigureBoard* boards, const Fig
 
 bool figure_output_off(FigureOutput& out, const FigureBoard* boards, const FigureIo& io) {
   if (out.counts == kOffCounts) return true;
+#if AVAR_DEVICE_PINS
+  if (out.board == kPinOutput) {
+    io.pin_pulse(io.context, out.output, 0);
+    out.counts = kOffCounts;
+    return true;
+  }
+#endif
   if (!send(io, boards[out.board].address, pca9685::channel_off(out.output))) return false;
   out.counts = kOffCounts;
   return true;
@@ -47,7 +62,12 @@ bool figure_boards_start(const FigureBoard* boards, uint8_t board_count, const F
 void figure_boards_off(const FigureBoard* boards, uint8_t board_count, FigureOutput* outputs, uint8_t channel_count,
                        const FigureIo& io) {
   for (uint8_t b = 0; b < board_count; ++b) send(io, boards[b].address, pca9685::all_off());
-  for (uint8_t c = 0; c < channel_count; ++c) outputs[c].counts = kNoCounts;
+  for (uint8_t c = 0; c < channel_count; ++c) {
+#if AVAR_DEVICE_PINS
+    if (outputs[c].board == kPinOutput && outputs[c].counts != kOffCounts) io.pin_pulse(io.context, outputs[c].output, 0);
+#endif
+    outputs[c].counts = kNoCounts;
+  }
 }
 
 int32_t figure_pulse_ns(const FigureOutput& o, uint16_t value) {
@@ -65,9 +85,9 @@ FigureStatus figure_read_record(const uint8_t* record, uint32_t size, FigureOutp
   const uint8_t channel_count = r.u8(), board_count = r.u8();
   r.u8();
   const uint16_t rate = static_cast<uint16_t>(r.fixed(2));
-  r.fixed(2);
-  if (channel_count == 0 || channel_count > channel_capacity || channel_count > kMaxChannels || board_count == 0 ||
-      board_count > board_capacity || board_count > kMaxBoards || rate == 0)
+  const uint16_t pin_rate = static_cast<uint16_t>(r.fixed(2));
+  if (channel_count == 0 || channel_count > channel_capacity || channel_count > kMaxChannels || board_count > board_capacity ||
+      board_count > kMaxBoards || rate == 0)
     return kFigureBadRecord;
   if (size != kFigureHeaderSize + kFigureBoardSize * board_count + kFigureChannelSize * static_cast<uint32_t>(channel_count))
     return kFigureBadRecord;
@@ -89,14 +109,17 @@ FigureStatus figure_read_record(const uint8_t* record, uint32_t size, FigureOutp
     o.at_low_ns = static_cast<int32_t>(r.fixed(4));
     o.at_high_ns = static_cast<int32_t>(r.fixed(4));
     o.counts = kNoCounts;
-    const bool pulses_ok =
-        o.at_low_ns >= kMinPulseNs && o.at_low_ns <= kMaxPulseNs && o.at_high_ns >= kMinPulseNs && o.at_high_ns <= kMaxPulseNs;
-    if (o.board >= board_count || o.output > 15 || !pulses_ok) return kFigureBadRecord;
+    const bool pin = o.board == kPinOutput;
+    const int32_t low = pin ? kMinPinPulseNs : kMinPulseNs, high = pin ? kMaxPinPulseNs : kMaxPulseNs;
+    const bool pulses_ok = o.at_low_ns >= low && o.at_low_ns <= high && o.at_high_ns >= low && o.at_high_ns <= high;
+    if (pin ? (pin_rate == 0 || !AVAR_DEVICE_PINS) : (o.board >= board_count || o.output > 15)) return kFigureBadRecord;
+    if (!pulses_ok) return kFigureBadRecord;
   }
   if (r.overrun) return kFigureBadRecord;
   shape.channel_count = channel_count;
   shape.board_count = board_count;
   shape.rate = rate;
+  shape.pin_rate = pin_rate;
   return kFigureOk;
 }
 

@@ -19,6 +19,12 @@
 #define AVAR_DEVICE_EXTRAPOLATION 1
 #endif
 
+// Servos on the device's own pins (a figure record's pin outputs, handed to FigureIo::pin_pulse):
+// about 400 bytes of AVR flash. A figure without them refuses a record that has any.
+#ifndef AVAR_DEVICE_PINS
+#define AVAR_DEVICE_PINS 1
+#endif
+
 // The 32-bit fast path of steps, lines, cubics and Bezier segments (the same bits as the 64-bit
 // path, two to four times faster on an 8-bit core, about 2 KB of its flash). An export leaves it
 // out only when the project would not fit its target with it.

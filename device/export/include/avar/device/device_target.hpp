@@ -5,6 +5,7 @@
 // 12 -Os, sections collected) and are checked against a fresh build by a test where the compiler is
 // present; the Arduino core's share (Serial, Wire, the loop) is an estimate with margin.
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string_view>
@@ -38,6 +39,13 @@ struct DeviceTarget {
   /// outputs; the player with its frame parser and an answer's room; RAM per channel
   /// (StreamChannel and FigureOutput). Knot frames take 4 + 4 bytes per channel each.
   std::size_t stream_flash = 0, stream_ram = 0, stream_channel_ram = 0;
+  /// Servos on the board's own pins (the core's Servo library): the highest pin number (-1: no
+  /// servos on pins), how many servos the library drives, the pins that carry Serial and I2C (-1:
+  /// none fixed), and what the library costs (estimates): flash, RAM, RAM per servo.
+  int pin_high = -1;
+  std::size_t pin_servos = 0;
+  std::array<int, 2> serial_pins{-1, -1}, i2c_pin_numbers{-1, -1};
+  std::size_t servo_flash = 0, servo_ram = 0, servo_each_ram = 0;
 
   /// The Linux host: a program built with CMake, not an Arduino library.
   bool host() const noexcept { return name == "host"; }

@@ -30,7 +30,8 @@ struct FigureChannelSpec {
   OutputRange range;
   ChannelLimits limits;  ///< at the figure's rate
   std::size_t board = 0;
-  int output = 0;                              ///< 0..15
+  bool on_pin = false;                         ///< on the device's own pin (a pwm link), not a board
+  int output = 0;                              ///< 0..15 on a board; the pin
   std::int32_t at_low_ns = 0, at_high_ns = 0;  ///< the pulse at output 0 (the channel's min) and 65535
   double rest = 0;                             ///< channel units
 };
@@ -38,12 +39,14 @@ struct FigureChannelSpec {
 struct FigureSpec {
   std::string rig;
   std::uint32_t rate = 50;  ///< control ticks per second (the rig's rate_hz)
+  std::uint32_t pin_rate = 0;  ///< the pins' pulses per second (the pwm link's frequency; 0: no pins)
   std::vector<FigureBoardSpec> boards;
   std::vector<FigureChannelSpec> channels;  ///< the rig's channels with an actuator, in rig order
 };
 
 /// The figure a device drives from `rig`: every channel with an actuator, which must sit on a
-/// PCA9685 link (the device's outputs); the rate must be a whole number of ticks per second.
+/// PCA9685 link or on the rig's one pwm link (the device's own pins, pulses within 544 to 2400 µs);
+/// the rate must be a whole number of ticks per second.
 /// Throws InputError at the link, actuator or channel a device cannot drive.
 FigureSpec figure_from_rig(const rig::Rig& rig);
 

@@ -112,5 +112,8 @@ void write_project(const Project& project, const std::filesystem::path& director
 
 /// The budget as a table: "flash  21,412 of 32,256 bytes (66 %)" and its items.
 std::string describe_budget(const ExportBudget& budget);
+/// Where a project's figure puts its servos: "1 PCA9685 board(s), I2C on SDA A4, SCL A5", "8 servos
+/// on pins 2, 3, 4, 5, 6, 7, 8, 9", or both joined by "; ".
+std::string describe_outputs(const Project& project);
 
 }  // namespace avar::device
