@@ -38,7 +38,7 @@ struct FigureChannelSpec {
 
 struct FigureSpec {
   std::string rig;
-  std::uint32_t rate = 50;  ///< control ticks per second (the rig's rate_hz)
+  std::uint32_t rate = 50;     ///< control ticks per second (the rig's rate_hz)
   std::uint32_t pin_rate = 0;  ///< the pins' pulses per second (the pwm link's frequency; 0: no pins)
   std::vector<FigureBoardSpec> boards;
   std::vector<FigureChannelSpec> channels;  ///< the rig's channels with an actuator, in rig order
