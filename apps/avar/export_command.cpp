@@ -69,7 +69,9 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
   CLI::App* cmd =
       app.add_subcommand("export", "Write a microcontroller project (Arduino / PlatformIO library) that plays shows standalone");
   cmd->add_option("shows", o.show_paths, "Show files (YAML), at most 9: played by serial commands 1..9 (none with --stream)");
-  cmd->add_option("--rig", o.rig_path, "Rig file: its channels on PCA9685 links are the device's figure")->required();
+  cmd->add_option("--rig", o.rig_path,
+                  "Rig file: its channels on PCA9685 links and on one pwm link (the board's pins) are the device's figure")
+      ->required();
   cmd->add_option("--target", o.target, "Microcontroller: " + device::device_target_names())->required();
   cmd->add_option("--out", o.out_dir, "Directory to write the library into (an Arduino libraries/ folder's entry)")->required();
   cmd->add_option("--name", o.name, "Library name (default avar_RIG)");
@@ -89,9 +91,11 @@ CLI::App* add_export_subcommand(CLI::App& app, ExportOptions& o) {
                std::string(t.boards) + "\n";
   cmd->footer("Targets:\n" + targets +
               "The figure is the rig's channels with an actuator; each must be a hobby servo on a PCA9685 board\n"
-              "(a pca9685 link). Every show is encoded for the device engine (a channel a show has no track for\n"
-              "holds its rest pose); the project carries the engine's sources with only the features the shows\n"
-              "use, the figure and shows as data in flash, and an example sketch wired from the rig. The export\n"
+              "(a pca9685 link) or on one of the board's own pins (one pwm link: pin is the board's pin number,\n"
+              "pulses 544 to 2400 us at 50 Hz, driven by the core's Servo library). Every show is encoded for\n"
+              "the device engine (a channel a show has no track for holds its rest pose); the project carries\n"
+              "the engine's sources with only the features the shows use, the figure and shows as data in\n"
+              "flash, and an example sketch wired from the rig. The export\n"
               "adds up flash and RAM for the target first and refuses, with the figures, what does not fit.\n"
               "On the board: the channels' limits apply, servos glide from rest at power-up and ease to rest on\n"
               "stop; serial commands '1'..'9' play a show, 's' stops.\n"
